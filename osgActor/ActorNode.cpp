@@ -1,0 +1,345 @@
+#include <osgActor/ActorNode>
+#include <osgActor/ActorUpdateCallback>
+#include <osgActor/GlmOsg>
+
+#include <osg/FrameStamp>
+#include <osg/Notify>
+
+#include <cmath>
+#include <limits>
+
+namespace osgActor {
+
+namespace {
+
+constexpr unsigned kNoFrame = std::numeric_limits<unsigned>::max();
+
+bool isFinite(const osg::Vec3d& v) { return v.valid(); }
+bool isFinite(const osg::Quat& q) { return q.asVec4().valid() && q.length2() > 0.0; }
+
+/** A CopyOp that always copies skeleton nodes (they carry one instance's matrices) and defers everything else to
+  * the user's CopyOp, so an actor's copy is an independent instance that shares geometry by default. */
+class SkeletonCopyOp : public osg::CopyOp
+{
+public:
+    explicit SkeletonCopyOp(const osg::CopyOp& user) : osg::CopyOp(user.getCopyFlags()), _user(user) {}
+    using osg::CopyOp::operator();
+    osg::Node* operator()(const osg::Node* node) const override
+    {
+        if (const SkeletonNode* skeleton = dynamic_cast<const SkeletonNode*>(node))
+            return new SkeletonNode(*skeleton, *this);
+        return _user(node);
+    }
+
+private:
+    const osg::CopyOp& _user;
+};
+
+/** Collects the skeleton nodes below a group by joint index; false on a missing, repeated or foreign index. */
+bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNode>>& nodes)
+{
+    for (unsigned i = 0; i < group.getNumChildren(); ++i)
+    {
+        SkeletonNode* skeleton = dynamic_cast<SkeletonNode*>(group.getChild(i));
+        if (!skeleton) continue; // attached geometry
+        const unsigned joint = skeleton->getJointIndex();
+        if (joint >= nodes.size() || nodes[joint].valid()) return false;
+        nodes[joint] = skeleton;
+        if (!collectSkeletonNodes(*skeleton, nodes)) return false;
+    }
+    return true;
+}
+
+} // namespace
+
+ActorNode::ActorNode()
+    : _preTransformDirty(true), _postTransformDirty(true), _actorMatrixWritten(false), _blocked(false),
+      _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+{
+    setDataVariance(osg::Object::DYNAMIC);
+    setUpdateCallback(new ActorUpdateCallback);
+}
+
+ActorNode::ActorNode(ActorDefinitionPtr definition) : ActorNode()
+{
+    setDefinition(std::move(definition));
+}
+
+ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
+    : osg::MatrixTransform(actor, SkeletonCopyOp(copyop)), _pose(actor._pose),
+      _preTranslation(actor._preTranslation), _preRotation(actor._preRotation),
+      _postTranslation(actor._postTranslation), _postRotation(actor._postRotation),
+      _preTransformMatrix(actor._preTransformMatrix), _postTransformMatrix(actor._postTransformMatrix),
+      _actorMatrix(actor._actorMatrix), _preTransformDirty(actor._preTransformDirty),
+      _postTransformDirty(actor._postTransformDirty), _actorMatrixWritten(actor._actorMatrixWritten),
+      _blocked(actor._blocked), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+{
+    rebindSkeletonNodes();
+}
+
+void ActorNode::setDefinition(ActorDefinitionPtr definition)
+{
+    for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes)
+    {
+        if (getDefinition() && getDefinition()->getParent(node->getJointIndex()) == kNoParent) removeChild(node.get());
+    }
+    _skeletonNodes.clear();
+    _pose = ActorPose(std::move(definition));
+    buildSkeletonNodes();
+    // Pose the new nodes at once, so a fresh actor has correct bounds and queries before its first frame.
+    _pose.updateMatrices();
+    writeSceneGraph();
+}
+
+void ActorNode::buildSkeletonNodes()
+{
+    const ActorDefinition* def = getDefinition().get();
+    if (!def) return;
+    _skeletonNodes.reserve(def->getNumJoints());
+    for (unsigned j = 0; j < def->getNumJoints(); ++j)
+    {
+        osg::ref_ptr<SkeletonNode> node = new SkeletonNode(j, def->getJointName(j));
+        const int parent = def->getParent(j);
+        if (parent == kNoParent) addChild(node.get());
+        else _skeletonNodes[static_cast<unsigned>(parent)]->addChild(node.get());
+        _skeletonNodes.push_back(node);
+    }
+}
+
+bool ActorNode::rebindSkeletonNodes()
+{
+    _skeletonNodes.clear();
+    const ActorDefinition* def = getDefinition().get();
+    if (!def) return true;
+    std::vector<osg::ref_ptr<SkeletonNode>> nodes(def->getNumJoints());
+    bool complete = collectSkeletonNodes(*this, nodes);
+    for (const osg::ref_ptr<SkeletonNode>& node : nodes) complete = complete && node.valid();
+    if (!complete)
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "': its skeleton nodes do not match its definition"
+                 << std::endl;
+        return false;
+    }
+    _skeletonNodes.swap(nodes);
+    // The nodes may hold stale matrices (a reader made them): write every joint at the next update.
+    _pose.markAllJointsDirty();
+    _actorMatrixWritten = false;
+    return true;
+}
+
+SkeletonNode* ActorNode::getSkeletonNode(const std::string& jointName)
+{
+    const int joint = getJointIndex(jointName);
+    return joint < 0 || static_cast<unsigned>(joint) >= _skeletonNodes.size()
+               ? nullptr
+               : _skeletonNodes[static_cast<unsigned>(joint)].get();
+}
+
+int ActorNode::getJointIndex(const std::string& jointName) const
+{
+    return getDefinition() ? getDefinition()->findJoint(jointName) : -1;
+}
+
+// --- DOFs ---
+
+int ActorNode::getDofIndex(const std::string& name) const
+{
+    return getDefinition() ? getDefinition()->findDof(name) : -1;
+}
+
+bool ActorNode::getDof(const std::string& name, double& value) const
+{
+    const int index = getDofIndex(name);
+    if (index < 0) return false;
+    value = _pose.getDof(static_cast<unsigned>(index));
+    return true;
+}
+
+bool ActorNode::reportRefusal(DofWriteStatus status, const std::string& what) const
+{
+    if (succeeded(status)) return true;
+    OSG_WARN << "osgActor: actor '" << getName() << "': " << what;
+    switch (status)
+    {
+    case DofWriteStatus::NotFinite: OSG_WARN << " refused a NaN or infinite value; the old value is kept"; break;
+    case DofWriteStatus::NoSuchDof: OSG_WARN << ": there is no such DOF"; break;
+    case DofWriteStatus::SizeMismatch: OSG_WARN << " was refused: the actor has " << getNumDofs() << " DOFs"; break;
+    default: break;
+    }
+    OSG_WARN << std::endl;
+    return false;
+}
+
+bool ActorNode::setDof(unsigned index, double value)
+{
+    const DofWriteStatus status = _pose.setDof(index, value);
+    if (succeeded(status)) return true; // the common case builds no message
+    const std::string name = index < getNumDofs() ? "DOF '" + getDefinition()->getDofName(index) + "'"
+                                                  : "DOF #" + std::to_string(index);
+    return reportRefusal(status, name);
+}
+
+bool ActorNode::setDof(const std::string& name, double value)
+{
+    const int index = getDofIndex(name);
+    if (index < 0) return reportRefusal(DofWriteStatus::NoSuchDof, "DOF '" + name + "'");
+    return setDof(static_cast<unsigned>(index), value);
+}
+
+bool ActorNode::setDofs(const std::vector<double>& values)
+{
+    const DofWriteStatus status = _pose.setDofs(values.data(), values.size());
+    return reportRefusal(status, "a pose of " + std::to_string(values.size()) + " values");
+}
+
+void ActorNode::resetDofs() { _pose.resetDofs(); }
+
+// --- pre- and post-transforms ---
+
+void ActorNode::setPreTranslation(const osg::Vec3d& translation)
+{
+    if (!isFinite(translation))
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused a non-finite pre-translation" << std::endl;
+        return;
+    }
+    _preTranslation = translation;
+    _preTransformDirty = true;
+    _actorMatrixWritten = false;
+}
+
+void ActorNode::setPreRotation(const osg::Quat& rotation)
+{
+    if (!isFinite(rotation))
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite pre-rotation" << std::endl;
+        return;
+    }
+    _preRotation = rotation;
+    _preTransformDirty = true;
+    _actorMatrixWritten = false;
+}
+
+void ActorNode::setPostTranslation(const osg::Vec3d& translation)
+{
+    if (!isFinite(translation))
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused a non-finite post-translation" << std::endl;
+        return;
+    }
+    _postTranslation = translation;
+    _postTransformDirty = true;
+    _actorMatrixWritten = false;
+}
+
+void ActorNode::setPostRotation(const osg::Quat& rotation)
+{
+    if (!isFinite(rotation))
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite post-rotation" << std::endl;
+        return;
+    }
+    _postRotation = rotation;
+    _postTransformDirty = true;
+    _actorMatrixWritten = false;
+}
+
+void ActorNode::updateTransformMatrices() const
+{
+    if (!_preTransformDirty && !_postTransformDirty) return;
+    // Rotation then translation: a point of the frame is turned, then placed (column notation T * R). OSG's
+    // row-vector products read right to left from that.
+    if (_preTransformDirty)
+    {
+        osg::Quat rotation = _preRotation;
+        rotation /= std::sqrt(rotation.length2());
+        _preTransformMatrix = osg::Matrixd::rotate(rotation) * osg::Matrixd::translate(_preTranslation);
+    }
+    if (_postTransformDirty)
+    {
+        osg::Quat rotation = _postRotation;
+        rotation /= std::sqrt(rotation.length2());
+        _postTransformMatrix = osg::Matrixd::rotate(rotation) * osg::Matrixd::translate(_postTranslation);
+    }
+    _actorMatrix = _postTransformMatrix * _preTransformMatrix; // actor_m = pretr_m * posttr_m in column notation
+    _preTransformDirty = false;
+    _postTransformDirty = false;
+}
+
+const osg::Matrixd& ActorNode::getPreTransformMatrix() const
+{
+    updateTransformMatrices();
+    return _preTransformMatrix;
+}
+
+const osg::Matrixd& ActorNode::getPostTransformMatrix() const
+{
+    updateTransformMatrices();
+    return _postTransformMatrix;
+}
+
+const osg::Matrixd& ActorNode::getActorMatrix() const
+{
+    updateTransformMatrices();
+    return _actorMatrix;
+}
+
+// --- queries ---
+
+void ActorNode::updatePose() const
+{
+    if (!_blocked) _pose.updateMatrices();
+}
+
+osg::Matrixd ActorNode::getJointModelMatrix(unsigned joint) const
+{
+    updatePose();
+    return toOsg(_pose.getModelMatrix(joint));
+}
+
+osg::Matrixd ActorNode::getJointWorldMatrix(unsigned joint) const
+{
+    // The parent's world matrix comes from the graph above us; actor_m is taken fresh rather than from our own
+    // node matrix, which only the update traversal writes.
+    osg::Matrixd parentWorld;
+    const osg::NodePathList paths = getParentalNodePaths();
+    if (!paths.empty())
+    {
+        osg::NodePath above = paths.front();
+        above.pop_back(); // this node
+        parentWorld = osg::computeLocalToWorld(above);
+    }
+    const osg::Matrixd& actor = _blocked ? getMatrix() : getActorMatrix();
+    return getJointModelMatrix(joint) * actor * parentWorld;
+}
+
+// --- per-frame work ---
+
+void ActorNode::update(const osg::NodeVisitor* nv)
+{
+    const osg::FrameStamp* stamp = nv ? nv->getFrameStamp() : nullptr;
+    if (stamp)
+    {
+        // An actor with several parents is visited once per parent; its work is done once per frame.
+        if (stamp->getFrameNumber() == _lastFrameNumber) return;
+        _lastFrameNumber = stamp->getFrameNumber();
+    }
+    if (_blocked) return;
+    ++_numUpdatesRun;
+    _pose.updateMatrices();
+    writeSceneGraph();
+}
+
+void ActorNode::writeSceneGraph()
+{
+    if (!_actorMatrixWritten)
+    {
+        setMatrix(getActorMatrix());
+        _actorMatrixWritten = true;
+    }
+    _pose.consumeChangedLocals([this](unsigned joint, const glm::dmat4& local) {
+        if (joint < _skeletonNodes.size()) _skeletonNodes[joint]->setMatrix(toOsg(local));
+    });
+}
+
+} // namespace osgActor

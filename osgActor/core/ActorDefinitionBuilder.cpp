@@ -1,0 +1,288 @@
+#include <osgActor/core/ActorDefinitionBuilder>
+
+#include <glm/ext/matrix_transform.hpp>
+#include <glm/ext/quaternion_geometric.hpp>
+#include <glm/ext/quaternion_trigonometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <cmath>
+#include <sstream>
+#include <unordered_map>
+
+namespace osgActor {
+
+namespace {
+
+bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string quoted(const std::string& name) { return "'" + name + "'"; }
+
+/** Says what is wrong with one DOF's description, or returns an empty string. */
+std::string checkDof(const JointSpec& joint, Dof dof)
+{
+    const DofSpec& spec = joint.dofs[static_cast<unsigned>(dof)];
+    if (!spec.active) return std::string();
+    std::ostringstream what;
+    const std::string name = quoted(joint.name + "." + dofName(dof));
+    if (std::isnan(spec.min) || std::isnan(spec.max))
+        what << "DOF " << name << " has a NaN limit";
+    else if (spec.min > spec.max)
+        what << "DOF " << name << " has its minimum " << spec.min << " above its maximum " << spec.max;
+    else if (!std::isfinite(spec.defaultValue))
+        what << "DOF " << name << " has a non-finite default value";
+    else if (spec.defaultValue < spec.min || spec.defaultValue > spec.max)
+        what << "DOF " << name << " has its default value " << spec.defaultValue << " outside its limits ["
+             << spec.min << ", " << spec.max << "]";
+    else if (!std::isfinite(spec.weight) || spec.weight < 0.0)
+        what << "DOF " << name << " has weight " << spec.weight << "; weights must be finite and >= 0";
+    return what.str();
+}
+
+/** Says what is wrong with one joint in isolation, or returns an empty string. */
+std::string checkJoint(const JointSpec& joint)
+{
+    if (joint.name.empty()) return "a joint has an empty name";
+    if (!isFinite(joint.translation)) return "joint " + quoted(joint.name) + " has a non-finite offset";
+    const glm::dquat& q = joint.rotation;
+    const double norm = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
+    if (!std::isfinite(norm) || norm < 1e-12)
+        return "joint " + quoted(joint.name) + " has a zero or non-finite offset rotation";
+    for (unsigned d = 0; d < kNumDofTypes; ++d)
+    {
+        const std::string error = checkDof(joint, static_cast<Dof>(d));
+        if (!error.empty()) return error;
+    }
+    return std::string();
+}
+
+/** Parent-first order of the joints: depth first from each root, children in the order they were added. Joints
+  * left out of the order hang below a parent cycle. */
+std::vector<unsigned> parentFirstOrder(const std::vector<int>& parents)
+{
+    const unsigned n = static_cast<unsigned>(parents.size());
+    std::vector<std::vector<unsigned>> children(n);
+    std::vector<unsigned> roots;
+    for (unsigned j = 0; j < n; ++j)
+    {
+        if (parents[j] < 0) roots.push_back(j);
+        else children[static_cast<unsigned>(parents[j])].push_back(j);
+    }
+    std::vector<unsigned> order;
+    order.reserve(n);
+    std::vector<unsigned> stack(roots.rbegin(), roots.rend());
+    while (!stack.empty())
+    {
+        const unsigned j = stack.back();
+        stack.pop_back();
+        order.push_back(j);
+        for (auto it = children[j].rbegin(); it != children[j].rend(); ++it) stack.push_back(*it);
+    }
+    return order;
+}
+
+/** Describes the parent cycle above joint start ("a -> b -> a"). */
+std::string describeCycle(const std::vector<JointSpec>& joints, const std::vector<int>& parents, unsigned start)
+{
+    // Walk up until a joint repeats; that joint is on the cycle.
+    std::vector<bool> seen(joints.size(), false);
+    unsigned j = start;
+    while (!seen[j])
+    {
+        seen[j] = true;
+        j = static_cast<unsigned>(parents[j]);
+    }
+    std::string text = quoted(joints[j].name);
+    for (unsigned k = static_cast<unsigned>(parents[j]);; k = static_cast<unsigned>(parents[k]))
+    {
+        text += " -> " + quoted(joints[k].name);
+        if (k == j) break;
+    }
+    return text;
+}
+
+JointKinematics makeKinematics(const JointSpec& joint, unsigned firstDof, DofMask mask)
+{
+    JointKinematics k;
+    const glm::dquat rotation = glm::normalize(joint.rotation);
+    k.offset = glm::translate(glm::dmat4(1.0), joint.translation) * glm::mat4_cast(rotation);
+    k.offsetIsTranslation = rotation.w == 1.0 || rotation.w == -1.0;
+    k.translationMode = joint.translationMode;
+
+    // Absolute index of each active DOF, in the vector's rx..tz order.
+    int dofIndex[kNumDofTypes];
+    unsigned next = firstDof;
+    for (unsigned d = 0; d < kNumDofTypes; ++d) dofIndex[d] = (mask & (1u << d)) ? static_cast<int>(next++) : -1;
+
+    unsigned axes[3];
+    eulerOrderAxes(joint.eulerOrder, axes);
+    for (unsigned axis : axes)
+    {
+        if (dofIndex[axis] < 0) continue; // an inactive rotation costs nothing
+        k.rotationDof[k.numRotations] = static_cast<std::uint32_t>(dofIndex[axis]);
+        k.rotationAxis[k.numRotations] = static_cast<std::uint8_t>(axis);
+        ++k.numRotations;
+    }
+    for (unsigned t = 0; t < 3; ++t) k.translationDof[t] = dofIndex[3 + t];
+    return k;
+}
+
+} // namespace
+
+ActorDefinitionBuilder::JointRef& ActorDefinitionBuilder::JointRef::rotation(double angle, double axisX,
+                                                                             double axisY, double axisZ)
+{
+    const glm::dvec3 axis(axisX, axisY, axisZ);
+    const double length = std::sqrt(axisX * axisX + axisY * axisY + axisZ * axisZ);
+    // A zero axis leaves a zero quaternion, which build() refuses with a message naming the joint.
+    spec().rotation = length > 0.0 ? glm::angleAxis(angle, axis / length) : glm::dquat(0.0, 0.0, 0.0, 0.0);
+    return *this;
+}
+
+ActorDefinitionBuilder::JointRef& ActorDefinitionBuilder::JointRef::dofs(DofMask mask)
+{
+    for (unsigned d = 0; d < kNumDofTypes; ++d) spec().dofs[d].active = (mask & (1u << d)) != 0;
+    return *this;
+}
+
+ActorDefinitionBuilder::JointRef& ActorDefinitionBuilder::JointRef::limits(Dof dof, double min, double max)
+{
+    DofSpec& d = spec().dofs[static_cast<unsigned>(dof)];
+    d.min = min;
+    d.max = max;
+    return *this;
+}
+
+ActorDefinitionBuilder::JointRef& ActorDefinitionBuilder::JointRef::defaultValue(Dof dof, double value)
+{
+    spec().dofs[static_cast<unsigned>(dof)].defaultValue = value;
+    return *this;
+}
+
+ActorDefinitionBuilder::JointRef& ActorDefinitionBuilder::JointRef::weight(Dof dof, double weight)
+{
+    spec().dofs[static_cast<unsigned>(dof)].weight = weight;
+    return *this;
+}
+
+JointSpec& ActorDefinitionBuilder::JointRef::spec() { return _builder->_joints[_index]; }
+
+ActorDefinitionBuilder::JointRef ActorDefinitionBuilder::addJoint(const std::string& name,
+                                                                  const std::string& parent)
+{
+    JointSpec spec;
+    spec.name = name;
+    spec.parent = parent;
+    return addJoint(spec);
+}
+
+ActorDefinitionBuilder::JointRef ActorDefinitionBuilder::addJoint(const JointSpec& spec)
+{
+    _joints.push_back(spec);
+    return JointRef(*this, static_cast<unsigned>(_joints.size() - 1));
+}
+
+BuildResult ActorDefinitionBuilder::build() const
+{
+    BuildResult result;
+    const std::string actor = _name.empty() ? std::string("actor") : "actor " + quoted(_name);
+    auto fail = [&](const std::string& message) {
+        result.error = actor + ": " + message;
+        return result;
+    };
+
+    if (_joints.empty()) return fail("has no joints");
+
+    std::unordered_map<std::string, unsigned> byName;
+    for (unsigned j = 0; j < _joints.size(); ++j)
+    {
+        const std::string error = checkJoint(_joints[j]);
+        if (!error.empty()) return fail(error);
+        if (!byName.emplace(_joints[j].name, j).second)
+            return fail("joint name " + quoted(_joints[j].name) + " is used twice");
+    }
+
+    std::vector<int> parents(_joints.size(), kNoParent);
+    for (unsigned j = 0; j < _joints.size(); ++j)
+    {
+        const std::string& parent = _joints[j].parent;
+        if (parent.empty()) continue;
+        const auto it = byName.find(parent);
+        if (it == byName.end())
+            return fail("joint " + quoted(_joints[j].name) + " names an unknown parent " + quoted(parent));
+        parents[j] = static_cast<int>(it->second);
+    }
+
+    const std::vector<unsigned> order = parentFirstOrder(parents);
+    if (order.size() != _joints.size())
+    {
+        std::vector<bool> placed(_joints.size(), false);
+        for (unsigned j : order) placed[j] = true;
+        unsigned stray = 0;
+        while (placed[stray]) ++stray;
+        return fail("the joints form a parent cycle: " + describeCycle(_joints, parents, stray));
+    }
+
+    std::shared_ptr<ActorDefinition> def(new ActorDefinition());
+    def->_name = _name;
+    std::vector<int> newIndex(_joints.size(), -1);
+    for (unsigned i = 0; i < order.size(); ++i) newIndex[order[i]] = static_cast<int>(i);
+
+    def->_firstDofs.push_back(0);
+    for (unsigned i = 0; i < order.size(); ++i)
+    {
+        const JointSpec& joint = _joints[order[i]];
+        const int oldParent = parents[order[i]];
+        DofMask mask = 0;
+        for (unsigned d = 0; d < kNumDofTypes; ++d)
+        {
+            const DofSpec& dof = joint.dofs[d];
+            if (!dof.active) continue;
+            mask = static_cast<DofMask>(mask | (1u << d));
+            def->_dofJoints.push_back(i);
+            def->_dofTypes.push_back(static_cast<Dof>(d));
+            def->_dofMins.push_back(dof.min);
+            def->_dofMaxs.push_back(dof.max);
+            def->_dofDefaults.push_back(dof.defaultValue);
+            def->_dofWeights.push_back(dof.weight);
+        }
+        def->_jointNames.push_back(joint.name);
+        def->_parents.push_back(oldParent < 0 ? kNoParent : newIndex[static_cast<unsigned>(oldParent)]);
+        def->_offsetTranslations.push_back(joint.translation);
+        def->_offsetRotations.push_back(glm::normalize(joint.rotation));
+        def->_eulerOrders.push_back(joint.eulerOrder);
+        def->_dofMasks.push_back(mask);
+        def->_kinematics.push_back(makeKinematics(joint, def->_firstDofs.back(), mask));
+        def->_firstDofs.push_back(static_cast<unsigned>(def->_dofJoints.size()));
+        def->_jointIndex.emplace(joint.name, i);
+    }
+    result.definition = def;
+    return result;
+}
+
+ActorDefinitionBuilder toBuilder(const ActorDefinition& definition)
+{
+    ActorDefinitionBuilder builder(definition.getName());
+    for (unsigned j = 0; j < definition.getNumJoints(); ++j)
+    {
+        JointSpec spec;
+        spec.name = definition.getJointName(j);
+        const int parent = definition.getParent(j);
+        if (parent >= 0) spec.parent = definition.getJointName(static_cast<unsigned>(parent));
+        spec.translation = definition.getOffsetTranslation(j);
+        spec.rotation = definition.getOffsetRotation(j);
+        spec.eulerOrder = definition.getEulerOrder(j);
+        spec.translationMode = definition.getTranslationMode(j);
+        for (unsigned d = 0; d < kNumDofTypes; ++d)
+        {
+            const int index = definition.getDofIndex(j, static_cast<Dof>(d));
+            if (index < 0) continue;
+            const unsigned i = static_cast<unsigned>(index);
+            spec.dofs[d] = DofSpec{true, definition.getDofMin(i), definition.getDofMax(i),
+                                   definition.getDofDefault(i), definition.getDofWeight(i)};
+        }
+        builder.addJoint(spec);
+    }
+    return builder;
+}
+
+} // namespace osgActor

@@ -1,0 +1,74 @@
+#include <osgActor/core/ActorPose>
+#include <osgActor/core/ForwardKinematicsJob>
+
+#include <algorithm>
+#include <cmath>
+
+namespace osgActor {
+
+ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(definition))
+{
+    if (!_definition) return;
+    const unsigned numJoints = _definition->getNumJoints();
+    _dofs = _definition->getDefaultDofs();
+    _jointDirty.assign(numJoints, 1);
+    _localChanged.assign(numJoints, 0);
+    _modelChanged.assign(numJoints, 0);
+    _local.assign(numJoints, glm::dmat4(1.0));
+    _model.assign(numJoints, glm::dmat4(1.0));
+    _anyDirty = numJoints > 0;
+}
+
+DofWriteStatus ActorPose::setDof(unsigned index, double value)
+{
+    if (index >= _dofs.size()) return DofWriteStatus::NoSuchDof;
+    if (!std::isfinite(value)) return DofWriteStatus::NotFinite;
+    const double clamped = _definition->clampToLimits(index, value);
+    if (clamped == _dofs[index]) return DofWriteStatus::Unchanged;
+    _dofs[index] = clamped;
+    _jointDirty[_definition->getDofJoint(index)] = 1;
+    _anyDirty = true;
+    return clamped == value ? DofWriteStatus::Written : DofWriteStatus::Clamped;
+}
+
+DofWriteStatus ActorPose::setDofs(const double* values, std::size_t count)
+{
+    if (count != _dofs.size()) return DofWriteStatus::SizeMismatch;
+    if (!std::all_of(values, values + count, [](double v) { return std::isfinite(v); }))
+        return DofWriteStatus::NotFinite;
+    bool anyClamped = false;
+    for (unsigned i = 0; i < count; ++i)
+        anyClamped = setDof(i, values[i]) == DofWriteStatus::Clamped || anyClamped;
+    return anyClamped ? DofWriteStatus::Clamped : DofWriteStatus::Written;
+}
+
+void ActorPose::resetDofs()
+{
+    if (_definition) setDofs(_definition->getDefaultDofs().data(), _definition->getNumDofs());
+}
+
+void ActorPose::markAllJointsDirty()
+{
+    std::fill(_jointDirty.begin(), _jointDirty.end(), 1);
+    _anyDirty = !_jointDirty.empty();
+}
+
+unsigned ActorPose::updateMatrices()
+{
+    if (!_anyDirty) return 0;
+    ForwardKinematicsJob job;
+    job.definition = _definition.get();
+    job.dofs = _dofs.data();
+    job.jointDirty = _jointDirty.data();
+    job.local = _local.data();
+    job.model = _model.data();
+    job.localChanged = _localChanged.data();
+    job.modelChanged = _modelChanged.data();
+    job.run();
+    _anyDirty = false;
+    _anyLocalChanged = _anyLocalChanged || job.numRecomputed > 0;
+    _totalRecomputed += job.numRecomputed;
+    return job.numRecomputed;
+}
+
+} // namespace osgActor

@@ -1,0 +1,136 @@
+#include <osgActor/core/ActorDefinitionBuilder>
+#include <osgActor/core/ActorPose>
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+using namespace osgActor;
+
+namespace {
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+const double kInf = std::numeric_limits<double>::infinity();
+
+/** A five-joint chain with limits on the elbow. */
+ActorDefinitionPtr makeArm()
+{
+    ActorDefinitionBuilder b("arm");
+    b.addJoint("shoulder").dofs(kRotationDofs);
+    b.addJoint("elbow", "shoulder").offset(0, 0, -0.3).dofs(dofBit(Dof::RX)).limits(Dof::RX, 0.0, 2.5);
+    b.addJoint("wrist", "elbow").offset(0, 0, -0.25).dofs(Dof::RX | Dof::RY);
+    b.addJoint("hand", "wrist").offset(0, 0, -0.1);
+    b.addJoint("slider", "shoulder").dofs(dofBit(Dof::TX)).limits(Dof::TX, -0.1, 0.1);
+    return b.build().definition;
+}
+
+} // namespace
+
+TEST(ActorPose, RefusesNaNAndInfinityKeepingTheOldValue)
+{
+    ActorPose pose(makeArm());
+    ASSERT_EQ(pose.setDof(3, 1.0), DofWriteStatus::Written);
+    pose.updateMatrices();
+    EXPECT_EQ(pose.setDof(3, kNaN), DofWriteStatus::NotFinite);
+    EXPECT_EQ(pose.setDof(3, kInf), DofWriteStatus::NotFinite);
+    EXPECT_EQ(pose.setDof(3, -kInf), DofWriteStatus::NotFinite);
+    EXPECT_EQ(pose.getDof(3), 1.0);
+    EXPECT_FALSE(pose.hasDirtyJoints()) << "a refused write marks nothing";
+}
+
+TEST(ActorPose, RefusesUnknownIndices)
+{
+    ActorPose pose(makeArm());
+    EXPECT_EQ(pose.setDof(pose.getNumDofs(), 0.0), DofWriteStatus::NoSuchDof);
+}
+
+TEST(ActorPose, WholePoseWriteIsAllOrNothing)
+{
+    ActorPose pose(makeArm());
+    const std::vector<double> before = pose.getDofs();
+    std::vector<double> values(pose.getNumDofs(), 0.5);
+    values[4] = kNaN;
+    EXPECT_EQ(pose.setDofs(values.data(), values.size()), DofWriteStatus::NotFinite);
+    EXPECT_EQ(pose.getDofs(), before);
+    EXPECT_EQ(pose.setDofs(values.data(), values.size() - 1), DofWriteStatus::SizeMismatch);
+    EXPECT_EQ(pose.getDofs(), before);
+    values[4] = 0.5;
+    EXPECT_EQ(pose.setDofs(values.data(), values.size()), DofWriteStatus::Clamped) << "slider.tx is clamped";
+    EXPECT_EQ(pose.getDof(6), 0.1);
+    EXPECT_EQ(pose.getDof(3), 0.5);
+}
+
+TEST(ActorPose, LimitsAreEnforcedOnWrite)
+{
+    ActorPose pose(makeArm());
+    EXPECT_EQ(pose.setDof(3, 3.0), DofWriteStatus::Clamped);
+    EXPECT_EQ(pose.getDof(3), 2.5);
+    EXPECT_EQ(pose.setDof(3, -1.0), DofWriteStatus::Clamped);
+    EXPECT_EQ(pose.getDof(3), 0.0);
+    EXPECT_EQ(pose.setDof(0, 100.0), DofWriteStatus::Written) << "an unlimited DOF takes any finite value";
+}
+
+TEST(ActorPose, OnlyTheChangedJointIsRecomputed)
+{
+    ActorPose pose(makeArm());
+    EXPECT_EQ(pose.updateMatrices(), 5u) << "a new pose computes every joint once";
+    EXPECT_EQ(pose.updateMatrices(), 0u) << "an idle pose computes nothing";
+    pose.setDof(4, 0.2); // wrist.rx
+    EXPECT_TRUE(pose.isJointDirty(2));
+    EXPECT_FALSE(pose.isJointDirty(1));
+    EXPECT_EQ(pose.updateMatrices(), 1u);
+    pose.setDof(4, 0.2);
+    EXPECT_FALSE(pose.hasDirtyJoints()) << "writing the value a DOF already has changes nothing";
+    pose.setDof(0, 0.1);
+    pose.setDof(1, 0.1); // two DOFs of one joint
+    pose.setDof(3, 0.4);
+    EXPECT_EQ(pose.updateMatrices(), 2u);
+    EXPECT_EQ(pose.getTotalRecomputedJoints(), 8u);
+}
+
+TEST(ActorPose, ChangedLocalsAreConsumedOnce)
+{
+    ActorPose pose(makeArm());
+    pose.updateMatrices();
+    unsigned seen = 0;
+    pose.consumeChangedLocals([&](unsigned, const glm::dmat4&) { ++seen; });
+    EXPECT_EQ(seen, 5u);
+    pose.setDof(3, 1.0);
+    pose.updateMatrices();
+    pose.setDof(5, 1.0);
+    pose.updateMatrices();
+    std::vector<unsigned> joints;
+    pose.consumeChangedLocals([&](unsigned joint, const glm::dmat4&) { joints.push_back(joint); });
+    EXPECT_EQ(joints, (std::vector<unsigned>{1, 2})) << "two runs gathered, each joint once";
+    pose.consumeChangedLocals([&](unsigned joint, const glm::dmat4&) { joints.push_back(joint); });
+    EXPECT_EQ(joints.size(), 2u);
+}
+
+TEST(ActorPose, CopiesAreIndependent)
+{
+    ActorPose a(makeArm());
+    a.updateMatrices();
+    ActorPose b = a;
+    b.setDof(3, 1.0);
+    b.updateMatrices();
+    EXPECT_EQ(a.getDof(3), 0.0);
+    EXPECT_NE(a.getModelMatrix(3), b.getModelMatrix(3));
+    EXPECT_EQ(a.getDefinition(), b.getDefinition()) << "the definition is shared";
+}
+
+TEST(ActorPose, ResetRestoresDefaults)
+{
+    ActorPose pose(makeArm());
+    pose.setDof(0, 1.0);
+    pose.resetDofs();
+    EXPECT_EQ(pose.getDofs(), pose.getDefinition()->getDefaultDofs());
+}
+
+TEST(ActorPose, AnEmptyPoseIsHarmless)
+{
+    ActorPose pose;
+    EXPECT_EQ(pose.getNumDofs(), 0u);
+    EXPECT_EQ(pose.updateMatrices(), 0u);
+    EXPECT_EQ(pose.setDof(0, 1.0), DofWriteStatus::NoSuchDof);
+    pose.resetDofs();
+}

@@ -1,0 +1,255 @@
+#include "NodeTestUtil"
+
+#include <osgActor/ActorUpdateCallback>
+#include <osgActor/GlmOsg>
+#include <osgActor/core/ForwardKinematicsJob>
+
+#include <osg/MatrixTransform>
+
+#include <cmath>
+#include <limits>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+const double kQuarter = osg::PI_2;
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+} // namespace
+
+// --- refusals first ---
+
+TEST(ActorNode, RefusesUnknownDofNamesAndNaN)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    EXPECT_FALSE(actor->setDof("elbow.rz", 1.0));
+    EXPECT_FALSE(actor->setDof("upper.rx", 1.0)) << "upper has no rx";
+    EXPECT_FALSE(actor->setDof(99u, 1.0));
+    ASSERT_TRUE(actor->setDof("upper.rz", 0.5));
+    EXPECT_FALSE(actor->setDof("upper.rz", kNaN));
+    double value = 0.0;
+    ASSERT_TRUE(actor->getDof("upper.rz", value));
+    EXPECT_EQ(value, 0.5);
+    EXPECT_FALSE(actor->getDof("nobody.rz", value));
+    EXPECT_FALSE(actor->setDofs({1.0, 2.0}));
+    EXPECT_EQ(actor->getDof(1u), 0.5);
+}
+
+TEST(ActorNode, RefusesNonFiniteTransforms)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    actor->setPreTranslation(osg::Vec3d(1, 2, 3));
+    actor->setPreTranslation(osg::Vec3d(kNaN, 0, 0));
+    actor->setPostRotation(osg::Quat(0, 0, 0, 0));
+    EXPECT_EQ(actor->getPreTranslation(), osg::Vec3d(1, 2, 3));
+    EXPECT_EQ(actor->getPostRotation(), osg::Quat());
+    EXPECT_TRUE(actor->getActorMatrix().valid());
+}
+
+TEST(ActorNode, AnEmptyActorIsHarmless)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode;
+    EXPECT_EQ(actor->getNumDofs(), 0u);
+    EXPECT_EQ(actor->getNumSkeletonNodes(), 0u);
+    EXPECT_EQ(actor->getSkeletonNode("x"), nullptr);
+    EXPECT_FALSE(actor->setDof("x.rx", 0.0));
+    runUpdate(*actor, 1);
+}
+
+// --- structure ---
+
+TEST(ActorNode, BuildsOneSkeletonNodePerJointNestedLikeTheBody)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    ASSERT_EQ(actor->getNumSkeletonNodes(), 4u);
+    ASSERT_EQ(actor->getNumChildren(), 1u);
+    EXPECT_EQ(actor->getChild(0), actor->getSkeletonNode(0u));
+    for (unsigned j = 1; j < 4; ++j)
+    {
+        SkeletonNode* node = actor->getSkeletonNode(j);
+        EXPECT_EQ(node->getJointIndex(), j);
+        EXPECT_EQ(node->getName(), actor->getDefinition()->getJointName(j));
+        ASSERT_EQ(node->getNumParents(), 1u);
+        EXPECT_EQ(node->getParent(0), actor->getSkeletonNode(j - 1));
+    }
+    EXPECT_EQ(actor->getSkeletonNode("lower"), actor->getSkeletonNode(2u));
+    EXPECT_EQ(actor->getUpdateCallback() != nullptr, true);
+    EXPECT_NE(dynamic_cast<ActorUpdateCallback*>(actor->getUpdateCallback()), nullptr);
+}
+
+TEST(ActorNode, AFreshActorIsPosedBeforeItsFirstFrame)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    EXPECT_TRUE(vec3Near(actor->getSkeletonNode(3u)->getMatrix().getTrans(), osg::Vec3d(0.5, 0, 0)));
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(3), osg::Vec3d(2.5, 0, 0)));
+}
+
+// --- DOFs reach the node matrices in the update traversal ---
+
+TEST(ActorNode, UpdateTraversalWritesTheJointMatrices)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    ASSERT_TRUE(actor->setDof("upper.rz", kQuarter));
+    // Before the update traversal the node still shows the old pose...
+    EXPECT_TRUE(vec3Near(actor->getSkeletonNode(2u)->getMatrix().getTrans(), osg::Vec3d(1, 0, 0)));
+    runUpdate(*actor, 1);
+    // ...after it, skl_m = T(1,0,0) * Rz(90): X axis along +Y.
+    const osg::Matrixd& m = actor->getSkeletonNode(1u)->getMatrix();
+    EXPECT_TRUE(vec3Near(osg::Vec3d(1, 0, 0) * m - m.getTrans(), osg::Vec3d(0, 1, 0), 1e-15));
+    EXPECT_TRUE(vec3Near(m.getTrans(), osg::Vec3d(1, 0, 0)));
+    // The matrix written is exactly the core's.
+    const ActorDefinition& def = *actor->getDefinition();
+    EXPECT_EQ(m, toOsg(computeJointMatrix(def.getKinematics(1), actor->getDofs().data())));
+}
+
+TEST(ActorNode, UpdatedFlagRecomputesOnlyTheMovedJoint)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    const std::uint64_t start = actor->getPose().getTotalRecomputedJoints();
+    EXPECT_EQ(start, 4u) << "construction computes every joint once";
+    runUpdate(*actor, 1);
+    EXPECT_EQ(actor->getPose().getTotalRecomputedJoints(), start) << "an idle actor recomputes nothing";
+    actor->setDof("lower.rz", 0.3);
+    runUpdate(*actor, 2);
+    EXPECT_EQ(actor->getPose().getTotalRecomputedJoints(), start + 1);
+    actor->setDof("base.rz", 0.3);
+    runUpdate(*actor, 3);
+    EXPECT_EQ(actor->getPose().getTotalRecomputedJoints(), start + 2) << "children move without recomputation";
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(1), osg::Vec3d(std::cos(0.3), std::sin(0.3), 0)));
+}
+
+TEST(ActorNode, LimitsAreEnforcedOnWrite)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    EXPECT_TRUE(actor->setDof("upper.rz", 5.0));
+    EXPECT_EQ(actor->getDof(1u), 2.0);
+}
+
+TEST(ActorNode, BlockFreezesTheActorUntilUnblocked)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    actor->setBlocked(true);
+    actor->setDof("base.rz", kQuarter);
+    actor->setPreTranslation(osg::Vec3d(0, 0, 5));
+    runUpdate(*actor, 1);
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(3), osg::Vec3d(2.5, 0, 0))) << "frozen";
+    EXPECT_TRUE(actor->getMatrix().isIdentity());
+    EXPECT_EQ(actor->getDof(0u), kQuarter) << "the write is kept";
+    actor->setBlocked(false);
+    runUpdate(*actor, 2);
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(3), osg::Vec3d(0, 2.5, 5), 1e-14));
+    EXPECT_TRUE(vec3Near(actor->getMatrix().getTrans(), osg::Vec3d(0, 0, 5)));
+}
+
+// --- pre- and post-transforms ---
+
+TEST(ActorNode, ActorMatrixIsPreTimesPost)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    actor->setPreTranslation(osg::Vec3d(0, 5, 0));
+    actor->setPreRotation(osg::Quat(kQuarter, osg::Vec3d(0, 0, 1)));
+    actor->setPostTranslation(osg::Vec3d(0, 0, 1));
+    // A point p of the skeleton frame goes to pretr_m * posttr_m * p: (1,0,0) -> (1,0,1) -> (0,1,1) -> (0,6,1).
+    EXPECT_TRUE(vec3Near(osg::Vec3d(1, 0, 0) * actor->getActorMatrix(), osg::Vec3d(0, 6, 1), 1e-14));
+    EXPECT_TRUE(vec3Near(osg::Vec3d(1, 0, 0) * actor->getPostTransformMatrix(), osg::Vec3d(1, 0, 1)));
+    EXPECT_TRUE(vec3Near(osg::Vec3d(1, 0, 0) * actor->getPreTransformMatrix(), osg::Vec3d(0, 6, 0), 1e-14));
+    runUpdate(*actor, 1);
+    EXPECT_EQ(actor->getMatrix(), actor->getActorMatrix());
+}
+
+TEST(ActorNode, WorldQueriesGoThroughTransformsAboveTheActor)
+{
+    osg::ref_ptr<osg::MatrixTransform> above = new osg::MatrixTransform(osg::Matrixd::translate(10, 0, 0));
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    above->addChild(actor.get());
+    actor->setPreTranslation(osg::Vec3d(0, 5, 0));
+    actor->setPreRotation(osg::Quat(kQuarter, osg::Vec3d(0, 0, 1)));
+    actor->setPostTranslation(osg::Vec3d(0, 0, 1));
+    // Joint "upper" is at (1,0,0) in the skeleton frame: world (10,6,1), before any update traversal.
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(1), osg::Vec3d(10, 6, 1), 1e-14));
+    // After the update, OSG's own accumulation of the node path agrees.
+    actor->setDof("upper.rz", 0.7);
+    runUpdate(*above, 1);
+    for (unsigned j = 0; j < actor->getNumSkeletonNodes(); ++j)
+    {
+        const osg::Matrixd fromGraph = actor->getSkeletonNode(j)->getWorldMatrices().front();
+        const osg::Matrixd fromQuery = actor->getJointWorldMatrix(j);
+        for (int k = 0; k < 16; ++k) EXPECT_NEAR(fromGraph.ptr()[k], fromQuery.ptr()[k], 1e-12) << "joint " << j;
+    }
+}
+
+TEST(ActorNode, WorldQueriesAreCurrentBetweenFramesWithoutTouchingTheGraph)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    actor->setDof("base.rz", kQuarter);
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(3), osg::Vec3d(0, 2.5, 0), 1e-14));
+    EXPECT_TRUE(vec3Near(actor->getSkeletonNode(0u)->getMatrix().getTrans(), osg::Vec3d(0, 0, 0)));
+    EXPECT_TRUE(actor->getSkeletonNode(0u)->getMatrix().isIdentity()) << "only the update traversal writes nodes";
+    runUpdate(*actor, 1);
+    EXPECT_FALSE(actor->getSkeletonNode(0u)->getMatrix().isIdentity()) << "the pending write happens in update";
+}
+
+TEST(ActorNode, RunsOncePerFrameWithSeveralParents)
+{
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    osg::ref_ptr<osg::MatrixTransform> left = new osg::MatrixTransform(osg::Matrixd::translate(-5, 0, 0));
+    osg::ref_ptr<osg::MatrixTransform> right = new osg::MatrixTransform(osg::Matrixd::translate(5, 0, 0));
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    left->addChild(actor.get());
+    right->addChild(actor.get());
+    root->addChild(left.get());
+    root->addChild(right.get());
+    runUpdate(*root, 1);
+    EXPECT_EQ(actor->getNumUpdatesRun(), 1u);
+    runUpdate(*root, 2);
+    EXPECT_EQ(actor->getNumUpdatesRun(), 2u);
+    // Without a frame stamp (a hand-made visitor) every visit does the work.
+    osgUtil::UpdateVisitor bare;
+    root->accept(bare);
+    EXPECT_EQ(actor->getNumUpdatesRun(), 4u);
+}
+
+TEST(ActorNode, UserCallbacksBelowTheActorStillRun)
+{
+    struct Counter : osg::NodeCallback
+    {
+        unsigned calls = 0;
+        void operator()(osg::Node* node, osg::NodeVisitor* nv) override
+        {
+            ++calls;
+            traverse(node, nv);
+        }
+    };
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    osg::ref_ptr<Counter> counter = new Counter;
+    osg::ref_ptr<osg::Geode> sword = makeBox(osg::Vec3(), 0.1f);
+    sword->setUpdateCallback(counter.get());
+    actor->getSkeletonNode("tip")->addChild(sword.get());
+    runUpdate(*actor, 1);
+    EXPECT_EQ(counter->calls, 1u);
+}
+
+TEST(ActorNode, SetDofsWritesTheWholePose)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    ASSERT_TRUE(actor->setDofs({kQuarter, 0.0, -kQuarter}));
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(3), osg::Vec3d(0.5, 2, 0), 1e-14));
+    actor->resetDofs();
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(3), osg::Vec3d(2.5, 0, 0), 1e-14));
+}
+
+TEST(ActorNode, SetDefinitionRebuildsTheSkeletonAndKeepsOtherChildren)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    osg::ref_ptr<osg::Geode> marker = makeBox(osg::Vec3(), 0.1f);
+    actor->addChild(marker.get());
+    ActorDefinitionBuilder b;
+    b.addJoint("only").dofs(dofBit(Dof::TX));
+    actor->setDefinition(b.build().definition);
+    EXPECT_EQ(actor->getNumSkeletonNodes(), 1u);
+    EXPECT_EQ(actor->getNumChildren(), 2u);
+    EXPECT_TRUE(actor->containsNode(marker.get()));
+    EXPECT_EQ(actor->getDofIndex("only.tx"), 0);
+}
