@@ -5,6 +5,7 @@
 #include <osg/FrameStamp>
 #include <osg/Notify>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -53,8 +54,9 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
 } // namespace
 
 ActorNode::ActorNode()
-    : _preTransformDirty(true), _postTransformDirty(true), _actorMatrixWritten(false), _blocked(false),
-      _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+    : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _preTransformDirty(true),
+      _postTransformDirty(true), _actorMatrixWritten(false), _blocked(false), _numUpdatesRun(0),
+      _lastFrameNumber(kNoFrame)
 {
     setDataVariance(osg::Object::DYNAMIC);
     setUpdateCallback(new ActorUpdateCallback);
@@ -67,6 +69,7 @@ ActorNode::ActorNode(ActorDefinitionPtr definition) : ActorNode()
 
 ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
     : osg::MatrixTransform(actor, SkeletonCopyOp(copyop)), _pose(actor._pose),
+      _lastControllerTime(std::numeric_limits<double>::quiet_NaN()),
       _preTranslation(actor._preTranslation), _preRotation(actor._preRotation),
       _postTranslation(actor._postTranslation), _postRotation(actor._postRotation),
       _preTransformMatrix(actor._preTransformMatrix), _postTransformMatrix(actor._postTransformMatrix),
@@ -74,6 +77,8 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
       _postTransformDirty(actor._postTransformDirty), _actorMatrixWritten(actor._actorMatrixWritten),
       _blocked(actor._blocked), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
 {
+    for (const ControllerPtr& controller : actor._controllers)
+        if (controller) _controllers.push_back(controller->cloneController());
     rebindSkeletonNodes();
 }
 
@@ -284,6 +289,51 @@ const osg::Matrixd& ActorNode::getActorMatrix() const
     return _actorMatrix;
 }
 
+// --- controllers ---
+
+void ActorNode::addController(ControllerPtr controller)
+{
+    if (controller) _controllers.push_back(std::move(controller));
+}
+
+bool ActorNode::removeController(const ControllerPtr& controller)
+{
+    const auto it = std::find(_controllers.begin(), _controllers.end(), controller);
+    if (it == _controllers.end()) return false;
+    _controllers.erase(it);
+    return true;
+}
+
+ControllerPtr ActorNode::findController(const std::string& name) const
+{
+    for (const ControllerPtr& controller : _controllers)
+        if (controller->getName() == name) return controller;
+    return ControllerPtr();
+}
+
+void ActorNode::runControllers(double time)
+{
+    if (_controllers.empty() || !std::isfinite(time)) return;
+    ControllerContext context;
+    context.time = time;
+    context.deltaTime = std::isnan(_lastControllerTime) ? 0.0 : std::max(0.0, time - _lastControllerTime);
+    _lastControllerTime = time;
+
+    ActorTransforms transforms;
+    transforms.preTranslation = toGlm(_preTranslation);
+    transforms.preRotation = toGlm(_preRotation);
+    transforms.postTranslation = toGlm(_postTranslation);
+    transforms.postRotation = toGlm(_postRotation);
+    ControllerTarget target{_pose, transforms};
+    osgActor::runControllers(_controllers, context, target);
+    if (!target.transformsChanged) return;
+    // Through the setters, so a controller's NaN is refused like a user's.
+    setPreTranslation(toOsg(transforms.preTranslation));
+    setPreRotation(toOsg(transforms.preRotation));
+    setPostTranslation(toOsg(transforms.postTranslation));
+    setPostRotation(toOsg(transforms.postRotation));
+}
+
 // --- queries ---
 
 void ActorNode::updatePose() const
@@ -326,6 +376,7 @@ void ActorNode::update(const osg::NodeVisitor* nv)
     }
     if (_blocked) return;
     ++_numUpdatesRun;
+    if (stamp) runControllers(stamp->getSimulationTime());
     _pose.updateMatrices();
     writeSceneGraph();
 }

@@ -253,3 +253,51 @@ TEST(ActorNode, SetDefinitionRebuildsTheSkeletonAndKeepsOtherChildren)
     EXPECT_TRUE(actor->containsNode(marker.get()));
     EXPECT_EQ(actor->getDofIndex("only.tx"), 0);
 }
+
+// --- controllers run in the update traversal, before forward kinematics ---
+
+namespace {
+
+/** Turns base.rz at one radian per second and walks the reference point along X at 2 units per second. */
+class SpinController : public Controller
+{
+public:
+    void update(const ControllerContext& context, ControllerTarget& target) override
+    {
+        writeDof(target.pose, 0, context.time);
+        target.transforms.preTranslation.x = 2.0 * context.time;
+        target.transformsChanged = true;
+        deltas.push_back(context.deltaTime);
+    }
+    std::shared_ptr<Controller> cloneController() const override { return std::make_shared<SpinController>(); }
+    std::vector<double> deltas;
+};
+
+} // namespace
+
+TEST(ActorNode, ControllersDriveDofsAndTransformsFromTheFrameStamp)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    auto spin = std::make_shared<SpinController>();
+    spin->setName("spin");
+    actor->addController(spin);
+    EXPECT_EQ(actor->findController("spin"), spin);
+    runUpdate(*actor, 30); // simulation time 0.5 s
+    EXPECT_EQ(actor->getDof(0u), 0.5);
+    EXPECT_TRUE(vec3Near(actor->getMatrix().getTrans(), osg::Vec3d(1, 0, 0)));
+    EXPECT_TRUE(vec3Near(osg::Vec3d(1, 0, 0) * actor->getSkeletonNode(0u)->getMatrix(),
+                         osg::Vec3d(std::cos(0.5), std::sin(0.5), 0), 1e-15));
+    runUpdate(*actor, 60);
+    EXPECT_EQ(spin->deltas, (std::vector<double>{0.0, 0.5}));
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(1), osg::Vec3d(2 + std::cos(1.0), std::sin(1.0), 0), 1e-14));
+
+    // A clone gets its own controller instance.
+    osg::ref_ptr<ActorNode> copy = osg::clone(actor.get(), osg::CopyOp::SHALLOW_COPY);
+    ASSERT_EQ(copy->getControllers().size(), 1u);
+    EXPECT_NE(copy->getControllers()[0], spin);
+
+    EXPECT_TRUE(actor->removeController(spin));
+    EXPECT_FALSE(actor->removeController(spin));
+    runUpdate(*actor, 90);
+    EXPECT_EQ(actor->getDof(0u), 1.0) << "no controller, no motion";
+}
