@@ -324,6 +324,9 @@ void ActorNode::runControllers(double time)
     transforms.preRotation = toGlm(_preRotation);
     transforms.postTranslation = toGlm(_postTranslation);
     transforms.postRotation = toGlm(_postRotation);
+    if (std::any_of(_controllers.begin(), _controllers.end(),
+                    [](const ControllerPtr& c) { return c && c->getEnabled() && c->usesWorldSpace(); }))
+        context.parentToWorld = toGlm(computeParentWorldMatrix());
     ControllerTarget target{_pose, transforms};
     osgActor::runControllers(_controllers, context, target);
     if (!target.transformsChanged) return;
@@ -349,18 +352,19 @@ osg::Matrixd ActorNode::getJointModelMatrix(unsigned joint) const
 
 osg::Matrixd ActorNode::getJointWorldMatrix(unsigned joint) const
 {
-    // The parent's world matrix comes from the graph above us; actor_m is taken fresh rather than from our own
-    // node matrix, which only the update traversal writes.
-    osg::Matrixd parentWorld;
-    const osg::NodePathList paths = getParentalNodePaths();
-    if (!paths.empty())
-    {
-        osg::NodePath above = paths.front();
-        above.pop_back(); // this node
-        parentWorld = osg::computeLocalToWorld(above);
-    }
+    // actor_m is taken fresh rather than from our own node matrix, which only the update traversal writes.
     const osg::Matrixd& actor = _blocked ? getMatrix() : getActorMatrix();
-    return getJointModelMatrix(joint) * actor * parentWorld;
+    return getJointModelMatrix(joint) * actor * computeParentWorldMatrix();
+}
+
+osg::Matrixd ActorNode::computeParentWorldMatrix() const
+{
+    // The graph above us, through the first parent path; identity for an actor with no parent.
+    const osg::NodePathList paths = getParentalNodePaths();
+    if (paths.empty()) return osg::Matrixd();
+    osg::NodePath above = paths.front();
+    above.pop_back(); // this node
+    return osg::computeLocalToWorld(above);
 }
 
 // --- per-frame work ---
