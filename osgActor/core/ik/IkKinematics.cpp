@@ -58,7 +58,7 @@ void computeDofAxes(const ActorDefinition& definition, const IkChain& chain, con
             unsigned undoFrom = 0;
             if (isRotation(chainDof.type)) undoFrom = chainDof.rotationSlot + 1u;
             else if (k.translationMode == TranslationMode::AfterRotation) undoFrom = k.numRotations;
-            for (unsigned r = k.numRotations; r-- > undoFrom;)
+            for (unsigned r = undoFrom; r < k.numRotations; ++r) // R_(s+1)^T acts first
                 v = rotateAboutAxis(v, k.rotationAxis[r], cosines[r], -sines[r]);
             workspace.axis[d] = frame * v;
             workspace.pivot[d] = pivot;
