@@ -20,7 +20,7 @@ void computeChainPose(const ActorDefinition& definition, const IkChain& chain, c
     const glm::dmat4* parent = &rootParentModel;
     for (unsigned c = 0; c < numJoints; ++c)
     {
-        workspace.jointModel[c] = *parent * computeJointMatrix(kinematics[chain.getJoint(c)], dofs);
+        workspace.jointModel[c] = multiplyAffine(*parent, computeJointMatrix(kinematics[chain.getJoint(c)], dofs));
         parent = &workspace.jointModel[c];
     }
     const glm::dmat4& effector = workspace.jointModel[numJoints - 1];
@@ -31,13 +31,17 @@ void computeChainPose(const ActorDefinition& definition, const IkChain& chain, c
 void computeDofAxes(const ActorDefinition& definition, const IkChain& chain, const double* dofs,
                     IkWorkspace& workspace)
 {
-    const std::vector<JointKinematics>& kinematics = definition.getAllKinematics();
-    for (unsigned c = 0; c < chain.getNumJoints(); ++c)
+    for (unsigned c = 0; c < chain.getNumJoints(); ++c) computeJointDofAxes(definition, chain, c, dofs, workspace);
+}
+
+void computeJointDofAxes(const ActorDefinition& definition, const IkChain& chain, unsigned c, const double* dofs,
+                         IkWorkspace& workspace)
+{
     {
         const unsigned firstDof = chain.getFirstJointDof(c);
         const unsigned endDof = chain.getFirstJointDof(c + 1);
-        if (firstDof == endDof) continue;
-        const JointKinematics& k = kinematics[chain.getJoint(c)];
+        if (firstDof == endDof) return;
+        const JointKinematics& k = definition.getKinematics(chain.getJoint(c));
         // The joint's rotation part in model space: parent * offset * R_a1 R_a2 R_a3 in either translation mode.
         const glm::dmat3 frame(workspace.jointModel[c]);
         double cosines[3], sines[3];
@@ -225,7 +229,10 @@ void decomposeEuler(const glm::dmat3& r, const std::uint8_t axes[3], double firs
 
 double fitAngleToLimits(double angle, double min, double max, double reference)
 {
-    const double twoPi = 2.0 * glm::pi<double>();
+    const double pi = glm::pi<double>();
+    // The common case: the angle itself is within limits and the turn nearest the reference.
+    if (angle >= min && angle <= max && std::abs(angle - reference) <= pi) return angle;
+    const double twoPi = 2.0 * pi;
     const double nearest = angle + twoPi * std::round((reference - angle) / twoPi);
     double best = 0.0;
     double bestDistance = std::numeric_limits<double>::infinity();

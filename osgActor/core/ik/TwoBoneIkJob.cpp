@@ -41,31 +41,35 @@ bool setJointRotation(const ActorDefinition& definition, const JointKinematics& 
     decomposeEuler(target, k.rotationAxis, solutions[0], solutions[1]);
     const double twoPi = 2.0 * glm::pi<double>();
     double fitted[2][3];
-    bool exact[2] = {true, true};
-    for (unsigned s = 0; s < 2; ++s)
+    // Fits one solution to the limits; true when no angle had to be clamped (only turned by whole turns).
+    auto fit = [&](unsigned s) {
+        bool exact = true;
         for (unsigned r = 0; r < 3; ++r)
         {
             const unsigned dof = k.rotationDof[r];
             fitted[s][r] = fitAngleToLimits(solutions[s][r], definition.getDofMin(dof), definition.getDofMax(dof),
                                             dofs[dof]);
-            exact[s] = exact[s] && std::abs(std::remainder(fitted[s][r] - solutions[s][r], twoPi)) < 1e-12;
+            const double turns = (fitted[s][r] - solutions[s][r]) / twoPi;
+            exact = exact && std::abs(turns - std::round(turns)) < 1e-12;
         }
+        return exact;
+    };
     unsigned chosen = 0;
-    if (!exact[0])
+    bool exact = fit(0);
+    if (!exact)
     {
-        if (exact[1]) chosen = 1;
+        exact = fit(1);
+        if (exact) chosen = 1;
         else
         {
-            const glm::dmat3 d0 = composeRotation(k, fitted[0]) - target;
-            const glm::dmat3 d1 = composeRotation(k, fitted[1]) - target;
             auto norm2 = [](const glm::dmat3& m) {
                 return glm::dot(m[0], m[0]) + glm::dot(m[1], m[1]) + glm::dot(m[2], m[2]);
             };
-            chosen = norm2(d1) < norm2(d0) ? 1 : 0;
+            chosen = norm2(composeRotation(k, fitted[1]) - target) < norm2(composeRotation(k, fitted[0]) - target) ? 1 : 0;
         }
     }
     for (unsigned r = 0; r < 3; ++r) dofs[k.rotationDof[r]] = fitted[chosen][r];
-    return exact[chosen];
+    return exact;
 }
 
 /** The rotation (model space) turning direction from onto direction to by the shortest arc. */
@@ -150,7 +154,7 @@ bool TwoBoneIkJob::run()
     while (!withinTolerance(c, *goal, error) && rounds < c.getMaxIterations())
     {
         ++rounds;
-        computeDofAxes(def, c, dofs, ws);
+        computeJointDofAxes(def, c, 1, dofs, ws); // the bend's axis and pivot
         const glm::dvec3 rootPivot = rotationPivot(rootKinematics, ws.jointModel[0], dofs);
         const glm::dvec3 toGoal = target - rootPivot;
         glm::dvec3 tracked(ws.jointModel[2] * glm::dvec4(trackedOffset, 1.0));
@@ -197,6 +201,7 @@ bool TwoBoneIkJob::run()
 
         // 2. Aim the root.
         const glm::dvec3 reach = tracked - rootPivot;
+        bool exact = false; // the root took the aim exactly, so the tracked point is known without FK
         if (analyticAim && glm::length(toGoal) > small && glm::length(reach) > small)
         {
             const glm::dmat3 turn = goal->hasPole
@@ -208,6 +213,9 @@ bool TwoBoneIkJob::run()
             const glm::dmat3 frame = glm::dmat3(rootParentModel) * glm::dmat3(rootKinematics.offset);
             const glm::dmat3 target = glm::transpose(frame) * turn * glm::dmat3(ws.jointModel[0]);
             analyticAim = setJointRotation(def, rootKinematics, target, dofs);
+            // Exact unless clamped, or an orientation goal the effector cannot take outright is measured below.
+            exact = analyticAim && (!goal->hasOrientation || analyticOrientation);
+            tracked = rootPivot + turn * reach;
         }
 
         // 3. Turn the effector's frame onto the goal's.
@@ -217,10 +225,11 @@ bool TwoBoneIkJob::run()
             if (analyticOrientation)
             {
                 const glm::dmat3 frame = glm::dmat3(ws.jointModel[1]) * glm::dmat3(effectorKinematics.offset);
-                setJointRotation(def, effectorKinematics, glm::transpose(frame) * goalRotation, dofs);
+                exact = setJointRotation(def, effectorKinematics, glm::transpose(frame) * goalRotation, dofs) && exact;
             }
             else
             {
+                exact = false;
                 for (unsigned sweep = 0; sweep < 3; ++sweep)
                 {
                     computeDofAxes(def, c, dofs, ws);
@@ -229,8 +238,19 @@ bool TwoBoneIkJob::run()
             }
         }
 
-        computeChainPose(def, c, rootParentModel, dofs, ws);
-        error = measureIkError(*goal, goalRotation, ws);
+        if (exact)
+        {
+            // Every step took its value exactly: the effector is where the construction put it (the random-target
+            // tests check this against full forward kinematics).
+            error = IkError();
+            error.position = target - tracked;
+            error.positionNorm = glm::length(error.position);
+        }
+        else
+        {
+            computeChainPose(def, c, rootParentModel, dofs, ws);
+            error = measureIkError(*goal, goalRotation, ws);
+        }
         const double roundCost = cost(error, length);
         if (roundCost >= previousCost * (1.0 - 1e-9)) break; // no further progress: out of reach or stuck on limits
         previousCost = roundCost;
