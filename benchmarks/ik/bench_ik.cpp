@@ -66,9 +66,13 @@ Problem makeProblem(ActorDefinitionPtr definition, const IkChainSpec& spec, bool
     return problem;
 }
 
+/** Solves the problem's goals in turn from its rest pose; with givenModels the job takes the chain's starting
+  * frames from the actor's model matrices (as IkController does) rather than computing the chain's FK. */
 template <class Solver>
-void runSolves(benchmark::State& state, const Problem& problem)
+void runSolves(benchmark::State& state, const Problem& problem, bool givenModels = false)
 {
+    ActorPose restPose(problem.definition);
+    restPose.updateMatrices();
     IkWorkspace workspace;
     workspace.resize(*problem.chain);
     std::vector<double> dofs = problem.rest;
@@ -78,6 +82,7 @@ void runSolves(benchmark::State& state, const Problem& problem)
     job.rootParentModel = problem.rootParentModel;
     job.dofs = dofs.data();
     job.workspace = &workspace;
+    if (givenModels) job.jointModels = &restPose.getModelMatrix(0);
     unsigned next = 0;
     double iterations = 0.0, reached = 0.0, solves = 0.0;
     for (auto _ : state)
@@ -124,6 +129,10 @@ Problem sevenJoints(IkSolverType solver)
 }
 
 void BM_TwoBone_3Joints(benchmark::State& state) { runSolves<TwoBoneIkJob>(state, threeJoints(IkSolverType::TwoBone, true)); }
+void BM_TwoBone_3Joints_GivenModels(benchmark::State& state)
+{
+    runSolves<TwoBoneIkJob>(state, threeJoints(IkSolverType::TwoBone, true), true);
+}
 void BM_TwoBone_3Joints_Orientation(benchmark::State& state)
 {
     runSolves<TwoBoneIkJob>(state, makeProblem(test::makeLegActor(),
@@ -136,6 +145,7 @@ void BM_Ccd_7Joints(benchmark::State& state) { runSolves<CcdIkJob>(state, sevenJ
 void BM_Dls_2Joints(benchmark::State& state) { runSolves<DlsIkJob>(state, twoJoints(IkSolverType::Dls)); }
 void BM_Dls_3Joints(benchmark::State& state) { runSolves<DlsIkJob>(state, threeJoints(IkSolverType::Dls, false)); }
 void BM_Dls_7Joints(benchmark::State& state) { runSolves<DlsIkJob>(state, sevenJoints(IkSolverType::Dls)); }
+void BM_Dls_7Joints_GivenModels(benchmark::State& state) { runSolves<DlsIkJob>(state, sevenJoints(IkSolverType::Dls), true); }
 void BM_Dls_7DofArm_Orientation(benchmark::State& state)
 {
     runSolves<DlsIkJob>(state, makeProblem(test::makeArmActor(),
@@ -144,6 +154,7 @@ void BM_Dls_7DofArm_Orientation(benchmark::State& state)
 }
 
 BENCHMARK(BM_TwoBone_3Joints)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_TwoBone_3Joints_GivenModels)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TwoBone_3Joints_Orientation)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Ccd_2Joints)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Ccd_3Joints)->Unit(benchmark::kMicrosecond);
@@ -151,6 +162,7 @@ BENCHMARK(BM_Ccd_7Joints)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dls_2Joints)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dls_3Joints)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dls_7Joints)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Dls_7Joints_GivenModels)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dls_7DofArm_Orientation)->Unit(benchmark::kMicrosecond);
 
 } // namespace

@@ -65,6 +65,9 @@ RandomTargetReport solveRandomTargets(const char* label, const ActorDefinitionPt
         job.chain = chain.get();
         job.goal = &goal;
         job.rootParentModel = rootParentModel(definition, *chain, dofs);
+        // Every other solve starts from the actor's model matrices rather than computing the chain's own.
+        const std::vector<glm::dmat4> startModels = modelMatrices(definition, dofs);
+        if (i % 2) job.jointModels = startModels.data();
         job.dofs = dofs.data();
         job.workspace = &workspace;
         EXPECT_TRUE(solveIk(job));

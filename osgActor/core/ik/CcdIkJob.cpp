@@ -92,14 +92,13 @@ bool CcdIkJob::run()
     if (!validate()) return false;
     const IkChain& c = *chain;
     IkWorkspace& ws = *workspace;
-    for (const IkChainDof& d : c.getDofs()) dofs[d.dof] = std::min(std::max(dofs[d.dof], d.min), d.max);
     const glm::dmat3 goalRotation =
         goal->hasOrientation ? glm::mat3_cast(glm::normalize(goal->orientation)) : glm::dmat3(1.0);
     // Radians weigh like arcs on a circle of the chain's length.
     const double orientationWeight = goal->hasOrientation ? c.getLength() * c.getLength() : 0.0;
 
     auto cost = [&](const IkError& e) { return glm::dot(e.position, e.position) + orientationWeight * e.angle * e.angle; };
-    computeChainPose(*definition, c, rootParentModel, dofs, ws);
+    startChainPose(*this);
     IkError error = measureIkError(*goal, goalRotation, ws);
     double currentCost = cost(error);
     // The best pose before the last restart, should a kick lead nowhere better.

@@ -120,13 +120,8 @@ bool DlsIkJob::run()
     const unsigned rows = orient ? 6u : 3u;
     const glm::dmat3 goalRotation = orient ? glm::mat3_cast(glm::normalize(goal->orientation)) : glm::dmat3(1.0);
 
-    for (unsigned d = 0; d < n; ++d)
-    {
-        const IkChainDof& chainDof = c.getDof(d);
-        dofs[chainDof.dof] = std::min(std::max(dofs[chainDof.dof], chainDof.min), chainDof.max);
-        ws.savedDofs[d] = dofs[chainDof.dof];
-    }
-    computeChainPose(*definition, c, rootParentModel, dofs, ws);
+    startChainPose(*this);
+    for (unsigned d = 0; d < n; ++d) ws.savedDofs[d] = dofs[c.getDof(d).dof];
     IkError error = measureIkError(*goal, goalRotation, ws);
     double bestCost = cost(error, length);
     double lambda = kInitialDamping * length;

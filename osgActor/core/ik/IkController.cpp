@@ -63,6 +63,7 @@ void IkController::update(const ControllerContext& context, ControllerTarget& ta
     job.goal = &_lastModelGoal;
     const int parent = definition->getParent(_chain->getRootJoint());
     job.rootParentModel = parent >= 0 ? pose.getModelMatrix(static_cast<unsigned>(parent)) : glm::dmat4(1.0);
+    job.jointModels = &pose.getModelMatrix(0); // current: updateMatrices() above
     job.dofs = _solveDofs.data();
     job.workspace = &_workspace;
     if (!solveIk(job)) return;

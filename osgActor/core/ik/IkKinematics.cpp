@@ -28,6 +28,29 @@ void computeChainPose(const ActorDefinition& definition, const IkChain& chain, c
     workspace.effectorRotation = glm::dmat3(effector);
 }
 
+void startChainPose(const IkJob& job)
+{
+    const IkChain& chain = *job.chain;
+    bool clamped = false;
+    for (const IkChainDof& d : chain.getDofs())
+    {
+        double& value = job.dofs[d.dof];
+        const double inside = std::min(std::max(value, d.min), d.max);
+        clamped = clamped || inside != value;
+        value = inside;
+    }
+    IkWorkspace& workspace = *job.workspace;
+    if (!job.jointModels || clamped)
+    {
+        computeChainPose(*job.definition, chain, job.rootParentModel, job.dofs, workspace);
+        return;
+    }
+    for (unsigned c = 0; c < chain.getNumJoints(); ++c) workspace.jointModel[c] = job.jointModels[chain.getJoint(c)];
+    const glm::dmat4& effector = workspace.jointModel.back();
+    workspace.effectorPosition = glm::dvec3(effector * glm::dvec4(chain.getEffectorOffset(), 1.0));
+    workspace.effectorRotation = glm::dmat3(effector);
+}
+
 void computeDofAxes(const ActorDefinition& definition, const IkChain& chain, const double* dofs,
                     IkWorkspace& workspace)
 {

@@ -128,7 +128,6 @@ bool TwoBoneIkJob::run()
     const double length = c.getLength();
     const double small = 1e-12 * length;
 
-    for (const IkChainDof& d : c.getDofs()) dofs[d.dof] = std::min(std::max(dofs[d.dof], d.min), d.max);
     // Three free rotations on a joint: its rotation can be set outright by Euler decomposition.
     auto freeRotations = [&](unsigned first, unsigned end) {
         unsigned count = 0;
@@ -147,7 +146,7 @@ bool TwoBoneIkJob::run()
     const glm::dvec3 trackedOffset = offsetFollowsGoal ? glm::dvec3(0.0) : c.getEffectorOffset();
     const glm::dvec3 target = offsetFollowsGoal ? goal->position - goalRotation * c.getEffectorOffset() : goal->position;
 
-    computeChainPose(def, c, rootParentModel, dofs, ws);
+    startChainPose(*this);
     IkError error = measureIkError(*goal, goalRotation, ws);
     double previousCost = cost(error, length);
     unsigned rounds = 0;
