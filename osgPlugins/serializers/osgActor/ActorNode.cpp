@@ -1,0 +1,118 @@
+/* osgActor::ActorNode in OSG's serializer formats (.osgt, .osgb, .osgx).
+ *
+ * The skeleton nodes and attached geometry are ordinary children, written by osg::Group's wrapper before the
+ * fields here. The definition is not an osg::Object: it is written as the joint part of a .actor file, one line
+ * per string, and read with the .actor reader; reading it binds the skeleton nodes already read. */
+#include <osgActor/ActorNode>
+#include <osgActor/io/ActorReader>
+#include <osgActor/io/ActorWriter>
+
+#include <osgDB/InputStream>
+#include <osgDB/ObjectWrapper>
+#include <osgDB/OutputStream>
+
+#include <sstream>
+
+namespace {
+
+std::vector<std::string> definitionLines(const osgActor::ActorDefinition& definition)
+{
+    std::ostringstream text;
+    osgActor::writeActor(text, osgActor::makeDocument(definition));
+    std::vector<std::string> lines;
+    std::istringstream in(text.str());
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+}
+
+} // namespace
+
+static bool checkDefinition(const osgActor::ActorNode& actor) { return actor.getDefinition() != nullptr; }
+
+static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
+{
+    const unsigned int count = is.readSize();
+    is >> is.BEGIN_BRACKET;
+    std::string text;
+    for (unsigned int i = 0; i < count; ++i)
+    {
+        std::string line;
+        is.readWrappedString(line);
+        text += line + "\n";
+    }
+    is >> is.END_BRACKET;
+    std::istringstream in(text);
+    const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
+    if (!read)
+    {
+        OSG_WARN << "osgActor: " << read.error << std::endl;
+        return false;
+    }
+    return actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES);
+}
+
+static bool writeDefinition(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
+{
+    const std::vector<std::string> lines = definitionLines(*actor.getDefinition());
+    os.writeSize(static_cast<unsigned int>(lines.size()));
+    os << os.BEGIN_BRACKET << std::endl;
+    for (const std::string& line : lines)
+    {
+        os.writeWrappedString(line);
+        os << std::endl;
+    }
+    os << os.END_BRACKET << std::endl;
+    return true;
+}
+
+// The DOF vector (l_conf): radians and model units, in the definition's order.
+static bool checkDofs(const osgActor::ActorNode& actor) { return actor.getNumDofs() > 0; }
+
+static bool readDofs(osgDB::InputStream& is, osgActor::ActorNode& actor)
+{
+    const unsigned int count = is.readSize();
+    is >> is.BEGIN_BRACKET;
+    std::vector<double> values(count);
+    for (double& value : values) is >> value;
+    is >> is.END_BRACKET;
+    return actor.setDofs(values);
+}
+
+static bool writeDofs(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
+{
+    os.writeSize(actor.getNumDofs());
+    os << os.BEGIN_BRACKET << std::endl;
+    for (const double value : actor.getDofs()) os << value << std::endl;
+    os << os.END_BRACKET << std::endl;
+    return true;
+}
+
+// The block flag. An actor is posed before it is blocked, so a blocked actor read back shows its frozen pose.
+static bool checkBlocked(const osgActor::ActorNode& actor) { return actor.getBlocked(); }
+
+static bool readBlocked(osgDB::InputStream& is, osgActor::ActorNode& actor)
+{
+    bool blocked = false;
+    is >> blocked;
+    if (blocked) actor.update(nullptr);
+    actor.setBlocked(blocked);
+    return true;
+}
+
+static bool writeBlocked(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
+{
+    os << actor.getBlocked() << std::endl;
+    return true;
+}
+
+REGISTER_OBJECT_WRAPPER(osgActor_ActorNode, new osgActor::ActorNode, osgActor::ActorNode,
+                        "osg::Object osg::Node osg::Group osg::Transform osg::MatrixTransform osgActor::ActorNode")
+{
+    ADD_USER_SERIALIZER(Definition); // first: the fields below need it
+    ADD_USER_SERIALIZER(Dofs);
+    ADD_VEC3D_SERIALIZER(PreTranslation, osg::Vec3d());
+    ADD_QUAT_SERIALIZER(PreRotation, osg::Quat());
+    ADD_VEC3D_SERIALIZER(PostTranslation, osg::Vec3d());
+    ADD_QUAT_SERIALIZER(PostRotation, osg::Quat());
+    ADD_USER_SERIALIZER(Blocked); // last: it poses the actor before freezing it
+}
