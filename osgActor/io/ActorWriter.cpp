@@ -58,7 +58,9 @@ SyntaxStatement dofStatement(Dof dof, const DofSpec& spec, const std::optional<d
     if (std::isfinite(spec.max)) add("max", spec.max * unit);
     if (formatNumber(spec.defaultValue) != "0") add("default", spec.defaultValue * unit);
     if (spec.weight != 1.0) add("weight", spec.weight);
-    if (value && *value != spec.defaultValue) add("value", *value * unit);
+    // Compared as written: a value one rounding step from its default (after a trip through another format)
+    // is the default as far as the file can tell.
+    if (value && formatNumber(*value * unit) != formatNumber(spec.defaultValue * unit)) add("value", *value * unit);
     return s;
 }
 

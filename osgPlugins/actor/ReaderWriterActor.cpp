@@ -32,6 +32,20 @@ public:
 
     const char* className() const override { return "osgActor .actor reader/writer"; }
 
+    // osgconv and others ask for an object: an actor is one.
+    ReadResult readObject(const std::string& file, const Options* options) const override
+    {
+        return readNode(file, options);
+    }
+
+    ReadResult readObject(std::istream& in, const Options* options) const override { return readNode(in, options); }
+
+    WriteResult writeObject(const osg::Object& object, const std::string& file, const Options* options) const override
+    {
+        const osg::Node* node = dynamic_cast<const osg::Node*>(&object);
+        return node ? writeNode(*node, file, options) : WriteResult(WriteResult::FILE_NOT_HANDLED);
+    }
+
     ReadResult readNode(const std::string& file, const Options* options) const override
     {
         const std::string extension = osgDB::getLowerCaseFileExtension(file);

@@ -14,6 +14,7 @@
 #include <sstream>
 
 using osgActorDotOsg::exact;
+using osgActorDotOsg::readExact;
 
 namespace {
 
@@ -37,8 +38,8 @@ std::vector<std::string> readBlockTokens(osgDB::Input& fr)
 
 bool readVec3d(osgDB::Input& fr, const char* keyword, osg::Vec3d& value)
 {
-    if (!fr[0].matchWord(keyword) || !fr[1].getFloat(value.x()) || !fr[2].getFloat(value.y()) ||
-        !fr[3].getFloat(value.z()))
+    if (!fr[0].matchWord(keyword) || !readExact(fr[1].getStr(), value.x()) || !readExact(fr[2].getStr(), value.y()) ||
+        !readExact(fr[3].getStr(), value.z()))
         return false;
     fr += 4;
     return true;
@@ -47,9 +48,10 @@ bool readVec3d(osgDB::Input& fr, const char* keyword, osg::Vec3d& value)
 bool readQuat(osgDB::Input& fr, const char* keyword, osg::Quat& value)
 {
     double v[4];
-    if (!fr[0].matchWord(keyword) || !fr[1].getFloat(v[0]) || !fr[2].getFloat(v[1]) || !fr[3].getFloat(v[2]) ||
-        !fr[4].getFloat(v[3]))
+    if (!fr[0].matchWord(keyword))
         return false;
+    for (int i = 0; i < 4; ++i)
+        if (!readExact(fr[i + 1].getStr(), v[i])) return false;
     value.set(v[0], v[1], v[2], v[3]);
     fr += 5;
     return true;
@@ -72,8 +74,14 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
     if (fr.matchSequence("Dofs %i {"))
     {
         std::vector<double> values;
-        for (const std::string& token : readBlockTokens(fr)) values.push_back(osg::asciiToDouble(token.c_str()));
-        actor.setDofs(values);
+        bool valid = true;
+        for (const std::string& token : readBlockTokens(fr))
+        {
+            values.emplace_back();
+            valid = readExact(token.c_str(), values.back()) && valid;
+        }
+        if (valid) actor.setDofs(values);
+        else OSG_WARN << "osgActor: actor '" << actor.getName() << "' has a DOF value that is not a number" << std::endl;
         advanced = true;
     }
     osg::Vec3d translation;

@@ -11,9 +11,65 @@
 #include <osgDB/ObjectWrapper>
 #include <osgDB/OutputStream>
 
+#include <charconv>
 #include <sstream>
 
 namespace {
+
+// Text formats write doubles with the stream's precision (6 digits unless the "precision" option says otherwise),
+// which would move a read-back actor. The actor's own numbers are therefore written as their shortest exact text
+// in .osgt and .osgx, and as raw doubles in .osgb.
+void writeExact(osgDB::OutputStream& os, double value)
+{
+    if (os.isBinary())
+    {
+        os << value;
+        return;
+    }
+    char buffer[32];
+    const std::to_chars_result written = std::to_chars(buffer, buffer + sizeof(buffer), value);
+    os << std::string(buffer, written.ptr);
+}
+
+double readExact(osgDB::InputStream& is)
+{
+    double value = 0.0;
+    if (is.isBinary())
+    {
+        is >> value;
+        return value;
+    }
+    std::string text;
+    is >> text;
+    std::from_chars(text.data(), text.data() + text.size(), value);
+    return value;
+}
+
+void writeExact(osgDB::OutputStream& os, const osg::Vec3d& v)
+{
+    for (int i = 0; i < 3; ++i) writeExact(os, v[i]);
+    os << std::endl;
+}
+
+osg::Vec3d readExactVec3d(osgDB::InputStream& is)
+{
+    osg::Vec3d v;
+    for (int i = 0; i < 3; ++i) v[i] = readExact(is);
+    return v;
+}
+
+void writeExact(osgDB::OutputStream& os, const osg::Quat& q)
+{
+    for (int i = 0; i < 4; ++i) writeExact(os, q[i]);
+    os << std::endl;
+}
+
+osg::Quat readExactQuat(osgDB::InputStream& is)
+{
+    osg::Quat q;
+    for (int i = 0; i < 4; ++i) q[i] = readExact(is);
+    return q;
+}
 
 std::vector<std::string> definitionLines(const osgActor::ActorDefinition& definition)
 {
@@ -73,7 +129,7 @@ static bool readDofs(osgDB::InputStream& is, osgActor::ActorNode& actor)
     const unsigned int count = is.readSize();
     is >> is.BEGIN_BRACKET;
     std::vector<double> values(count);
-    for (double& value : values) is >> value;
+    for (double& value : values) value = readExact(is);
     is >> is.END_BRACKET;
     return actor.setDofs(values);
 }
@@ -82,8 +138,61 @@ static bool writeDofs(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
 {
     os.writeSize(actor.getNumDofs());
     os << os.BEGIN_BRACKET << std::endl;
-    for (const double value : actor.getDofs()) os << value << std::endl;
+    for (const double value : actor.getDofs())
+    {
+        writeExact(os, value);
+        os << std::endl;
+    }
     os << os.END_BRACKET << std::endl;
+    return true;
+}
+
+// Pre- and post-transforms (model units, unit quaternions), always written.
+static bool checkPreTranslation(const osgActor::ActorNode&) { return true; }
+static bool readPreTranslation(osgDB::InputStream& is, osgActor::ActorNode& actor)
+{
+    actor.setPreTranslation(readExactVec3d(is));
+    return true;
+}
+static bool writePreTranslation(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
+{
+    writeExact(os, actor.getPreTranslation());
+    return true;
+}
+
+static bool checkPreRotation(const osgActor::ActorNode&) { return true; }
+static bool readPreRotation(osgDB::InputStream& is, osgActor::ActorNode& actor)
+{
+    actor.setPreRotation(readExactQuat(is));
+    return true;
+}
+static bool writePreRotation(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
+{
+    writeExact(os, actor.getPreRotation());
+    return true;
+}
+
+static bool checkPostTranslation(const osgActor::ActorNode&) { return true; }
+static bool readPostTranslation(osgDB::InputStream& is, osgActor::ActorNode& actor)
+{
+    actor.setPostTranslation(readExactVec3d(is));
+    return true;
+}
+static bool writePostTranslation(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
+{
+    writeExact(os, actor.getPostTranslation());
+    return true;
+}
+
+static bool checkPostRotation(const osgActor::ActorNode&) { return true; }
+static bool readPostRotation(osgDB::InputStream& is, osgActor::ActorNode& actor)
+{
+    actor.setPostRotation(readExactQuat(is));
+    return true;
+}
+static bool writePostRotation(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
+{
+    writeExact(os, actor.getPostRotation());
     return true;
 }
 
@@ -110,9 +219,9 @@ REGISTER_OBJECT_WRAPPER(osgActor_ActorNode, new osgActor::ActorNode, osgActor::A
 {
     ADD_USER_SERIALIZER(Definition); // first: the fields below need it
     ADD_USER_SERIALIZER(Dofs);
-    ADD_VEC3D_SERIALIZER(PreTranslation, osg::Vec3d());
-    ADD_QUAT_SERIALIZER(PreRotation, osg::Quat());
-    ADD_VEC3D_SERIALIZER(PostTranslation, osg::Vec3d());
-    ADD_QUAT_SERIALIZER(PostRotation, osg::Quat());
+    ADD_USER_SERIALIZER(PreTranslation);
+    ADD_USER_SERIALIZER(PreRotation);
+    ADD_USER_SERIALIZER(PostTranslation);
+    ADD_USER_SERIALIZER(PostRotation);
     ADD_USER_SERIALIZER(Blocked); // last: it poses the actor before freezing it
 }
