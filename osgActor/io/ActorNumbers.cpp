@@ -6,6 +6,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <limits>
 
 namespace osgActor {
 
@@ -16,17 +17,36 @@ constexpr int kSignificantDigits = 12;
 
 } // namespace
 
-bool parseNumber(const std::string& word, double& value)
+namespace {
+
+/** Parses the whole word, finite or not; false when it is no number at all. Out of range counts as infinite. */
+bool parseAnyNumber(const std::string& word, double& value)
 {
     if (word.empty()) return false;
     const char* first = word.data();
     const char* last = first + word.size();
     if (*first == '+') ++first; // from_chars refuses a leading '+', people write one
+    const std::from_chars_result result = std::from_chars(first, last, value);
+    if (result.ptr != last) return false;
+    if (result.ec == std::errc::result_out_of_range) value = std::numeric_limits<double>::infinity();
+    else if (result.ec != std::errc()) return false;
+    return true;
+}
+
+} // namespace
+
+bool parseNumber(const std::string& word, double& value)
+{
     double parsed = 0.0;
-    const std::from_chars_result result = std::from_chars(first, last, parsed);
-    if (result.ec != std::errc() || result.ptr != last || !std::isfinite(parsed)) return false;
+    if (!parseAnyNumber(word, parsed) || !std::isfinite(parsed)) return false;
     value = parsed;
     return true;
+}
+
+bool isNonFiniteNumber(const std::string& word)
+{
+    double parsed = 0.0;
+    return parseAnyNumber(word, parsed) && !std::isfinite(parsed);
 }
 
 std::string formatNumber(double value)

@@ -79,9 +79,17 @@ private:
     bool number(const SyntaxArgument& argument, double& value)
     {
         if (!argument.quoted && parseNumber(argument.text, value)) return true;
-        if (argument.text == "nan" || argument.text == "NaN" || argument.text.find("inf") != std::string::npos)
+        if (!argument.quoted && isNonFiniteNumber(argument.text))
             return fail(argument.line, "'" + argument.text + "' is not a finite number");
         return fail(argument.line, "'" + argument.text + "' is not a number");
+    }
+
+    /** A statement without values or block that sets a flag ("hidden", "blocked"). */
+    bool flag(std::set<std::string>& seen, const SyntaxStatement& statement, bool& value)
+    {
+        if (!once(seen, statement) || !expectNoBlock(statement) || !expectArguments(statement, 0)) return false;
+        value = true;
+        return true;
     }
 
     /** A statement of exactly count numbers, without block. */
@@ -158,8 +166,7 @@ private:
             else if (k == "pre_rotation") ok = once(seen, s) && rotation(s, document.preRotation);
             else if (k == "post_translation") ok = once(seen, s) && vector3(s, document.postTranslation);
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
-            else if (k == "blocked") ok = once(seen, s) && expectNoBlock(s) && expectArguments(s, 0) &&
-                                          (document.blocked = true);
+            else if (k == "blocked") ok = flag(seen, s, document.blocked);
             else if (isReservedSection(k))
             {
                 if (!s.hasBlock) return fail(s.line, "'" + k + "' needs a block in braces");
@@ -208,8 +215,7 @@ private:
             else if (k == "euler") ok = once(seen, s) && readEulerOrder(s, joint.spec.eulerOrder);
             else if (k == "translation_mode") ok = once(seen, s) && readTranslationMode(s, joint.spec.translationMode);
             else if (k == "dof") ok = readDof(s, joint);
-            else if (k == "hidden") ok = once(seen, s) && expectNoBlock(s) && expectArguments(s, 0) &&
-                                         (joint.hidden = true);
+            else if (k == "hidden") ok = flag(seen, s, joint.hidden);
             else if (k == "shape") ok = readShape(s, joint);
             else if (k == "model") ok = readModel(s, joint);
             else return unknownKeyword(s, "in a joint");

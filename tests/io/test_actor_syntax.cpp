@@ -50,6 +50,9 @@ TEST(ActorSyntax, NumbersMustBeWholeWordsAndFinite)
     for (const char* bad : {"", "1x", "nan", "NaN", "inf", "-inf", "1e999", "0x10", "1,5", "--1", " 1"})
         EXPECT_FALSE(parseNumber(bad, v)) << "'" << bad << "'";
     EXPECT_EQ(v, 7.0) << "a refused number leaves the value alone";
+    for (const char* nonFinite : {"nan", "NaN", "-inf", "+inf", "infinity", "1e999", "-1e999"})
+        EXPECT_TRUE(isNonFiniteNumber(nonFinite)) << nonFinite;
+    for (const char* other : {"1", "info", "1nan", "", "x"}) EXPECT_FALSE(isNonFiniteNumber(other)) << other;
     ASSERT_TRUE(parseNumber("+2.5e-1", v));
     EXPECT_EQ(v, 0.25);
     ASSERT_TRUE(parseNumber("-3", v));
