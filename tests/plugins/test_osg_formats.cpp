@@ -139,3 +139,66 @@ TEST_P(OsgFormats, ABlockedActorComesBackBlockedInItsPose)
 
 INSTANTIATE_TEST_SUITE_P(EveryFormat, OsgFormats, ::testing::Values("osgt", "osgb", "osgx", "osg"),
                          [](const ::testing::TestParamInfo<const char*>& info) { return std::string(info.param); });
+
+// --- broken OSG files: an error, not a half-built actor ---
+
+namespace {
+
+std::string replaced(std::string text, const std::string& from, const std::string& to)
+{
+    const std::string::size_type at = text.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) text.replace(at, from.size(), to);
+    return text;
+}
+
+} // namespace
+
+TEST(OsgFormatsBroken, ABrokenDefinitionInOsgtFailsTheRead)
+{
+    osg::ref_ptr<osg::Group> scene = makeScene(false);
+    ASSERT_TRUE(scene.valid());
+    ASSERT_TRUE(osgDB::writeNodeFile(*scene, outFile("good.osgt")));
+    const std::string good = readTextFile(outFile("good.osgt"));
+    const std::string path =
+        writeTextFile("broken_definition.osgt", replaced(good, "\"        offset 0 0 0.95\"", "\"        ofset 0 0 0.95\""));
+    osgDB::ReaderWriter::ReadResult result = osgDB::Registry::instance()->readNode(path, nullptr);
+    EXPECT_FALSE(result.validNode());
+    EXPECT_NE(result.message().find("unknown keyword 'ofset' in a joint"), std::string::npos) << result.message();
+}
+
+TEST(OsgFormatsBroken, SkeletonNodesThatDoNotMatchTheDefinitionFailTheRead)
+{
+    osg::ref_ptr<osg::Group> scene = makeScene(false);
+    ASSERT_TRUE(scene.valid());
+    ASSERT_TRUE(osgDB::writeNodeFile(*scene, outFile("good2.osgt")));
+    const std::string good = readTextFile(outFile("good2.osgt"));
+    // Two skeleton nodes claim joint 3.
+    const std::string path = writeTextFile("broken_skeleton.osgt", replaced(good, "JointIndex 4 ", "JointIndex 3 "));
+    osgDB::ReaderWriter::ReadResult result = osgDB::Registry::instance()->readNode(path, nullptr);
+    EXPECT_FALSE(result.validNode());
+    EXPECT_NE(result.message().find("do not match its definition"), std::string::npos) << result.message();
+}
+
+TEST(OsgFormatsBroken, NamesThatNeedQuotesSurviveEveryFormat)
+{
+    const std::string path = writeTextFile("quoted_names.actor",
+                                           "osgactor 1\nactor \"a \\\"quoted\\\" actor\" {\n joint \"left arm\" {\n"
+                                           "  dof rz value 10\n  joint \"hand {x}\"\n }\n}\n");
+    osg::ref_ptr<ActorNode> actor = readActorFile(path);
+    ASSERT_TRUE(actor.valid());
+    ASSERT_EQ(actor->getJointIndex("hand {x}"), 1);
+    for (const char* extension : {"osgt", "osgb", "osgx", "osg"})
+    {
+        const std::string file = outFile(std::string("quoted.") + extension);
+        ASSERT_TRUE(osgDB::writeNodeFile(*actor, file));
+        osg::ref_ptr<osg::Node> node = osgDB::readRefNodeFile(file);
+        ActorNode* back = dynamic_cast<ActorNode*>(node.get());
+        ASSERT_NE(back, nullptr) << extension;
+        ASSERT_NE(back->getDefinition(), nullptr) << extension;
+        EXPECT_EQ(back->getDefinition()->getName(), "a \"quoted\" actor") << extension;
+        EXPECT_EQ(back->getJointIndex("left arm"), 0) << extension;
+        EXPECT_EQ(back->getJointIndex("hand {x}"), 1) << extension;
+        EXPECT_EQ(back->getDof(0u), actor->getDof(0u)) << extension;
+    }
+}

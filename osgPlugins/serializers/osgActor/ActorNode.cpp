@@ -99,12 +99,19 @@ static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
     is >> is.END_BRACKET;
     std::istringstream in(text);
     const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
+    // A broken definition or skeleton fails the whole read (the ReadResult carries the message): no half-built actor.
     if (!read)
     {
-        OSG_WARN << "osgActor: " << read.error << std::endl;
+        is.throwException("osgActor: " + read.error);
         return false;
     }
-    return actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES);
+    if (!actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
+    {
+        is.throwException("osgActor: the skeleton nodes of actor '" + actor.getName() +
+                          "' do not match its definition");
+        return false;
+    }
+    return true;
 }
 
 static bool writeDefinition(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
@@ -131,7 +138,11 @@ static bool readDofs(osgDB::InputStream& is, osgActor::ActorNode& actor)
     std::vector<double> values(count);
     for (double& value : values) value = readExact(is);
     is >> is.END_BRACKET;
-    return actor.setDofs(values);
+    if (is.getException()) return false; // the definition failed already; keep its message
+    if (actor.setDofs(values)) return true;
+    is.throwException("osgActor: actor '" + actor.getName() + "' has " + std::to_string(count) +
+                      " DOF values for " + std::to_string(actor.getNumDofs()) + " DOFs, or one is not finite");
+    return false;
 }
 
 static bool writeDofs(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
