@@ -148,6 +148,20 @@ TEST(ActorPlugin, ModelsAreFoundNextToTheActorFileAndWrittenBackAsReferences)
         << text;
 }
 
+TEST(ActorPlugin, ModelsAreFoundOnTheOptionsDataPath)
+{
+    osgDB::makeDirectory(outFile("library"));
+    ASSERT_TRUE(osgDB::writeNodeFile(*makeBox(osg::Vec3(), 0.2f), outFile("library/wheel.osgt")));
+    const std::string path = writeTextFile("uses_library.actor", "osgactor 1\nactor a {\n joint axle {\n"
+                                                                  "  model wheel.osgt\n }\n}\n");
+    EXPECT_FALSE(osgDB::readRefNodeFile(path).valid()) << "not next to the file, not on the default path";
+    osg::ref_ptr<osgDB::Options> options = new osgDB::Options;
+    options->getDatabasePathList().push_back(outFile("library"));
+    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(osgDB::readRefNodeFile(path, options.get()).get());
+    ASSERT_TRUE(actor.valid());
+    EXPECT_EQ(actor->getSkeletonNode(0u)->getNumChildren(), 1u);
+}
+
 TEST(ActorPlugin, GeometryTheFormatCannotDescribeIsLeftOutOfTheFile)
 {
     osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("robot_arm.actor"));

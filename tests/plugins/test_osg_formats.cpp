@@ -121,6 +121,29 @@ TEST_P(OsgFormats, EverythingTheActorFormatDescribesComesBackAtFullPrecision)
               asActorText(*actorOf(scene.get()), "original_" + extension + ".actor"));
 }
 
+TEST_P(OsgFormats, TheUpdateCallbackAndSkeletonNodesHaveTheirOwnWrappers)
+{
+    // Each object alone, so that what comes back cannot be a default the ActorNode constructor made.
+    const std::string extension = GetParam();
+    const std::string callbackPath = outFile("callback." + extension);
+    ASSERT_TRUE(osgDB::writeObjectFile(*new ActorUpdateCallback, callbackPath));
+    osg::ref_ptr<osg::Object> callback = osgDB::readRefObjectFile(callbackPath);
+    EXPECT_NE(dynamic_cast<ActorUpdateCallback*>(callback.get()), nullptr) << extension;
+
+    osg::ref_ptr<SkeletonNode> node = new SkeletonNode(7, "l_wrist");
+    node->setHidden(true);
+    node->setMatrix(osg::Matrixd::translate(1, 2, 3));
+    const std::string nodePath = outFile("skeleton." + extension);
+    ASSERT_TRUE(osgDB::writeNodeFile(*node, nodePath));
+    osg::ref_ptr<osg::Node> back = osgDB::readRefNodeFile(nodePath);
+    const SkeletonNode* skeleton = dynamic_cast<SkeletonNode*>(back.get());
+    ASSERT_NE(skeleton, nullptr) << extension;
+    EXPECT_EQ(skeleton->getJointIndex(), 7u);
+    EXPECT_TRUE(skeleton->getHidden());
+    EXPECT_EQ(skeleton->getName(), "l_wrist");
+    EXPECT_EQ(skeleton->getMatrix().getTrans(), osg::Vec3d(1, 2, 3));
+}
+
 TEST_P(OsgFormats, ABlockedActorComesBackBlockedInItsPose)
 {
     const std::string extension = GetParam();
