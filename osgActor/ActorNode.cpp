@@ -96,6 +96,17 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     writeSceneGraph();
 }
 
+bool ActorNode::setDefinition(ActorDefinitionPtr definition, SkeletonNodePolicy policy)
+{
+    if (policy == BUILD_SKELETON_NODES)
+    {
+        setDefinition(std::move(definition));
+        return true;
+    }
+    _pose = ActorPose(std::move(definition));
+    return rebindSkeletonNodes();
+}
+
 void ActorNode::buildSkeletonNodes()
 {
     const ActorDefinition* def = getDefinition().get();
