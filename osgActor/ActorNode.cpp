@@ -79,6 +79,7 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
 {
     for (const ControllerPtr& controller : actor._controllers)
         if (controller) _controllers.push_back(controller->cloneController());
+    _ikChains = actor._ikChains; // immutable: shared
     rebindSkeletonNodes();
 }
 
@@ -90,10 +91,63 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     }
     _skeletonNodes.clear();
     _pose = ActorPose(std::move(definition));
+    dropUnfittingIkChains();
     buildSkeletonNodes();
     // Pose the new nodes at once, so a fresh actor has correct bounds and queries before its first frame.
     _pose.updateMatrices();
     writeSceneGraph();
+}
+
+bool ActorNode::setDefinition(ActorDefinitionPtr definition, SkeletonNodePolicy policy)
+{
+    if (policy == BUILD_SKELETON_NODES)
+    {
+        setDefinition(std::move(definition));
+        return true;
+    }
+    _pose = ActorPose(std::move(definition));
+    dropUnfittingIkChains();
+    return rebindSkeletonNodes();
+}
+
+void ActorNode::dropUnfittingIkChains()
+{
+    const ActorDefinition* def = getDefinition().get();
+    _ikChains.erase(std::remove_if(_ikChains.begin(), _ikChains.end(),
+                                   [def](const IkChainPtr& chain) { return !def || !chain->fits(*def); }),
+                    _ikChains.end());
+}
+
+bool ActorNode::addIkChain(IkChainPtr chain)
+{
+    const ActorDefinition* def = getDefinition().get();
+    std::string why;
+    if (!chain) why = "a null IK chain";
+    else if (!def || !chain->fits(*def)) why = "IK chain '" + chain->getName() + "', built for another skeleton";
+    else if (findIkChain(chain->getName())) why = "a second IK chain named '" + chain->getName() + "'";
+    if (!why.empty())
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused " << why << std::endl;
+        return false;
+    }
+    _ikChains.push_back(std::move(chain));
+    return true;
+}
+
+bool ActorNode::removeIkChain(const std::string& name)
+{
+    const auto it = std::find_if(_ikChains.begin(), _ikChains.end(),
+                                 [&name](const IkChainPtr& chain) { return chain->getName() == name; });
+    if (it == _ikChains.end()) return false;
+    _ikChains.erase(it);
+    return true;
+}
+
+IkChainPtr ActorNode::findIkChain(const std::string& name) const
+{
+    for (const IkChainPtr& chain : _ikChains)
+        if (chain->getName() == name) return chain;
+    return IkChainPtr();
 }
 
 void ActorNode::buildSkeletonNodes()
@@ -372,18 +426,28 @@ osg::Matrixd ActorNode::computeParentWorldMatrix() const
 void ActorNode::update(const osg::NodeVisitor* nv)
 {
     const osg::FrameStamp* stamp = nv ? nv->getFrameStamp() : nullptr;
+    if (!claimFrame(stamp)) return;
+    computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
+    writeSceneGraph();
+}
+
+bool ActorNode::claimFrame(const osg::FrameStamp* stamp)
+{
     if (stamp)
     {
-        // An actor with several parents is visited once per parent; its work is done once per frame.
-        if (stamp->getFrameNumber() == _lastFrameNumber) return;
+        if (stamp->getFrameNumber() == _lastFrameNumber) return false;
         _lastFrameNumber = stamp->getFrameNumber();
     }
-    if (_blocked) return;
+    if (_blocked) return false;
     ++_numUpdatesRun;
-    if (stamp) runControllers(stamp->getSimulationTime());
+    return true;
+}
+
+void ActorNode::computeFrame(double time)
+{
+    runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
     _pose.updateLocalMatrices();
-    writeSceneGraph();
 }
 
 void ActorNode::writeSceneGraph()
