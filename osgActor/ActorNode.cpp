@@ -349,7 +349,9 @@ void ActorNode::runControllers(double time)
 
 void ActorNode::updatePose() const
 {
-    if (!_blocked) _pose.updateMatrices();
+    // A blocked actor applies no new DOF values but still answers with the pose its nodes show.
+    if (_blocked) _pose.updateModelMatrices();
+    else _pose.updateMatrices();
 }
 
 osg::Matrixd ActorNode::getJointModelMatrix(unsigned joint) const
