@@ -53,9 +53,9 @@ double blendAngle(double a, double b, double t)
     return a + t * delta;
 }
 
-bool Controller::writeDof(ActorPose& pose, unsigned dof, double value) const
+bool Controller::writeDof(ActorPose& pose, unsigned dof, double value, double extraWeight) const
 {
-    const double w = effectiveWeight(dof);
+    const double w = effectiveWeight(dof) * extraWeight;
     if (w <= 0.0 || dof >= pose.getNumDofs()) return false;
     double blended = value;
     if (w < 1.0)
