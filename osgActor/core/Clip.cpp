@@ -11,8 +11,15 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * glm::pi<double>();
 
+/** An angle difference folded into [-pi, pi] (radians); the library call only when it is outside, which keeps
+  * the common case (neighbouring frames) to two compares. */
+inline double shortestDelta(double delta)
+{
+    return delta > glm::pi<double>() || delta < -glm::pi<double>() ? std::remainder(delta, kTwoPi) : delta;
+}
+
 /** value moved by a whole number of turns to lie within half a turn of reference (radians). */
-inline double nearAngle(double reference, double value) { return reference + std::remainder(value - reference, kTwoPi); }
+inline double nearAngle(double reference, double value) { return reference + shortestDelta(value - reference); }
 
 /** Interpolates between a (t = 0) and b (t = 1) with neighbours before (of a) and after (of b). */
 inline double interpolate(const ClipChannel& channel, double before, double a, double b, double after, double t)
@@ -21,7 +28,7 @@ inline double interpolate(const ClipChannel& channel, double before, double a, d
     {
     case Interpolation::Step: return a;
     case Interpolation::Linear:
-        return channel.angular ? a + t * std::remainder(b - a, kTwoPi) : a + t * (b - a);
+        return channel.angular ? a + t * shortestDelta(b - a) : a + t * (b - a);
     case Interpolation::Cubic:
         if (channel.angular)
         {
