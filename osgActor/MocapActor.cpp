@@ -7,7 +7,10 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <sstream>
 
 namespace osgActor {
 
@@ -60,6 +63,62 @@ MocapImport importFile(const std::string& path, const MocapActorOptions& options
 }
 
 } // namespace
+
+bool parseMocapOptionString(const std::string& text, MocapActorOptions& options, std::string& error)
+{
+    std::istringstream words(text);
+    std::string word;
+    while (words >> word)
+    {
+        const std::size_t equals = word.find('=');
+        const std::string key = word.substr(0, equals);
+        const std::string value = equals == std::string::npos ? std::string() : word.substr(equals + 1);
+        auto positive = [&](double& into) {
+            char* end = nullptr;
+            const double number = std::strtod(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || !(number > 0.0) || !std::isfinite(number))
+            {
+                error = "option " + key + " needs a positive number, not '" + value + "'";
+                return false;
+            }
+            into = number;
+            return true;
+        };
+        auto bad = [&](const char* expected) {
+            error = "option " + key + " must be " + expected + ", not '" + value + "'";
+            return false;
+        };
+        if (key == "amc") options.amcFile = value;
+        else if (key == "scale") { if (!positive(options.scale)) return false; }
+        else if (key == "fps") { if (!positive(options.amcFrameRate)) return false; }
+        else if (key == "up")
+        {
+            if (value == "Y" || value == "y") options.fileUpAxis = UpAxis::Y;
+            else if (value == "Z" || value == "z") options.fileUpAxis = UpAxis::Z;
+            else return bad("Y or Z");
+        }
+        else if (key == "mode")
+        {
+            if (value == "loop") options.playMode = PlayMode::Loop;
+            else if (value == "once") options.playMode = PlayMode::Once;
+            else if (value == "pingpong") options.playMode = PlayMode::PingPong;
+            else return bad("loop, once or pingpong");
+        }
+        else if (key == "rootMotion")
+        {
+            if (value == "skeleton") options.rootMotion = RootMotion::InSkeleton;
+            else if (value == "transforms") options.rootMotion = RootMotion::ToTransforms;
+            else if (value == "inplace") options.rootMotion = RootMotion::InPlace;
+            else return bad("skeleton, transforms or inplace");
+        }
+        else if (word == "dropFirstFrame") options.dropFirstFrame = true;
+        else if (word == "absoluteRoot") options.absoluteRootPosition = true;
+        else if (word == "limits") options.applyAsfLimits = true;
+        else if (word == "noFigure") options.addFigure = false;
+        // anything else belongs to another plugin
+    }
+    return true;
+}
 
 std::string findAmcBeside(const std::string& asfPath)
 {

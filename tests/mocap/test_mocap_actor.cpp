@@ -157,3 +157,36 @@ TEST(MocapActor, ClonesShareTheClipLibraryButPlayOnTheirOwn)
     EXPECT_GT(distance(actor->getJointWorldPosition(hand), twin->getJointWorldPosition(hand)), 1e-3)
         << "the paused twin stayed behind";
 }
+
+TEST(MocapOptionString, RefusesBadValuesOfKnownWords)
+{
+    MocapActorOptions options;
+    std::string error;
+    EXPECT_FALSE(parseMocapOptionString("scale=abc", options, error));
+    EXPECT_NE(error.find("scale needs a positive number"), std::string::npos) << error;
+    EXPECT_FALSE(parseMocapOptionString("fps=-3", options, error));
+    EXPECT_FALSE(parseMocapOptionString("up=X", options, error));
+    EXPECT_NE(error.find("up must be Y or Z"), std::string::npos) << error;
+    EXPECT_FALSE(parseMocapOptionString("mode=forever", options, error));
+    EXPECT_FALSE(parseMocapOptionString("rootMotion=sideways", options, error));
+}
+
+TEST(MocapOptionString, ReadsEveryOptionAndLeavesOtherWordsAlone)
+{
+    MocapActorOptions options;
+    std::string error;
+    ASSERT_TRUE(parseMocapOptionString("amc=11_01.amc scale=0.5 up=Z fps=60 dropFirstFrame absoluteRoot limits "
+                                       "mode=pingpong rootMotion=inplace noFigure noRotation",
+                                       options, error))
+        << error;
+    EXPECT_EQ(options.amcFile, "11_01.amc");
+    EXPECT_DOUBLE_EQ(options.scale, 0.5);
+    EXPECT_EQ(options.fileUpAxis, UpAxis::Z);
+    EXPECT_DOUBLE_EQ(options.amcFrameRate, 60.0);
+    EXPECT_TRUE(options.dropFirstFrame);
+    EXPECT_TRUE(options.absoluteRootPosition);
+    EXPECT_TRUE(options.applyAsfLimits);
+    EXPECT_EQ(options.playMode, PlayMode::PingPong);
+    EXPECT_EQ(options.rootMotion, RootMotion::InPlace);
+    EXPECT_FALSE(options.addFigure);
+}
