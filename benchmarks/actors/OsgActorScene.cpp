@@ -3,6 +3,8 @@
 
 #include <osgActor/ActorGroup>
 #include <osgActor/ActorNode>
+#include <osgActor/core/ClipBuilder>
+#include <osgActor/core/ClipPlayer>
 
 #include <cmath>
 
@@ -10,39 +12,34 @@ namespace bench {
 
 namespace {
 
-/** Samples the bench clip linearly into the DOFs its selection drives (DOF order: root rx ry rz tx ty tz, then
-  * rx ry rz per joint). */
-class BenchClipController : public osgActor::Controller
+/** The bench clip as an osgActor clip: uniformly sampled like motion capture, one channel per DOF, linear. */
+osgActor::ClipPtr humanoidOsgActorClip()
 {
-public:
-    void update(const osgActor::ControllerContext& context, osgActor::ControllerTarget& target) override
-    {
-        const BenchClip& clip = humanoidClip();
-        const double frame = std::fmod(context.time, clip.duration()) * clip.framesPerSecond;
-        const unsigned f0 = static_cast<unsigned>(frame);
-        const unsigned f1 = std::min(f0 + 1, clip.numFrames - 1);
-        const double alpha = frame - f0;
-        unsigned dof = 0;
-        for (unsigned j = 0; j < clip.jointCount; ++j)
+    static const osgActor::ClipPtr clip = [] {
+        const BenchClip& bench = humanoidClip();
+        const std::vector<BenchJoint>& joints = humanoidJoints();
+        osgActor::ClipBuilder builder("bench");
+        static const char* const rotations[] = {".rx", ".ry", ".rz"};
+        static const char* const translations[] = {".tx", ".ty", ".tz"};
+        for (unsigned j = 0; j < joints.size(); ++j)
         {
-            const double* a0 = clip.anglesAt(f0, j);
-            const double* a1 = clip.anglesAt(f1, j);
-            const bool driven = effectiveWeight(dof) > 0.0;
-            for (unsigned a = 0; a < 3; ++a, ++dof)
-                if (driven) writeDof(target.pose, dof, a0[a] + alpha * (a1[a] - a0[a]));
-            if (j != 0) continue;
-            for (unsigned a = 0; a < 3; ++a, ++dof)
-            {
-                const double p0 = clip.rootPosition[f0 * 3 + a], p1 = clip.rootPosition[f1 * 3 + a];
-                if (driven) writeDof(target.pose, dof, p0 + alpha * (p1 - p0));
-            }
+            for (const char* dof : rotations) builder.addChannel(joints[j].name + dof);
+            if (j == 0)
+                for (const char* dof : translations) builder.addChannel(joints[j].name + dof);
         }
-    }
-    std::shared_ptr<osgActor::Controller> cloneController() const override
-    {
-        return std::make_shared<BenchClipController>(*this);
-    }
-};
+        std::vector<double> values;
+        for (unsigned f = 0; f < bench.numFrames; ++f)
+            for (unsigned j = 0; j < joints.size(); ++j)
+            {
+                for (unsigned a = 0; a < 3; ++a) values.push_back(bench.anglesAt(f, j)[a]);
+                if (j == 0)
+                    for (unsigned a = 0; a < 3; ++a) values.push_back(bench.rootPosition[f * 3 + a]);
+            }
+        builder.setFrames(bench.framesPerSecond, std::move(values));
+        return builder.build().clip;
+    }();
+    return clip;
+}
 
 } // namespace
 
@@ -53,7 +50,9 @@ osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, Motion motion, un
         prototype->getSkeletonNode(j)->addChild(jointBox().get());
     if (motion != Motion::Idle)
     {
-        auto controller = std::make_shared<BenchClipController>();
+        auto controller = std::make_shared<osgActor::ClipPlayer>(humanoidOsgActorClip());
+        controller->setPlayMode(osgActor::PlayMode::Loop);
+        controller->play();
         if (motion == Motion::Quarter)
             // 8 of 31 joints: the left arm and the neck.
             controller->setSelection(osgActor::DofSelection::joints(
