@@ -29,6 +29,14 @@ void sampleInto(const bench::BenchClip& clip, double t, osgActor::ActorPose& pos
     }
 }
 
+/** Reports the run's time per joint of numActors humanoids. */
+void countJoints(benchmark::State& state, unsigned numActors, const osgActor::ActorDefinition& def)
+{
+    const double joints = static_cast<double>(numActors) * def.getNumJoints();
+    state.counters["ns_per_joint"] =
+        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 void BM_CorePoseSampleAndFK(benchmark::State& state)
 {
     const unsigned numActors = static_cast<unsigned>(state.range(0));
@@ -46,9 +54,7 @@ void BM_CorePoseSampleAndFK(benchmark::State& state)
         }
         benchmark::ClobberMemory();
     }
-    const double joints = static_cast<double>(numActors) * def->getNumJoints();
-    state.counters["ns_per_joint"] =
-        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    countJoints(state, numActors, *def);
 }
 BENCHMARK(BM_CorePoseSampleAndFK)->Arg(1)->Arg(1000);
 
@@ -68,9 +74,7 @@ void BM_CoreFKOnly(benchmark::State& state)
         }
         benchmark::ClobberMemory();
     }
-    const double joints = static_cast<double>(numActors) * def->getNumJoints();
-    state.counters["ns_per_joint"] =
-        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    countJoints(state, numActors, *def);
 }
 BENCHMARK(BM_CoreFKOnly)->Arg(1)->Arg(1000);
 
