@@ -255,52 +255,38 @@ void ActorNode::resetDofs() { _pose.resetDofs(); }
 
 // --- pre- and post-transforms ---
 
+template <class Value>
+bool ActorNode::storeTransform(const Value& value, Value& member, bool& dirty, const char* what)
+{
+    if (!isFinite(value))
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite " << what << std::endl;
+        return false;
+    }
+    member = value;
+    dirty = true;
+    _actorMatrixWritten = false;
+    return true;
+}
+
 void ActorNode::setPreTranslation(const osg::Vec3d& translation)
 {
-    if (!isFinite(translation))
-    {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a non-finite pre-translation" << std::endl;
-        return;
-    }
-    _preTranslation = translation;
-    _preTransformDirty = true;
-    _actorMatrixWritten = false;
+    storeTransform(translation, _preTranslation, _preTransformDirty, "pre-translation");
 }
 
 void ActorNode::setPreRotation(const osg::Quat& rotation)
 {
-    if (!isFinite(rotation))
-    {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite pre-rotation" << std::endl;
-        return;
-    }
-    _preRotation = rotation;
-    _preTransformDirty = true;
-    _actorMatrixWritten = false;
+    storeTransform(rotation, _preRotation, _preTransformDirty, "pre-rotation");
 }
 
 void ActorNode::setPostTranslation(const osg::Vec3d& translation)
 {
-    if (!isFinite(translation))
-    {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a non-finite post-translation" << std::endl;
-        return;
-    }
-    _postTranslation = translation;
-    _postTransformDirty = true;
-    _actorMatrixWritten = false;
+    storeTransform(translation, _postTranslation, _postTransformDirty, "post-translation");
 }
 
 void ActorNode::setPostRotation(const osg::Quat& rotation)
 {
-    if (!isFinite(rotation))
-    {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite post-rotation" << std::endl;
-        return;
-    }
-    _postRotation = rotation;
-    _postTransformDirty = true;
-    _actorMatrixWritten = false;
+    storeTransform(rotation, _postRotation, _postTransformDirty, "post-rotation");
 }
 
 void ActorNode::updateTransformMatrices() const
