@@ -175,6 +175,13 @@ bool BvhParser::buildDefinition(MocapImport& result)
     const glm::dquat toZUp = _options.convertToZUp ? upAxisToZUp(_options.fileUpAxis) : glm::dquat(1, 0, 0, 0);
     std::unordered_set<std::string> names;
     for (const BvhJoint& joint : _joints)
+        if (!joint.endSite) names.insert(joint.name);
+    // An End Site is named after its parent; should a real joint already have that name, it takes the next free one.
+    for (BvhJoint& joint : _joints)
+        if (joint.endSite && _options.endSitesAsJoints)
+            while (!names.insert(joint.name).second) joint.name += "_";
+    names.clear();
+    for (const BvhJoint& joint : _joints)
     {
         if (joint.endSite && !_options.endSitesAsJoints) continue;
         if (!names.insert(joint.name).second)
