@@ -379,14 +379,6 @@ void ActorNode::runControllers(double time)
 
 // --- queries ---
 
-void ActorNode::setBlocked(bool blocked)
-{
-    // With no DOF written since the last frame this only composes stale model matrices; writes made since stay
-    // pending, as blocking promises.
-    if (blocked && !_blocked && !_pose.hasDirtyJoints()) _pose.updateMatrices();
-    _blocked = blocked;
-}
-
 void ActorNode::updatePose() const
 {
     // A blocked actor applies no new DOF values but still answers with the pose its nodes show.
