@@ -99,7 +99,9 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         }
     }
     if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
-    // Pose the scene graph now (a blocked actor would otherwise show its default pose until unblocked).
+    // Pose the actor now, both its matrices for queries and its scene graph: a blocked actor would otherwise
+    // show and answer with its default pose until unblocked.
+    actor->updatePose();
     actor->update(nullptr);
     actor->setBlocked(document.blocked);
     result.actor = actor;

@@ -94,7 +94,11 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
     {
         // Posed before it is frozen, so a blocked actor read back shows its pose.
         const bool blocked = fr[1].matchWord("TRUE");
-        if (blocked) actor.update(nullptr);
+        if (blocked)
+        {
+            actor.updatePose();    // the matrices queries answer with
+            actor.update(nullptr); // the scene graph
+        }
         actor.setBlocked(blocked);
         fr += 2;
         advanced = true;

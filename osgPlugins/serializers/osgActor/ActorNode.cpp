@@ -214,7 +214,11 @@ static bool readBlocked(osgDB::InputStream& is, osgActor::ActorNode& actor)
 {
     bool blocked = false;
     is >> blocked;
-    if (blocked) actor.update(nullptr);
+    if (blocked)
+    {
+        actor.updatePose();      // the matrices queries answer with
+        actor.update(nullptr);   // the scene graph
+    }
     actor.setBlocked(blocked);
     return true;
 }
