@@ -45,6 +45,36 @@ osg::ref_ptr<osg::Node> loadModel(const GeometryDescription& model, const std::s
     return node;
 }
 
+/** The instance state a joint of the document carries: its current DOF values and hide flag. */
+void applyJointState(ActorNode& actor, unsigned joint, const JointDocument& document)
+{
+    const ActorDefinition& definition = *actor.getDefinition();
+    for (unsigned d = 0; d < kNumDofTypes; ++d)
+    {
+        const int dof = definition.getDofIndex(joint, static_cast<Dof>(d));
+        if (document.values[d] && dof >= 0) actor.setDof(static_cast<unsigned>(dof), *document.values[d]);
+    }
+    actor.getSkeletonNode(joint)->setHidden(document.hidden);
+}
+
+/** Hangs a joint's shapes and models below its skeleton node; false and an error when a model cannot be loaded. */
+bool attachGeometry(SkeletonNode& node, const JointDocument& joint, const std::string& fileName,
+                    const osgDB::Options* options, std::string& error)
+{
+    for (const GeometryDescription& geometry : joint.geometry)
+    {
+        if (geometry.kind != GeometryKind::Model)
+        {
+            node.addChild(createShapeNode(geometry).get());
+            continue;
+        }
+        const osg::ref_ptr<osg::Node> model = loadModel(geometry, fileName, options, error);
+        if (!model) return false;
+        node.addChild(createModelNode(geometry, model.get()).get());
+    }
+    return true;
+}
+
 std::string sectionsText(const std::vector<SyntaxStatement>& sections)
 {
     std::ostringstream text;
@@ -80,23 +110,8 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
             result.error = where(fileName, joint.line) + "joint '" + joint.spec.name + "' is not in the definition";
             return result;
         }
-        for (unsigned d = 0; d < kNumDofTypes; ++d)
-        {
-            const int dof = definition->getDofIndex(static_cast<unsigned>(index), static_cast<Dof>(d));
-            if (joint.values[d] && dof >= 0) actor->setDof(static_cast<unsigned>(dof), *joint.values[d]);
-        }
-        node->setHidden(joint.hidden);
-        for (const GeometryDescription& geometry : joint.geometry)
-        {
-            if (geometry.kind != GeometryKind::Model)
-            {
-                node->addChild(createShapeNode(geometry).get());
-                continue;
-            }
-            const osg::ref_ptr<osg::Node> model = loadModel(geometry, fileName, local.get(), result.error);
-            if (!model) return result;
-            node->addChild(createModelNode(geometry, model.get()).get());
-        }
+        applyJointState(*actor, static_cast<unsigned>(index), joint);
+        if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
     if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
     // Pose the actor now, both its matrices for queries and its scene graph: a blocked actor would otherwise

@@ -268,6 +268,10 @@ private:
             else if (key.text == "value") joint.values[static_cast<unsigned>(dof)] = value * unit;
             else return fail(key.line, "unknown DOF attribute '" + key.text + "' (min, max, default, weight, value)");
         }
+        // The builder checks the default against the limits; the current value is the file's to check.
+        const std::optional<double>& value = joint.values[static_cast<unsigned>(dof)];
+        if (value && (*value < spec.min || *value > spec.max))
+            return fail(s.line, "the value of DOF '" + s.arguments.front().text + "' lies outside its limits");
         return true;
     }
 

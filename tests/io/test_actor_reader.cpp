@@ -101,6 +101,8 @@ TEST(ActorReader, RefusesWhatTheBuilderRefusesAtTheJointsLine)
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b\n joint c {\n  dof rx min 10 max -10\n }\n}"),
               "t.actor:4: actor 'a': DOF 'c.rx' has its minimum 0.174533 above its maximum -0.174533")
         << "the builder speaks in radians";
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  dof rx max 150 value 151\n }\n}"),
+              "t.actor:4: the value of DOF 'rx' lies outside its limits");
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  dof rx\n  dof rx\n }\n}"),
               "t.actor:5: DOF 'rx' is given twice");
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  offset 1 1 1\n  offset 1 1 1\n }\n}"),
