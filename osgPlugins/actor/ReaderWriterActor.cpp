@@ -50,6 +50,7 @@ public:
     {
         const std::string extension = osgDB::getLowerCaseFileExtension(file);
         if (!acceptsExtension(extension)) return ReadResult::FILE_NOT_HANDLED;
+        // Pseudo-loaders ("walk.bvh.actor") will dispatch here on the inner extension; plain files are .actor.
         return readActorFile(file, options);
     }
 
