@@ -68,7 +68,7 @@ ActorNode::ActorNode(ActorDefinitionPtr definition) : ActorNode()
 }
 
 ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
-    : osg::MatrixTransform(actor, SkeletonCopyOp(copyop)), _pose(actor._pose),
+    : osg::MatrixTransform(actor, SkeletonCopyOp(copyop)), _pose(actor._pose), _clipLibrary(actor._clipLibrary),
       _lastControllerTime(std::numeric_limits<double>::quiet_NaN()),
       _preTranslation(actor._preTranslation), _preRotation(actor._preRotation),
       _postTranslation(actor._postTranslation), _postRotation(actor._postRotation),
@@ -349,7 +349,9 @@ void ActorNode::runControllers(double time)
 
 void ActorNode::updatePose() const
 {
-    if (!_blocked) _pose.updateMatrices();
+    // A blocked actor applies no new DOF values but still answers with the pose its nodes show.
+    if (_blocked) _pose.updateModelMatrices();
+    else _pose.updateMatrices();
 }
 
 osg::Matrixd ActorNode::getJointModelMatrix(unsigned joint) const
@@ -379,18 +381,28 @@ osg::Matrixd ActorNode::getJointWorldMatrix(unsigned joint) const
 void ActorNode::update(const osg::NodeVisitor* nv)
 {
     const osg::FrameStamp* stamp = nv ? nv->getFrameStamp() : nullptr;
+    if (!claimFrame(stamp)) return;
+    computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
+    writeSceneGraph();
+}
+
+bool ActorNode::claimFrame(const osg::FrameStamp* stamp)
+{
     if (stamp)
     {
-        // An actor with several parents is visited once per parent; its work is done once per frame.
-        if (stamp->getFrameNumber() == _lastFrameNumber) return;
+        if (stamp->getFrameNumber() == _lastFrameNumber) return false;
         _lastFrameNumber = stamp->getFrameNumber();
     }
-    if (_blocked) return;
+    if (_blocked) return false;
     ++_numUpdatesRun;
-    if (stamp) runControllers(stamp->getSimulationTime());
+    return true;
+}
+
+void ActorNode::computeFrame(double time)
+{
+    runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
     _pose.updateLocalMatrices();
-    writeSceneGraph();
 }
 
 void ActorNode::writeSceneGraph()
