@@ -84,6 +84,34 @@ std::string sectionsText(const std::vector<SyntaxStatement>& sections)
 
 } // namespace
 
+void applyClips(ActorNode& actor, const ActorDocument& document)
+{
+    if (document.clips.empty()) return;
+    ClipLibraryPtr library = std::make_shared<ClipLibrary>();
+    for (const ClipDocument& clip : document.clips) library->addClip(clip.clip);
+    actor.setClipLibrary(library);
+}
+
+void addClips(const ActorNode& actor, ActorDocument& document)
+{
+    const ClipLibrary* library = actor.getClipLibrary().get();
+    if (!library) return;
+    for (const std::string& name : library->getClipNames())
+    {
+        ClipDocument clip;
+        clip.clip = library->getClip(name);
+        document.clips.push_back(clip);
+    }
+}
+
+ActorDocument makeDefinitionDocument(const ActorNode& actor)
+{
+    if (!actor.getDefinition()) return ActorDocument();
+    ActorDocument document = makeDocument(*actor.getDefinition());
+    addClips(actor, document);
+    return document;
+}
+
 ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefinitionPtr& definition,
                                 const std::string& fileName, const osgDB::Options* options)
 {
@@ -113,6 +141,7 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         applyJointState(*actor, static_cast<unsigned>(index), joint);
         if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
+    applyClips(*actor, document);
     if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
     // Pose the actor now, both its matrices for queries and its scene graph: a blocked actor would otherwise
     // show and answer with its default pose until unblocked.
@@ -162,6 +191,7 @@ ActorDocument extractActorDocument(const ActorNode& actor)
         }
     }
 
+    addClips(actor, document);
     std::string sections;
     if (actor.getUserValue(kSectionsUserValue, sections) && !sections.empty())
     {

@@ -23,7 +23,7 @@ bool parseShapeKind(const std::string& text, GeometryKind& kind)
     return false;
 }
 
-bool isReservedSection(const std::string& keyword) { return keyword == "clip" || keyword == "ikchain"; }
+bool isReservedSection(const std::string& keyword) { return keyword == "ikchain"; }
 
 BuildResult buildDefinition(const ActorDocument& document, const std::string& fileName)
 {
@@ -55,3 +55,4 @@ ActorDocument makeDocument(const ActorDefinition& definition)
 }
 
 } // namespace osgActor
+

@@ -4,6 +4,7 @@
 
 #include <osgActor/ActorGeometry>
 #include <osgActor/ActorUpdateCallback>
+#include <osgActor/core/ClipPlayer>
 
 #include <osg/ComputeBoundsVisitor>
 #include <osg/Geode>
@@ -207,4 +208,53 @@ TEST(ActorPlugin, WritingAScenePicksItsOneActor)
     const osgDB::ReaderWriter::WriteResult result = rw->writeNode(*root, outFile("two.actor"), nullptr);
     EXPECT_FALSE(result.success());
     EXPECT_EQ(result.message(), "a .actor file holds exactly one actor; the scene has 2");
+}
+
+TEST(ActorPlugin, ClipsComeWithTheActorPlayAndSurviveOsgFormats)
+{
+    const std::string path = writeTextFile("with_clip.actor", R"(osgactor 1
+actor waver {
+    joint shoulder {
+        dof rz min -90 max 90
+        joint hand { offset 1 0 0 }
+    }
+    clip wave {
+        channel shoulder.rz {
+            key 0 0
+            key 1 90
+        }
+    }
+}
+)");
+    osg::ref_ptr<ActorNode> actor = readActorFile(path);
+    ASSERT_TRUE(actor.valid());
+    ASSERT_NE(actor->getClipLibrary(), nullptr);
+    ClipPtr wave = actor->getClipLibrary()->getClip("wave");
+    ASSERT_NE(wave, nullptr);
+    // Played by the nodekit's own clip player: at 0.5 s the shoulder is half way, 45 degrees.
+    std::shared_ptr<ClipPlayer> player = std::make_shared<ClipPlayer>(wave);
+    player->seek(0.5);
+    player->pause();
+    actor->addController(player);
+    runUpdate(*actor, 1);
+    EXPECT_NEAR(actor->getDof(0u), osg::PI_4, 1e-12);
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(1u), osg::Vec3d(std::sqrt(0.5), std::sqrt(0.5), 0), 1e-12));
+
+    // The clip library goes through .osgt and .osg with the definition, and back into .actor text unchanged.
+    ASSERT_TRUE(osgDB::writeNodeFile(*actor, outFile("clip_first.actor")));
+    for (const char* extension : {"osgt", "osgb", "osg"})
+    {
+        const std::string file = outFile(std::string("with_clip.") + extension);
+        ASSERT_TRUE(osgDB::writeNodeFile(*actor, file));
+        osg::ref_ptr<ActorNode> back = dynamic_cast<ActorNode*>(osgDB::readRefNodeFile(file).get());
+        ASSERT_TRUE(back.valid()) << extension;
+        ASSERT_NE(back->getClipLibrary(), nullptr) << extension;
+        EXPECT_EQ(back->getClipLibrary()->getClipNames(), std::vector<std::string>{"wave"}) << extension;
+        const std::string again = outFile(std::string("clip_again_") + extension + ".actor");
+        ASSERT_TRUE(osgDB::writeNodeFile(*back, again));
+        EXPECT_EQ(readTextFile(again), readTextFile(outFile("clip_first.actor"))) << extension;
+    }
+    EXPECT_NE(readTextFile(outFile("clip_first.actor")).find("    clip wave {\n        channel shoulder.rz {\n"
+                                                             "            key 0 0\n            key 1 90\n"),
+              std::string::npos);
 }

@@ -1,9 +1,10 @@
 /* osgActor::ActorNode in the .osg format. Its fields follow osg::Group's children (the associates list puts
- * Group first), so reading the definition binds the skeleton nodes already read. The definition is written as the
- * joint part of a .actor file, one quoted string per line. */
+ * Group first), so reading the definition binds the skeleton nodes already read. The definition and clips are
+ * written as a .actor file holding the joints and clips, one quoted string per line. */
 #include "DotOsgNumbers"
 
 #include <osgActor/ActorNode>
+#include <osgActor/ActorSceneIO>
 #include <osgActor/io/ActorReader>
 #include <osgActor/io/ActorWriter>
 
@@ -67,8 +68,10 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
         for (const std::string& line : readBlockTokens(fr)) text += line + "\n";
         std::istringstream in(text);
         const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
-        if (read) actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES);
-        else OSG_WARN << "osgActor: " << read.error << std::endl;
+        if (read && actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
+            osgActor::applyClips(actor, read.document);
+        else if (!read)
+            OSG_WARN << "osgActor: " << read.error << std::endl;
         advanced = true;
     }
     if (fr.matchSequence("Dofs %i {"))
@@ -109,10 +112,10 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
 bool writeActorNode(const osg::Object& object, osgDB::Output& fw)
 {
     const osgActor::ActorNode& actor = static_cast<const osgActor::ActorNode&>(object);
-    if (const osgActor::ActorDefinition* definition = actor.getDefinition().get())
+    if (actor.getDefinition())
     {
         std::ostringstream text;
-        osgActor::writeActor(text, osgActor::makeDocument(*definition));
+        osgActor::writeActor(text, osgActor::makeDefinitionDocument(actor));
         std::vector<std::string> lines;
         std::istringstream in(text.str());
         for (std::string line; std::getline(in, line);) lines.push_back(line);

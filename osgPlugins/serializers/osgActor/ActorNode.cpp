@@ -1,9 +1,11 @@
 /* osgActor::ActorNode in OSG's serializer formats (.osgt, .osgb, .osgx).
  *
  * The skeleton nodes and attached geometry are ordinary children, written by osg::Group's wrapper before the
- * fields here. The definition is not an osg::Object: it is written as the joint part of a .actor file, one line
- * per string, and read with the .actor reader; reading it binds the skeleton nodes already read. */
+ * fields here. The definition and the clips are not osg::Objects: they are written as a .actor file holding the
+ * joints and clips, one line per string, and read with the .actor reader; reading binds the skeleton nodes
+ * already read. */
 #include <osgActor/ActorNode>
+#include <osgActor/ActorSceneIO>
 #include <osgActor/io/ActorReader>
 #include <osgActor/io/ActorWriter>
 
@@ -71,10 +73,10 @@ osg::Quat readExactQuat(osgDB::InputStream& is)
     return q;
 }
 
-std::vector<std::string> definitionLines(const osgActor::ActorDefinition& definition)
+std::vector<std::string> definitionLines(const osgActor::ActorNode& actor)
 {
     std::ostringstream text;
-    osgActor::writeActor(text, osgActor::makeDocument(definition));
+    osgActor::writeActor(text, osgActor::makeDefinitionDocument(actor));
     std::vector<std::string> lines;
     std::istringstream in(text.str());
     for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -111,12 +113,13 @@ static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
                           "' do not match its definition");
         return false;
     }
+    osgActor::applyClips(actor, read.document);
     return true;
 }
 
 static bool writeDefinition(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
 {
-    const std::vector<std::string> lines = definitionLines(*actor.getDefinition());
+    const std::vector<std::string> lines = definitionLines(actor);
     os.writeSize(static_cast<unsigned int>(lines.size()));
     os << os.BEGIN_BRACKET << std::endl;
     for (const std::string& line : lines)
