@@ -104,11 +104,17 @@ void addClips(const ActorNode& actor, ActorDocument& document)
     }
 }
 
+void addIkChains(const ActorNode& actor, ActorDocument& document)
+{
+    for (const IkChainPtr& chain : actor.getIkChains()) document.ikChains.push_back(IkChainDocument{chain->getSpec(), 0});
+}
+
 ActorDocument makeDefinitionDocument(const ActorNode& actor)
 {
     if (!actor.getDefinition()) return ActorDocument();
     ActorDocument document = makeDocument(*actor.getDefinition());
     addClips(actor, document);
+    addIkChains(actor, document);
     return document;
 }
 
@@ -142,6 +148,9 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
     applyClips(*actor, document);
+    std::vector<IkChainPtr> chains;
+    if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
+    for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
     if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
     // Pose the actor now, both its matrices for queries and its scene graph: a blocked actor would otherwise
     // show and answer with its default pose until unblocked.
@@ -192,6 +201,8 @@ ActorDocument extractActorDocument(const ActorNode& actor)
     }
 
     addClips(actor, document);
+    addIkChains(actor, document);
+
     std::string sections;
     if (actor.getUserValue(kSectionsUserValue, sections) && !sections.empty())
     {

@@ -195,18 +195,19 @@ actor "test arm" {
     EXPECT_EQ(upper.geometry[1].scale, 2.0);
 }
 
-TEST(ActorReader, KeepsIkChainSectionsVerbatim)
+TEST(ActorReader, ReadsClipsAndIkChainsSideBySide)
 {
-    const ActorReadResult result = read("osgactor 1\nactor a {\n joint b { dof rz }\n ikchain arm {\n  root b\n"
-                                        "  key 0 b.rz 10\n }\n}\n");
+    // IK chains are read in detail by tests/ik/test_ik_format.cpp.
+    const ActorReadResult result = read("osgactor 1\nactor a {\n joint b { dof rz }\n clip walk {\n"
+                                        "  channel b.rz { key 0 10 }\n }\n joint c { parent b; offset 1 0 0; dof rz }\n"
+                                        " ikchain arm { root b; effector c; solver ccd }\n}\n");
     ASSERT_TRUE(result) << result.error;
-    ASSERT_EQ(result.document.sections.size(), 1u);
-    EXPECT_EQ(result.document.sections[0].keyword, "ikchain");
-    EXPECT_EQ(result.document.sections[0].arguments[0].text, "arm");
-    ASSERT_EQ(result.document.sections[0].children.size(), 2u);
-    EXPECT_EQ(result.document.sections[0].children[1].arguments.size(), 3u);
-    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b\n ikchain arm\n}"),
-              "t.actor:4: 'ikchain' needs a block in braces");
+    EXPECT_TRUE(result.document.sections.empty()) << "nothing is kept verbatim";
+    ASSERT_EQ(result.document.clips.size(), 1u);
+    EXPECT_EQ(result.document.clips[0].clip->getName(), "walk");
+    ASSERT_EQ(result.document.ikChains.size(), 1u);
+    EXPECT_EQ(result.document.ikChains[0].spec.name, "arm");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b\n clip walk\n}"), "t.actor:4: 'clip' needs a block in braces");
 }
 
 // --- clips ---

@@ -60,9 +60,11 @@ ActorDocument makeRichDocument()
     model.file = "tools/spanner.osgt";
     model.scale = 0.5;
     document.joints[2].geometry.push_back(model);
-    std::istringstream sections("ikchain arm {\n    root \"left arm\"\n    effector hand\n}\n");
-    std::string error;
-    EXPECT_TRUE(parseSyntax(sections, "s", document.sections, error)) << error;
+    IkChainSpec arm;
+    arm.name = "arm";
+    arm.rootJoint = "left arm";
+    arm.effectorJoint = "hand";
+    document.ikChains.push_back(IkChainDocument{arm, 0});
     ClipBuilder keyed("wave");
     const unsigned rx = keyed.addChannel("left arm.rx", Interpolation::Cubic);
     keyed.addKey(rx, 0.0, 0.1);
@@ -170,7 +172,9 @@ TEST(ActorWriter, ReadingWhatItWroteGivesTheSameActorAndWritingAgainTheSameBytes
     EXPECT_NEAR(again.joints[1].geometry[0].rotation.y, original.joints[1].geometry[0].rotation.y, 1e-12);
     ASSERT_EQ(again.joints[2].geometry.size(), 1u);
     EXPECT_EQ(again.joints[2].geometry[0].file, "tools/spanner.osgt");
-    ASSERT_EQ(again.sections.size(), 1u);
+    EXPECT_TRUE(again.sections.empty());
+    ASSERT_EQ(again.ikChains.size(), 1u);
+    EXPECT_EQ(again.ikChains[0].spec.rootJoint, "left arm");
     ASSERT_EQ(again.clips.size(), 2u);
     const Clip& wave = *again.clips[0].clip;
     EXPECT_EQ(wave.getChannel(0).interpolation, Interpolation::Cubic);

@@ -69,7 +69,10 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
         std::istringstream in(text);
         const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
         if (read && actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
+        {
             osgActor::applyClips(actor, read.document);
+            for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
+        }
         else if (!read)
             OSG_WARN << "osgActor: " << read.error << std::endl;
         advanced = true;

@@ -73,6 +73,7 @@ osg::Quat readExactQuat(osgDB::InputStream& is)
     return q;
 }
 
+/** The definition, clips and IK chains, as the lines of a .actor file. */
 std::vector<std::string> definitionLines(const osgActor::ActorNode& actor)
 {
     std::ostringstream text;
@@ -114,6 +115,7 @@ static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
         return false;
     }
     osgActor::applyClips(actor, read.document);
+    for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
     return true;
 }
 
