@@ -1,6 +1,6 @@
-#include <osgActor/ActorClips>
 #include <osgActor/ActorGeometry>
 #include <osgActor/ActorSceneIO>
+#include <osgActor/core/ClipPlayer>
 #include <osgActor/GlmOsg>
 #include <osgActor/io/ActorSyntax>
 
@@ -46,6 +46,36 @@ osg::ref_ptr<osg::Node> loadModel(const GeometryDescription& model, const std::s
     return node;
 }
 
+/** The instance state a joint of the document carries: its current DOF values and hide flag. */
+void applyJointState(ActorNode& actor, unsigned joint, const JointDocument& document)
+{
+    const ActorDefinition& definition = *actor.getDefinition();
+    for (unsigned d = 0; d < kNumDofTypes; ++d)
+    {
+        const int dof = definition.getDofIndex(joint, static_cast<Dof>(d));
+        if (document.values[d] && dof >= 0) actor.setDof(static_cast<unsigned>(dof), *document.values[d]);
+    }
+    actor.getSkeletonNode(joint)->setHidden(document.hidden);
+}
+
+/** Hangs a joint's shapes and models below its skeleton node; false and an error when a model cannot be loaded. */
+bool attachGeometry(SkeletonNode& node, const JointDocument& joint, const std::string& fileName,
+                    const osgDB::Options* options, std::string& error)
+{
+    for (const GeometryDescription& geometry : joint.geometry)
+    {
+        if (geometry.kind != GeometryKind::Model)
+        {
+            node.addChild(createShapeNode(geometry).get());
+            continue;
+        }
+        const osg::ref_ptr<osg::Node> model = loadModel(geometry, fileName, options, error);
+        if (!model) return false;
+        node.addChild(createModelNode(geometry, model.get()).get());
+    }
+    return true;
+}
+
 std::string sectionsText(const std::vector<SyntaxStatement>& sections)
 {
     std::ostringstream text;
@@ -54,6 +84,57 @@ std::string sectionsText(const std::vector<SyntaxStatement>& sections)
 }
 
 } // namespace
+
+void applyClips(ActorNode& actor, const ActorDocument& document)
+{
+    if (document.clips.empty()) return;
+    ClipLibraryPtr library = std::make_shared<ClipLibrary>();
+    for (const ClipDocument& clip : document.clips)
+    {
+        library->addClip(clip.clip);
+        if (!clip.play) continue;
+        auto player = std::make_shared<ClipPlayer>(clip.clip);
+        player->setName(clip.clip->getName());
+        player->setPlayMode(clip.playMode);
+        player->play();
+        actor.addController(player);
+    }
+    actor.setClipLibrary(library);
+}
+
+void addClips(const ActorNode& actor, ActorDocument& document)
+{
+    const ClipLibrary* library = actor.getClipLibrary().get();
+    if (!library) return;
+    for (const std::string& name : library->getClipNames())
+    {
+        ClipDocument clip;
+        clip.clip = library->getClip(name);
+        // A clip some player is playing is written with "play", so the file plays it again when loaded.
+        for (const ControllerPtr& controller : actor.getControllers())
+        {
+            const ClipPlayer* player = dynamic_cast<const ClipPlayer*>(controller.get());
+            if (!player || player->getClip() != clip.clip || !player->isPlaying()) continue;
+            clip.play = true;
+            clip.playMode = player->getPlayMode();
+        }
+        document.clips.push_back(clip);
+    }
+}
+
+void addIkChains(const ActorNode& actor, ActorDocument& document)
+{
+    for (const IkChainPtr& chain : actor.getIkChains()) document.ikChains.push_back(IkChainDocument{chain->getSpec(), 0});
+}
+
+ActorDocument makeDefinitionDocument(const ActorNode& actor)
+{
+    if (!actor.getDefinition()) return ActorDocument();
+    ActorDocument document = makeDocument(*actor.getDefinition());
+    addClips(actor, document);
+    addIkChains(actor, document);
+    return document;
+}
 
 ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefinitionPtr& definition,
                                 const std::string& fileName, const osgDB::Options* options)
@@ -81,31 +162,17 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
             result.error = where(fileName, joint.line) + "joint '" + joint.spec.name + "' is not in the definition";
             return result;
         }
-        for (unsigned d = 0; d < kNumDofTypes; ++d)
-        {
-            const int dof = definition->getDofIndex(static_cast<unsigned>(index), static_cast<Dof>(d));
-            if (joint.values[d] && dof >= 0) actor->setDof(static_cast<unsigned>(dof), *joint.values[d]);
-        }
-        node->setHidden(joint.hidden);
-        for (const GeometryDescription& geometry : joint.geometry)
-        {
-            if (geometry.kind != GeometryKind::Model)
-            {
-                node->addChild(createShapeNode(geometry).get());
-                continue;
-            }
-            const osg::ref_ptr<osg::Node> model = loadModel(geometry, fileName, local.get(), result.error);
-            if (!model) return result;
-            node->addChild(createModelNode(geometry, model.get()).get());
-        }
+        applyJointState(*actor, static_cast<unsigned>(index), joint);
+        if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
+    applyClips(*actor, document);
     std::vector<IkChainPtr> chains;
     if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
     for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
     if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
-    // Clip sections become the actor's clips (docs/mocap.md); the text above keeps them for the writer.
-    if (!addClipSections(*actor, document.sections, fileName, result.error)) return result;
-    // Pose the scene graph now (a blocked actor would otherwise show its default pose until unblocked).
+    // Pose the actor now, both its matrices for queries and its scene graph: a blocked actor would otherwise
+    // show and answer with its default pose until unblocked.
+    actor->updatePose();
     actor->update(nullptr);
     actor->setBlocked(document.blocked);
     result.actor = actor;
@@ -151,7 +218,8 @@ ActorDocument extractActorDocument(const ActorNode& actor)
         }
     }
 
-    for (const IkChainPtr& chain : actor.getIkChains()) document.ikChains.push_back(IkChainDocument{chain->getSpec(), 0});
+    addClips(actor, document);
+    addIkChains(actor, document);
 
     std::string sections;
     if (actor.getUserValue(kSectionsUserValue, sections) && !sections.empty())

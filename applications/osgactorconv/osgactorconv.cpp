@@ -2,7 +2,6 @@
  * import. Exit status 0 on success, 1 on bad input (with file:line on stderr), 2 on bad usage. */
 #include <osgActor/io/ActorDocument>
 #include <osgActor/io/ActorWriter>
-#include <osgActor/io/ClipSection>
 #include <osgActor/mocap/AmcReader>
 #include <osgActor/mocap/AsfReader>
 #include <osgActor/mocap/BvhReader>
@@ -230,7 +229,8 @@ int main(int argc, char** argv)
     {
         ActorDocument document = makeDocument(*imported.definition);
         document.name = imported.definition->getName();
-        if (imported.clip) document.sections.push_back(clipToSection(*imported.clip, PlayMode::Loop));
+        if (imported.clip) // the motion, played in a loop when the file is loaded
+            document.clips.push_back(ClipDocument{imported.clip, 0, true, PlayMode::Loop});
         writeActor(out, document);
         written = static_cast<bool>(out);
         if (!written) error = args.output + ": cannot write the file";

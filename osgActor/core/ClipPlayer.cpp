@@ -19,6 +19,25 @@ glm::dquat headingRotation(double heading) { return glm::angleAxis(heading, kUp)
 
 } // namespace
 
+namespace {
+
+const char* const kPlayModeNames[] = {"once", "loop", "pingpong"}; // in PlayMode's order
+
+} // namespace
+
+const char* playModeName(PlayMode mode) { return kPlayModeNames[static_cast<unsigned>(mode)]; }
+
+bool parsePlayMode(const std::string& text, PlayMode& mode)
+{
+    for (unsigned i = 0; i < 3; ++i)
+        if (text == kPlayModeNames[i])
+        {
+            mode = static_cast<PlayMode>(i);
+            return true;
+        }
+    return false;
+}
+
 ClipPlayer::ClipPlayer(ClipPtr clip) : _clip(std::move(clip)) {}
 
 void ClipPlayer::setClip(ClipPtr clip)

@@ -23,7 +23,7 @@ bool parseShapeKind(const std::string& text, GeometryKind& kind)
     return false;
 }
 
-bool isReservedSection(const std::string& keyword) { return keyword == "clip"; }
+bool isReservedSection(const std::string&) { return false; }
 
 BuildResult buildDefinition(const ActorDocument& document, const std::string& fileName)
 {
@@ -74,3 +74,4 @@ ActorDocument makeDocument(const ActorDefinition& definition)
 }
 
 } // namespace osgActor
+

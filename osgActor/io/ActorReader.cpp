@@ -1,3 +1,4 @@
+#include <osgActor/core/ClipBuilder>
 #include <osgActor/io/ActorNumbers>
 #include <osgActor/io/ActorReader>
 
@@ -39,6 +40,22 @@ public:
     }
 
     const std::string& error() const { return _error; }
+
+    /** The clips of the actor block, after readFile() and once the definition is built. */
+    bool readClips(const ActorDefinition& definition, ActorDocument& document)
+    {
+        std::set<std::string> names;
+        for (const SyntaxStatement* statement : _clipStatements)
+        {
+            ClipDocument clip;
+            clip.line = statement->line;
+            if (!readClip(*statement, definition, clip)) return false;
+            if (!names.insert(clip.clip->getName()).second)
+                return fail(statement->line, "clip '" + clip.clip->getName() + "' is given twice");
+            document.clips.push_back(clip);
+        }
+        return true;
+    }
 
 private:
     // --- messages ---
@@ -168,6 +185,12 @@ private:
             else if (k == "post_translation") ok = once(seen, s) && vector3(s, document.postTranslation);
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
+            else if (k == "clip")
+            {
+                // Read once the definition is built: channels are checked against its DOFs.
+                if (!s.hasBlock) return fail(s.line, "'clip' needs a block in braces");
+                _clipStatements.push_back(&s);
+            }
             else if (k == "ikchain") ok = readIkChain(s, document);
             else if (isReservedSection(k))
             {
@@ -330,6 +353,10 @@ private:
             else if (key.text == "value") joint.values[static_cast<unsigned>(dof)] = value * unit;
             else return fail(key.line, "unknown DOF attribute '" + key.text + "' (min, max, default, weight, value)");
         }
+        // The builder checks the default against the limits; the current value is the file's to check.
+        const std::optional<double>& value = joint.values[static_cast<unsigned>(dof)];
+        if (value && (*value < spec.min || *value > spec.max))
+            return fail(s.line, "the value of DOF '" + s.arguments.front().text + "' lies outside its limits");
         return true;
     }
 
@@ -413,8 +440,150 @@ private:
         return true;
     }
 
+    // --- clips ---
+
+    /** The unit a channel's values are written in: degrees for rotation DOFs (as radians per written unit). */
+    bool channelUnit(const SyntaxArgument& target, const ActorDefinition& definition, double& unit)
+    {
+        const int dof = definition.findDof(target.text);
+        if (dof < 0) return fail(target.line, "channel '" + target.text + "' names no DOF of the actor");
+        unit = isRotation(definition.getDofType(static_cast<unsigned>(dof))) ? kRadiansPerDegree : 1.0;
+        return true;
+    }
+
+    bool readInterpolation(const SyntaxStatement& s, Interpolation& interpolation)
+    {
+        if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
+        const std::string& word = s.arguments.front().text;
+        if (word == "step") interpolation = Interpolation::Step;
+        else if (word == "linear") interpolation = Interpolation::Linear;
+        else if (word == "cubic") interpolation = Interpolation::Cubic;
+        else return fail(s.line, "'" + word + "' is not an interpolation (step, linear, cubic)");
+        return true;
+    }
+
+    /** "channel target { [interpolation i] key time value ... }": a keyed channel. */
+    bool readChannel(const SyntaxStatement& s, const ActorDefinition& definition, ClipBuilder& builder)
+    {
+        if (!expectArguments(s, 1)) return false;
+        double unit = 1.0;
+        if (!channelUnit(s.arguments.front(), definition, unit)) return false;
+        Interpolation interpolation = Interpolation::Linear;
+        std::vector<std::pair<double, double>> keys; // seconds, API units
+        std::set<std::string> seen;
+        for (const SyntaxStatement& c : s.children)
+        {
+            if (c.keyword == "interpolation")
+            {
+                if (!once(seen, c) || !readInterpolation(c, interpolation)) return false;
+            }
+            else if (c.keyword == "key")
+            {
+                double v[2];
+                if (!numbers(c, 2, v)) return false;
+                if (!keys.empty() && !(v[0] > keys.back().first))
+                    return fail(c.line, "key times must increase");
+                keys.emplace_back(v[0], v[1] * unit);
+            }
+            else return unknownKeyword(c, "in a channel");
+        }
+        if (keys.empty()) return fail(s.line, "channel '" + s.arguments.front().text + "' has no key");
+        const unsigned channel = builder.addChannel(s.arguments.front().text, interpolation);
+        for (const auto& key : keys) builder.addKey(channel, key.first, key.second);
+        return true;
+    }
+
+    /** "frame_rate r", "channels t1 t2 ...", "frame v1 v2 ...": a uniform clip, one frame per statement. */
+    bool readFrames(const SyntaxStatement& clip, const ActorDefinition& definition, ClipBuilder& builder)
+    {
+        double frameRate = 0.0;
+        std::vector<double> units;
+        std::vector<double> values;
+        std::set<std::string> seen;
+        for (const SyntaxStatement& c : clip.children)
+        {
+            if (c.keyword == "frame_rate")
+            {
+                if (!once(seen, c) || !positive(c, frameRate)) return false;
+            }
+            else if (c.keyword == "channels")
+            {
+                if (!once(seen, c) || !expectNoBlock(c)) return false;
+                if (c.arguments.empty()) return fail(c.line, "'channels' needs at least one DOF name");
+                for (const SyntaxArgument& target : c.arguments)
+                {
+                    units.emplace_back();
+                    if (!channelUnit(target, definition, units.back())) return false;
+                    builder.addChannel(target.text);
+                }
+            }
+            else if (c.keyword == "frame")
+            {
+                if (units.empty()) return fail(c.line, "'frame' must follow 'channels'");
+                if (!expectNoBlock(c) || !expectArguments(c, units.size())) return false;
+                for (std::size_t i = 0; i < units.size(); ++i)
+                {
+                    double value = 0.0;
+                    if (!number(c.arguments[i], value)) return false;
+                    values.push_back(value * units[i]);
+                }
+            }
+            else if (c.keyword == "play") continue; // read by readClip
+            else return unknownKeyword(c, "in a clip of frames");
+        }
+        if (!seen.count("frame_rate")) return fail(clip.line, "a clip of frames needs a 'frame_rate'");
+        if (values.empty()) return fail(clip.line, "a clip of frames needs at least one 'frame'");
+        builder.setFrames(frameRate, std::move(values));
+        return true;
+    }
+
+    /** "clip name { channel ... }" (keys) or "clip name { frame_rate ...; channels ...; frame ... }" (frames). */
+    bool readClip(const SyntaxStatement& s, const ActorDefinition& definition, ClipDocument& clip)
+    {
+        if (!expectArguments(s, 1)) return false;
+        ClipBuilder builder(s.arguments.front().text);
+        bool keyed = false;
+        bool uniform = false;
+        std::set<std::string> seen;
+        for (const SyntaxStatement& c : s.children)
+        {
+            if (c.keyword == "play")
+            {
+                if (!once(seen, c) || !expectNoBlock(c) || !expectArguments(c, 1)) return false;
+                if (!parsePlayMode(c.arguments.front().text, clip.playMode))
+                    return fail(c.line, "'" + c.arguments.front().text + "' is not a play mode (once, loop, pingpong)");
+                clip.play = true;
+                continue;
+            }
+            const bool isChannel = c.keyword == "channel";
+            if (!isChannel && c.keyword != "frame_rate" && c.keyword != "channels" && c.keyword != "frame")
+                return unknownKeyword(c, "in a clip");
+            keyed = keyed || isChannel;
+            uniform = uniform || !isChannel;
+            if (keyed && uniform) return fail(c.line, "a clip has either 'channel' blocks or frames, not both");
+        }
+        if (keyed)
+        {
+            for (const SyntaxStatement& c : s.children)
+                if (c.keyword != "play" && !readChannel(c, definition, builder)) return false;
+        }
+        else if (uniform)
+        {
+            if (!readFrames(s, definition, builder)) return false;
+        }
+        else
+        {
+            return fail(s.line, "clip '" + s.arguments.front().text + "' has no channel");
+        }
+        const ClipBuildResult built = builder.build();
+        if (!built) return fail(s.line, built.error);
+        clip.clip = built.clip;
+        return true;
+    }
+
     const std::string& _fileName;
     std::string _error;
+    std::vector<const SyntaxStatement*> _clipStatements; // point into the caller's statements
 };
 
 } // namespace
@@ -435,6 +604,11 @@ ActorReadResult readActor(std::istream& in, const std::string& fileName)
     if (!built)
     {
         result.error = built.error;
+        return result;
+    }
+    if (!reader.readClips(*built.definition, document))
+    {
+        result.error = reader.error();
         return result;
     }
     if (!buildIkChains(document, *built.definition, fileName, result.ikChains, result.error)) return result;

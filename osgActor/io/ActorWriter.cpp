@@ -90,6 +90,57 @@ SyntaxStatement geometryStatement(const GeometryDescription& g)
     return s;
 }
 
+const char* interpolationName(Interpolation interpolation)
+{
+    switch (interpolation)
+    {
+    case Interpolation::Step: return "step";
+    case Interpolation::Cubic: return "cubic";
+    case Interpolation::Linear: break;
+    }
+    return "linear";
+}
+
+/** A clip as channel blocks of keys, or as a frame rate, a channel list and one line per frame; "play" first when
+  * the actor plays it. */
+SyntaxStatement clipStatement(const ClipDocument& document)
+{
+    const Clip& clip = *document.clip;
+    SyntaxStatement s = statement("clip", {nameArgument(clip.getName())});
+    s.hasBlock = true;
+    if (document.play) s.children.push_back(statement("play", {word(playModeName(document.playMode))}));
+    auto unit = [&](unsigned channel) { return clip.getChannel(channel).angular ? kDegreesPerRadian : 1.0; };
+    if (clip.isUniform())
+    {
+        s.children.push_back(statement("frame_rate", {numberArgument(clip.getFrameRate())}));
+        SyntaxStatement channels = statement("channels");
+        for (unsigned c = 0; c < clip.getNumChannels(); ++c)
+            channels.arguments.push_back(nameArgument(clip.getChannel(c).target));
+        s.children.push_back(channels);
+        for (unsigned f = 0; f < clip.getNumFrames(); ++f)
+        {
+            SyntaxStatement frame = statement("frame");
+            for (unsigned c = 0; c < clip.getNumChannels(); ++c)
+                frame.arguments.push_back(numberArgument(clip.getFrame(f)[c] * unit(c)));
+            s.children.push_back(frame);
+        }
+        return s;
+    }
+    for (unsigned c = 0; c < clip.getNumChannels(); ++c)
+    {
+        SyntaxStatement channel = statement("channel", {nameArgument(clip.getChannel(c).target)});
+        channel.hasBlock = true;
+        if (clip.getChannel(c).interpolation != Interpolation::Linear)
+            channel.children.push_back(
+                statement("interpolation", {word(interpolationName(clip.getChannel(c).interpolation))}));
+        for (unsigned k = 0; k < clip.getNumKeys(c); ++k)
+            channel.children.push_back(statement(
+                "key", {numberArgument(clip.getKeyTime(c, k)), numberArgument(clip.getKeyValue(c, k) * unit(c))}));
+        s.children.push_back(channel);
+    }
+    return s;
+}
+
 /** "ikchain name { ... }": root, effector and solver always, the rest where it differs from the defaults. */
 SyntaxStatement ikChainStatement(const IkChainSpec& spec)
 {
@@ -177,6 +228,8 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     addPlacement(actor.children, "post_translation", document.postTranslation, "post_rotation", document.postRotation);
     if (document.blocked) actor.children.push_back(statement("blocked"));
     JointTreeWriter(document).write(actor.children);
+    for (const ClipDocument& clip : document.clips)
+        if (clip.clip) actor.children.push_back(clipStatement(clip));
     for (const IkChainDocument& chain : document.ikChains) actor.children.push_back(ikChainStatement(chain.spec));
     for (const SyntaxStatement& section : document.sections) actor.children.push_back(section);
     file.push_back(std::move(actor));

@@ -62,6 +62,7 @@ public:
     {
         const std::string extension = osgDB::getLowerCaseFileExtension(file);
         if (!acceptsExtension(extension)) return ReadResult::FILE_NOT_HANDLED;
+        // Pseudo-loaders ("walk.bvh.actor") dispatch on the inner extension; plain files are .actor.
         if (osgActorPlugin::isMocapPseudoFile(file)) return osgActorPlugin::readMocapPseudoFile(file, options);
         return readActorFile(file, options);
     }

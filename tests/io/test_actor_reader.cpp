@@ -101,6 +101,8 @@ TEST(ActorReader, RefusesWhatTheBuilderRefusesAtTheJointsLine)
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b\n joint c {\n  dof rx min 10 max -10\n }\n}"),
               "t.actor:4: actor 'a': DOF 'c.rx' has its minimum 0.174533 above its maximum -0.174533")
         << "the builder speaks in radians";
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  dof rx max 150 value 151\n }\n}"),
+              "t.actor:4: the value of DOF 'rx' lies outside its limits");
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  dof rx\n  dof rx\n }\n}"),
               "t.actor:5: DOF 'rx' is given twice");
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  offset 1 1 1\n  offset 1 1 1\n }\n}"),
@@ -193,21 +195,88 @@ actor "test arm" {
     EXPECT_EQ(upper.geometry[1].scale, 2.0);
 }
 
-TEST(ActorReader, KeepsClipSectionsVerbatim)
+TEST(ActorReader, ReadsClipsAndIkChainsSideBySide)
 {
-    // IK chains are read, not kept verbatim (tests/ik/test_ik_format.cpp).
-    const ActorReadResult result = read("osgactor 1\nactor a {\n joint b\n clip walk {\n  key 0 b.rz 10\n }\n"
-                                        " joint c { parent b; offset 1 0 0; dof rz }\n"
+    // IK chains are read in detail by tests/ik/test_ik_format.cpp.
+    const ActorReadResult result = read("osgactor 1\nactor a {\n joint b { dof rz }\n clip walk {\n"
+                                        "  channel b.rz { key 0 10 }\n }\n joint c { parent b; offset 1 0 0; dof rz }\n"
                                         " ikchain arm { root b; effector c; solver ccd }\n}\n");
     ASSERT_TRUE(result) << result.error;
-    ASSERT_EQ(result.document.sections.size(), 1u);
-    EXPECT_EQ(result.document.sections[0].keyword, "clip");
-    EXPECT_EQ(result.document.sections[0].arguments[0].text, "walk");
-    ASSERT_EQ(result.document.sections[0].children.size(), 1u);
-    EXPECT_EQ(result.document.sections[0].children[0].arguments.size(), 3u);
+    EXPECT_TRUE(result.document.sections.empty()) << "nothing is kept verbatim";
+    ASSERT_EQ(result.document.clips.size(), 1u);
+    EXPECT_EQ(result.document.clips[0].clip->getName(), "walk");
     ASSERT_EQ(result.document.ikChains.size(), 1u);
     EXPECT_EQ(result.document.ikChains[0].spec.name, "arm");
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b\n clip walk\n}"), "t.actor:4: 'clip' needs a block in braces");
+}
+
+// --- clips ---
+
+namespace {
+
+const std::string kClipActor = "osgactor 1\nactor a {\n joint b {\n  dof rz\n  dof tx\n }\n";
+
+} // namespace
+
+TEST(ActorReader, RefusesBadClips)
+{
+    EXPECT_EQ(readError(kClipActor + " clip wave {\n  channel b.rx { key 0 1 }\n }\n}\n"),
+              "t.actor:8: channel 'b.rx' names no DOF of the actor");
+    EXPECT_EQ(readError(kClipActor + " clip wave {\n  channel b.rz {\n   key 0 1\n   key 0 2\n  }\n }\n}\n"),
+              "t.actor:10: key times must increase");
+    EXPECT_EQ(readError(kClipActor + " clip wave {\n  channel b.rz { key 0 1 }\n  frame_rate 30\n }\n}\n"),
+              "t.actor:9: a clip has either 'channel' blocks or frames, not both");
+    EXPECT_EQ(readError(kClipActor + " clip wave {\n  channel b.rz { interpolation smooth; key 0 1 }\n }\n}\n"),
+              "t.actor:8: 'smooth' is not an interpolation (step, linear, cubic)");
+    EXPECT_EQ(readError(kClipActor + " clip wave {\n  channel b.rz\n }\n}\n"),
+              "t.actor:8: channel 'b.rz' has no key");
+    EXPECT_EQ(readError(kClipActor + " clip wave {\n  channel b.rz { key -1 0 }\n }\n}\n").rfind("t.actor:7: ", 0),
+              0u) << "the clip builder's refusal, at the clip's line";
+    EXPECT_EQ(readError(kClipActor + " clip walk {\n  frame_rate 30\n  channels b.rz b.tx\n  frame 1 2 3\n }\n}\n"),
+              "t.actor:10: 'frame' takes 2 values, not 3");
+    EXPECT_EQ(readError(kClipActor + " clip walk {\n  channels b.rz\n  frame 1\n }\n}\n"),
+              "t.actor:7: a clip of frames needs a 'frame_rate'");
+    EXPECT_EQ(readError(kClipActor + " clip walk {\n  frame_rate 30\n  frame 1\n }\n}\n"),
+              "t.actor:9: 'frame' must follow 'channels'");
+    EXPECT_EQ(readError(kClipActor + " clip w { channel b.rz { key 0 1 } }\n clip w { channel b.rz { key 0 1 } }\n}\n"),
+              "t.actor:8: clip 'w' is given twice");
+    EXPECT_EQ(readError(kClipActor + " clip w {\n  key 0 1\n }\n}\n"), "t.actor:8: unknown keyword 'key' in a clip");
+}
+
+TEST(ActorReader, ReadsKeyedClipsInDegreesAndSeconds)
+{
+    const ActorReadResult result =
+        read(kClipActor + " clip wave {\n  channel b.rz {\n   interpolation cubic\n   key 0 0\n   key 0.5 90\n"
+                          "   key 1 0\n  }\n  channel b.tx { key 0 0.25 }\n }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    ASSERT_EQ(result.document.clips.size(), 1u);
+    const Clip& clip = *result.document.clips[0].clip;
+    EXPECT_EQ(clip.getName(), "wave");
+    EXPECT_FALSE(clip.isUniform());
+    EXPECT_EQ(clip.getDuration(), 1.0);
+    ASSERT_EQ(clip.getNumChannels(), 2u);
+    EXPECT_EQ(clip.getChannel(0).target, "b.rz");
+    EXPECT_EQ(clip.getChannel(0).interpolation, Interpolation::Cubic);
+    EXPECT_TRUE(clip.getChannel(0).angular);
+    ASSERT_EQ(clip.getNumKeys(0), 3u);
+    EXPECT_EQ(clip.getKeyTime(0, 1), 0.5);
+    EXPECT_DOUBLE_EQ(clip.getKeyValue(0, 1), 90 * kDegree);
+    EXPECT_EQ(clip.getChannel(1).interpolation, Interpolation::Linear);
+    EXPECT_EQ(clip.getKeyValue(1, 0), 0.25) << "translations stay in model units";
+}
+
+TEST(ActorReader, ReadsClipsOfFrames)
+{
+    const ActorReadResult result = read(kClipActor + " clip walk {\n  frame_rate 4\n  channels b.tx b.rz\n"
+                                                     "  frame 0 0\n  frame 0.1 45\n  frame 0.2 90\n }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    const Clip& clip = *result.document.clips.at(0).clip;
+    EXPECT_TRUE(clip.isUniform());
+    EXPECT_EQ(clip.getFrameRate(), 4.0);
+    ASSERT_EQ(clip.getNumFrames(), 3u);
+    EXPECT_EQ(clip.getDuration(), 0.5);
+    EXPECT_EQ(clip.getFrame(1)[0], 0.1);
+    EXPECT_DOUBLE_EQ(clip.getFrame(2)[1], 90 * kDegree);
 }
 
 TEST(ActorReader, AcceptsFlatJointsWithParentInAnyOrder)

@@ -1,4 +1,5 @@
 #include <osgActor/io/ActorReader>
+#include <osgActor/core/ClipBuilder>
 #include <osgActor/io/ActorWriter>
 
 #include <glm/ext/quaternion_trigonometric.hpp>
@@ -59,9 +60,27 @@ ActorDocument makeRichDocument()
     model.file = "tools/spanner.osgt";
     model.scale = 0.5;
     document.joints[2].geometry.push_back(model);
-    std::istringstream sections("clip wave {\n    key 0 \"left arm.rx\" 30\n}\n");
-    std::string error;
-    EXPECT_TRUE(parseSyntax(sections, "s", document.sections, error)) << error;
+    IkChainSpec arm;
+    arm.name = "arm";
+    arm.rootJoint = "left arm";
+    arm.effectorJoint = "hand";
+    document.ikChains.push_back(IkChainDocument{arm, 0});
+    ClipBuilder keyed("wave");
+    const unsigned rx = keyed.addChannel("left arm.rx", Interpolation::Cubic);
+    keyed.addKey(rx, 0.0, 0.1);
+    keyed.addKey(rx, 0.4, 1.0 / 3.0);
+    const unsigned tx = keyed.addChannel("root.tx", Interpolation::Step);
+    keyed.addKey(tx, 0.2, 0.05);
+    ClipBuilder uniform("shuffle");
+    uniform.addChannel("root.rz");
+    uniform.addChannel("root.ty");
+    uniform.setFrames(30.0, {0.0, 0.0, 0.01, 0.002, 0.02, 0.004});
+    for (ClipBuilder* builder : {&keyed, &uniform})
+    {
+        const ClipBuildResult clip = builder->build();
+        EXPECT_TRUE(clip) << clip.error;
+        document.clips.push_back(ClipDocument{clip.clip, 0});
+    }
     return document;
 }
 
@@ -153,7 +172,19 @@ TEST(ActorWriter, ReadingWhatItWroteGivesTheSameActorAndWritingAgainTheSameBytes
     EXPECT_NEAR(again.joints[1].geometry[0].rotation.y, original.joints[1].geometry[0].rotation.y, 1e-12);
     ASSERT_EQ(again.joints[2].geometry.size(), 1u);
     EXPECT_EQ(again.joints[2].geometry[0].file, "tools/spanner.osgt");
-    ASSERT_EQ(again.sections.size(), 1u);
+    EXPECT_TRUE(again.sections.empty());
+    ASSERT_EQ(again.ikChains.size(), 1u);
+    EXPECT_EQ(again.ikChains[0].spec.rootJoint, "left arm");
+    ASSERT_EQ(again.clips.size(), 2u);
+    const Clip& wave = *again.clips[0].clip;
+    EXPECT_EQ(wave.getChannel(0).interpolation, Interpolation::Cubic);
+    EXPECT_NEAR(wave.getKeyValue(0, 1), 1.0 / 3.0, 1e-12);
+    EXPECT_EQ(wave.getKeyTime(1, 0), 0.2);
+    const Clip& shuffle = *again.clips[1].clip;
+    ASSERT_TRUE(shuffle.isUniform());
+    EXPECT_EQ(shuffle.getNumFrames(), 3u);
+    EXPECT_NEAR(shuffle.getFrame(2)[0], 0.02, 1e-13) << "12 digits of degrees";
+    EXPECT_EQ(shuffle.getFrame(2)[1], 0.004);
 
     EXPECT_EQ(written(again), first);
 }

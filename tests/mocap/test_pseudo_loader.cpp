@@ -5,7 +5,6 @@
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/io/ActorDocument>
 #include <osgActor/io/ActorWriter>
-#include <osgActor/io/ClipSection>
 #include <osgActor/mocap/BvhReader>
 
 #include <osg/FrameStamp>
@@ -95,7 +94,7 @@ TEST(ActorFileClips, AnActorFileCarriesAndPlaysItsMotion)
     ASSERT_TRUE(imported) << imported.error;
     ActorDocument document = makeDocument(*imported.definition);
     document.name = "walker";
-    document.sections.push_back(clipToSection(*imported.clip, PlayMode::Loop));
+    document.clips.push_back(ClipDocument{imported.clip, 0, true, PlayMode::Loop});
     const std::string path = std::string(OSGACTOR_TEST_BINARY_DIR) + "/walker.actor";
     {
         std::ofstream out(path);
@@ -137,8 +136,8 @@ TEST(ActorFileClips, ABrokenClipSectionFailsTheRead)
 {
     const std::string path = std::string(OSGACTOR_TEST_BINARY_DIR) + "/broken_clip.actor";
     std::ofstream(path) << "osgactor 1\nactor a {\n    joint b {\n        dof rx\n    }\n    clip wave {\n"
-                           "        key 0 b.rx nan\n    }\n}\n";
+                           "        channel b.rx {\n            key 0 nan\n        }\n    }\n}\n";
     osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
     EXPECT_FALSE(read.validNode());
-    EXPECT_NE(read.message().find("broken_clip.actor:7: "), std::string::npos) << read.message();
+    EXPECT_NE(read.message().find("broken_clip.actor:8: "), std::string::npos) << read.message();
 }

@@ -28,6 +28,9 @@ osg::ref_ptr<osg::Group> makeScene(bool blocked)
     actor->setPostRotation(osg::Quat(0.1, osg::Vec3d(1, 0, 0)));
     actor->getSkeletonNode("r_elbow")->setHidden(true);
     runUpdate(*actor, 1);
+    // The frame computed local matrices only; bring the model matrices up to date too, so that the blocked
+    // original answers queries with the pose it shows (main's lazy model matrices; see the report).
+    actor->updatePose();
     actor->setBlocked(blocked);
     osg::ref_ptr<osg::Group> root = new osg::Group;
     root->addChild(actor.get());

@@ -1,9 +1,10 @@
 /* osgActor::ActorNode in the .osg format. Its fields follow osg::Group's children (the associates list puts
- * Group first), so reading the definition binds the skeleton nodes already read. The definition is written as the
- * joint part of a .actor file, one quoted string per line. */
+ * Group first), so reading the definition binds the skeleton nodes already read. The definition and clips are
+ * written as a .actor file holding the joints and clips, one quoted string per line. */
 #include "DotOsgNumbers"
 
 #include <osgActor/ActorNode>
+#include <osgActor/ActorSceneIO>
 #include <osgActor/io/ActorReader>
 #include <osgActor/io/ActorWriter>
 
@@ -67,12 +68,13 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
         for (const std::string& line : readBlockTokens(fr)) text += line + "\n";
         std::istringstream in(text);
         const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
-        if (read)
+        if (read && actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
         {
-            actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES);
+            osgActor::applyClips(actor, read.document);
             for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
         }
-        else OSG_WARN << "osgActor: " << read.error << std::endl;
+        else if (!read)
+            OSG_WARN << "osgActor: " << read.error << std::endl;
         advanced = true;
     }
     if (fr.matchSequence("Dofs %i {"))
@@ -98,7 +100,11 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
     {
         // Posed before it is frozen, so a blocked actor read back shows its pose.
         const bool blocked = fr[1].matchWord("TRUE");
-        if (blocked) actor.update(nullptr);
+        if (blocked)
+        {
+            actor.updatePose();    // the matrices queries answer with
+            actor.update(nullptr); // the scene graph
+        }
         actor.setBlocked(blocked);
         fr += 2;
         advanced = true;
@@ -109,13 +115,10 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
 bool writeActorNode(const osg::Object& object, osgDB::Output& fw)
 {
     const osgActor::ActorNode& actor = static_cast<const osgActor::ActorNode&>(object);
-    if (const osgActor::ActorDefinition* definition = actor.getDefinition().get())
+    if (actor.getDefinition())
     {
-        osgActor::ActorDocument document = osgActor::makeDocument(*definition);
-        for (const osgActor::IkChainPtr& chain : actor.getIkChains())
-            document.ikChains.push_back(osgActor::IkChainDocument{chain->getSpec(), 0});
         std::ostringstream text;
-        osgActor::writeActor(text, document);
+        osgActor::writeActor(text, osgActor::makeDefinitionDocument(actor));
         std::vector<std::string> lines;
         std::istringstream in(text.str());
         for (std::string line; std::getline(in, line);) lines.push_back(line);

@@ -1,9 +1,11 @@
 /* osgActor::ActorNode in OSG's serializer formats (.osgt, .osgb, .osgx).
  *
  * The skeleton nodes and attached geometry are ordinary children, written by osg::Group's wrapper before the
- * fields here. The definition is not an osg::Object: it is written as the joint part of a .actor file, one line
- * per string, and read with the .actor reader; reading it binds the skeleton nodes already read. */
+ * fields here. The definition and the clips are not osg::Objects: they are written as a .actor file holding the
+ * joints and clips, one line per string, and read with the .actor reader; reading binds the skeleton nodes
+ * already read. */
 #include <osgActor/ActorNode>
+#include <osgActor/ActorSceneIO>
 #include <osgActor/io/ActorReader>
 #include <osgActor/io/ActorWriter>
 
@@ -71,14 +73,11 @@ osg::Quat readExactQuat(osgDB::InputStream& is)
     return q;
 }
 
-/** The definition and the actor's IK chains, as the lines of a .actor file. */
+/** The definition, clips and IK chains, as the lines of a .actor file. */
 std::vector<std::string> definitionLines(const osgActor::ActorNode& actor)
 {
-    osgActor::ActorDocument document = osgActor::makeDocument(*actor.getDefinition());
-    for (const osgActor::IkChainPtr& chain : actor.getIkChains())
-        document.ikChains.push_back(osgActor::IkChainDocument{chain->getSpec(), 0});
     std::ostringstream text;
-    osgActor::writeActor(text, document);
+    osgActor::writeActor(text, osgActor::makeDefinitionDocument(actor));
     std::vector<std::string> lines;
     std::istringstream in(text.str());
     for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -115,6 +114,7 @@ static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
                           "' do not match its definition");
         return false;
     }
+    osgActor::applyClips(actor, read.document);
     for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
     return true;
 }
@@ -219,7 +219,11 @@ static bool readBlocked(osgDB::InputStream& is, osgActor::ActorNode& actor)
 {
     bool blocked = false;
     is >> blocked;
-    if (blocked) actor.update(nullptr);
+    if (blocked)
+    {
+        actor.updatePose();      // the matrices queries answer with
+        actor.update(nullptr);   // the scene graph
+    }
     actor.setBlocked(blocked);
     return true;
 }
