@@ -36,6 +36,9 @@ void describeRenderOptions(osg::ArgumentParser& arguments)
 
 namespace {
 
+// OSMesa's largest viewport (SWRAST_MAX_WIDTH/HEIGHT in Mesa); larger buffers would only waste memory.
+const int kMaxImageSize = 16384;
+
 bool readVec3(osg::ArgumentParser& arguments, const std::string& option, osg::Vec3d& value)
 {
     return arguments.read(option, value.x(), value.y(), value.z());
@@ -81,7 +84,8 @@ bool parseRenderOptions(osg::ArgumentParser& arguments, RenderOptions& options, 
 
     // Checks, first the ones a typing slip is most likely to hit.
     if (options.files.empty()) error = "no file to render";
-    else if (options.width < 1 || options.height < 1) error = "--size needs a positive width and height";
+    else if (options.width < 1 || options.height < 1 || options.width > kMaxImageSize || options.height > kMaxImageSize)
+        error = "--size needs a width and height from 1 to " + std::to_string(kMaxImageSize) + " pixels";
     else if (!(options.fovyDegrees > 0.0 && options.fovyDegrees < 180.0)) error = "--fov must lie in (0, 180) degrees";
     else if (hasFrames && options.hasTime) error = "--time and --frames cannot be used together";
     else if (hasFrames && (first < 0 || last < first)) error = "--frames needs 0 <= first <= last";
