@@ -377,7 +377,8 @@ void ActorNode::update(const osg::NodeVisitor* nv)
     if (_blocked) return;
     ++_numUpdatesRun;
     if (stamp) runControllers(stamp->getSimulationTime());
-    _pose.updateMatrices();
+    // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
+    _pose.updateLocalMatrices();
     writeSceneGraph();
 }
 

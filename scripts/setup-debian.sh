@@ -14,6 +14,7 @@ packages=(
     assimp-testmodels                      # real BVH files used by the tests
     xvfb xauth                             # windowed smoke tests without a display
     clang                                  # fuzzers and sanitizer builds
+    gnuplot-nox                            # the benchmark's plot
 )
 
 missing=()

@@ -1,7 +1,5 @@
 #include <osgActor/core/ActorDefinition>
 
-#include <algorithm>
-
 namespace osgActor {
 
 int ActorDefinition::findJoint(const std::string& name) const
@@ -36,11 +34,6 @@ int ActorDefinition::findDof(const std::string& name) const
     const int joint = findJoint(name.substr(0, dot));
     if (joint < 0) return -1;
     return getDofIndex(static_cast<unsigned>(joint), type);
-}
-
-double ActorDefinition::clampToLimits(unsigned dof, double value) const
-{
-    return std::min(std::max(value, _dofMins[dof]), _dofMaxs[dof]);
 }
 
 } // namespace osgActor

@@ -11,24 +11,17 @@ ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(defi
     if (!_definition) return;
     const unsigned numJoints = _definition->getNumJoints();
     _dofs = _definition->getDefaultDofs();
+    _dofMins = _definition->getDofMins().data();
+    _dofMaxs = _definition->getDofMaxs().data();
+    _dofJoints = _definition->getDofJoints().data();
     _jointDirty.assign(numJoints, 1);
     _localChanged.assign(numJoints, 0);
     _modelChanged.assign(numJoints, 0);
+    _modelStale.assign(numJoints, 0);
     _local.assign(numJoints, glm::dmat4(1.0));
     _model.assign(numJoints, glm::dmat4(1.0));
+    _trigScratch.assign(3 * _dofs.size(), 0.0);
     _anyDirty = numJoints > 0;
-}
-
-DofWriteStatus ActorPose::setDof(unsigned index, double value)
-{
-    if (index >= _dofs.size()) return DofWriteStatus::NoSuchDof;
-    if (!std::isfinite(value)) return DofWriteStatus::NotFinite;
-    const double clamped = _definition->clampToLimits(index, value);
-    if (clamped == _dofs[index]) return DofWriteStatus::Unchanged;
-    _dofs[index] = clamped;
-    _jointDirty[_definition->getDofJoint(index)] = 1;
-    _anyDirty = true;
-    return clamped == value ? DofWriteStatus::Written : DofWriteStatus::Clamped;
 }
 
 DofWriteStatus ActorPose::setDofs(const double* values, std::size_t count)
@@ -53,9 +46,13 @@ void ActorPose::markAllJointsDirty()
     _anyDirty = !_jointDirty.empty();
 }
 
-unsigned ActorPose::updateMatrices()
+unsigned ActorPose::updateMatrices() { return runForwardKinematics(true); }
+
+unsigned ActorPose::updateLocalMatrices() { return runForwardKinematics(false); }
+
+unsigned ActorPose::runForwardKinematics(bool computeModel)
 {
-    if (!_anyDirty) return 0;
+    if (!_anyDirty && !(computeModel && _anyModelStale)) return 0;
     ForwardKinematicsJob job;
     job.definition = _definition.get();
     job.dofs = _dofs.data();
@@ -63,9 +60,13 @@ unsigned ActorPose::updateMatrices()
     job.local = _local.data();
     job.model = _model.data();
     job.localChanged = _localChanged.data();
+    job.modelStale = _modelStale.data();
     job.modelChanged = _modelChanged.data();
+    job.trigScratch = _trigScratch.data();
+    job.computeModel = computeModel;
     job.run();
     _anyDirty = false;
+    _anyModelStale = !computeModel && (_anyModelStale || job.numRecomputed > 0);
     _anyLocalChanged = _anyLocalChanged || job.numRecomputed > 0;
     _totalRecomputed += job.numRecomputed;
     return job.numRecomputed;

@@ -53,17 +53,12 @@ double blendAngle(double a, double b, double t)
     return a + t * delta;
 }
 
-bool Controller::writeDof(ActorPose& pose, unsigned dof, double value) const
+bool Controller::blendDof(ActorPose& pose, unsigned dof, double value, double w) const
 {
-    const double w = effectiveWeight(dof);
-    if (w <= 0.0 || dof >= pose.getNumDofs()) return false;
-    double blended = value;
-    if (w < 1.0)
-    {
-        const double current = pose.getDof(dof);
-        blended = isRotation(pose.getDefinition()->getDofType(dof)) ? blendAngle(current, value, w)
-                                                                     : current + w * (value - current);
-    }
+    if (!(w > 0.0) || dof >= pose.getNumDofs()) return false;
+    const double current = pose.getDof(dof);
+    const double blended = isRotation(pose.getDefinition()->getDofType(dof)) ? blendAngle(current, value, w)
+                                                                              : current + w * (value - current);
     return succeeded(pose.setDof(dof, blended));
 }
 

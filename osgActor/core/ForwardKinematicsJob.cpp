@@ -1,54 +1,202 @@
+// The per-frame hot path. Matrices are glm::dmat4 in memory (column-major, 16 doubles) but are handled here as raw
+// affine arrays: the bottom row of every joint matrix is (0 0 0 1), so a product is a 3x3 rotation product plus a
+// translation, not a full 4x4 product. This file is compiled with -O3 and its loop is built twice (AVX2+FMA and
+// the x86-64 baseline), the right one chosen when the library is loaded.
 #include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/SinCos>
 
 #include <cmath>
+
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define OSGACTOR_HOT_PATH __attribute__((target_clones("avx2,fma", "default")))
+#else
+#define OSGACTOR_HOT_PATH
+#endif
 
 namespace osgActor {
 
 namespace {
 
-/** m = m * R_axis(angle), for a 3x3 rotation held in the upper-left of a dmat4 (columns 0..2). Multiplying on
-  * the right mixes two columns only, so this is four multiply-adds rather than a matrix product. */
-inline void postRotate(glm::dmat4& m, unsigned axis, double angle)
+#define OSGACTOR_INLINE inline __attribute__((always_inline))
+
+/** A 3x3 rotation, c[column][row]. */
+struct Rotation3
 {
-    const double c = std::cos(angle);
-    const double s = std::sin(angle);
-    // For X the mixed columns are (Y, Z); for Y (Z, X); for Z (X, Y): col_i' = c col_i + s col_j,
-    // col_j' = -s col_i + c col_j. Row 3 is (0, 0, 0) in these columns and stays so.
-    const unsigned i = (axis + 1) % 3;
-    const unsigned j = (axis + 2) % 3;
-    const glm::dvec4 ci = m[i];
-    const glm::dvec4 cj = m[j];
-    m[i] = c * ci + s * cj;
-    m[j] = -s * ci + c * cj;
+    double c[3][3];
+};
+
+/** m = R_Axis(angle), from the angle's sine and cosine. Column I, row J of an axis rotation: X mixes (Y, Z),
+  * Y mixes (Z, X), Z mixes (X, Y). The axis is a template argument so every index is a constant and the matrix
+  * stays in registers. */
+template <unsigned Axis>
+OSGACTOR_INLINE void setAxisRotation(Rotation3& m, double s, double c)
+{
+    constexpr unsigned i = (Axis + 1) % 3, j = (Axis + 2) % 3;
+    for (unsigned col = 0; col < 3; ++col)
+        for (unsigned row = 0; row < 3; ++row) m.c[col][row] = col == row ? 1.0 : 0.0;
+    m.c[i][i] = c;
+    m.c[i][j] = s;
+    m.c[j][i] = -s;
+    m.c[j][j] = c;
+}
+
+/** m = m * R_Axis(angle): right-multiplying by an axis rotation mixes two columns only. */
+template <unsigned Axis>
+OSGACTOR_INLINE void postRotateAxis(Rotation3& m, double s, double c)
+{
+    constexpr unsigned i = (Axis + 1) % 3, j = (Axis + 2) % 3;
+    for (unsigned row = 0; row < 3; ++row)
+    {
+        const double ci = m.c[i][row], cj = m.c[j][row];
+        m.c[i][row] = c * ci + s * cj;
+        m.c[j][row] = -s * ci + c * cj;
+    }
+}
+
+OSGACTOR_INLINE void setRotation(Rotation3& m, unsigned axis, double s, double c)
+{
+    switch (axis)
+    {
+    case 0: setAxisRotation<0>(m, s, c); break;
+    case 1: setAxisRotation<1>(m, s, c); break;
+    default: setAxisRotation<2>(m, s, c); break;
+    }
+}
+
+OSGACTOR_INLINE void postRotate(Rotation3& m, unsigned axis, double s, double c)
+{
+    switch (axis)
+    {
+    case 0: postRotateAxis<0>(m, s, c); break;
+    case 1: postRotateAxis<1>(m, s, c); break;
+    default: postRotateAxis<2>(m, s, c); break;
+    }
+}
+
+/** out = a * b for affine matrices stored as dmat4 (16 doubles, column-major); out may not alias a or b. Written
+  * as the full product, four columns of four rows, because that is what vectorizes (b's bottom row 0 0 0 1 keeps
+  * out's bottom row exact). */
+OSGACTOR_INLINE void multiplyAffineInto(const double* __restrict a, const double* __restrict b,
+                                        double* __restrict out)
+{
+    for (unsigned col = 0; col < 4; ++col)
+        for (unsigned row = 0; row < 4; ++row)
+            out[col * 4 + row] = a[row] * b[col * 4] + a[4 + row] * b[col * 4 + 1] + a[8 + row] * b[col * 4 + 2] +
+                                 a[12 + row] * b[col * 4 + 3];
+}
+
+/** Writes skl_m of one joint (see computeJointMatrix) from the sines and cosines of its active rotations, in
+  * product order. */
+OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* dofs, const double* sines,
+                                      const double* cosines, double* __restrict out)
+{
+    // rotation = R_a1 * R_a2 * R_a3 over the active axes.
+    Rotation3 rotation;
+    if (k.numRotations == 0)
+        setAxisRotation<0>(rotation, 0.0, 1.0);
+    else
+    {
+        setRotation(rotation, k.rotationAxis[0], sines[0], cosines[0]);
+        for (unsigned r = 1; r < k.numRotations; ++r) postRotate(rotation, k.rotationAxis[r], sines[r], cosines[r]);
+    }
+
+    // The translation DOFs, slid along the rotated axes (the paper) or in the offset frame (mocap).
+    double slide[3] = {0.0, 0.0, 0.0};
+    if (k.translationDof[0] >= 0 || k.translationDof[1] >= 0 || k.translationDof[2] >= 0)
+    {
+        double t[3];
+        for (unsigned axis = 0; axis < 3; ++axis) t[axis] = k.translationDof[axis] >= 0 ? dofs[k.translationDof[axis]] : 0.0;
+        for (unsigned row = 0; row < 3; ++row)
+            slide[row] = k.translationMode == TranslationMode::AfterRotation
+                             ? rotation.c[0][row] * t[0] + rotation.c[1][row] * t[1] + rotation.c[2][row] * t[2]
+                             : t[row];
+    }
+
+    // skl_m = offset_m * [rotation | slide].
+    const double* offset = &k.offset[0][0];
+    if (k.offsetIsTranslation)
+    {
+        for (unsigned col = 0; col < 3; ++col)
+        {
+            for (unsigned row = 0; row < 3; ++row) out[col * 4 + row] = rotation.c[col][row];
+            out[col * 4 + 3] = 0.0;
+        }
+        for (unsigned row = 0; row < 3; ++row) out[12 + row] = slide[row] + offset[12 + row];
+        out[15] = 1.0;
+        return;
+    }
+    double articulation[16];
+    for (unsigned col = 0; col < 3; ++col)
+    {
+        for (unsigned row = 0; row < 3; ++row) articulation[col * 4 + row] = rotation.c[col][row];
+        articulation[col * 4 + 3] = 0.0;
+    }
+    for (unsigned row = 0; row < 3; ++row) articulation[12 + row] = slide[row];
+    articulation[15] = 1.0;
+    multiplyAffineInto(offset, articulation, out);
+}
+
+/** Step 2 of the job: one pass over the joints, parents first. Returns how many local matrices it rebuilt. */
+OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, const double* sines, const double* cosines)
+{
+    const unsigned numJoints = job.definition->getNumJoints();
+    const JointKinematics* kinematics = job.definition->getAllKinematics().data();
+    const int* parents = job.definition->getParents().data();
+    unsigned numRecomputed = 0;
+    unsigned nextAngle = 0;
+    for (unsigned j = 0; j < numJoints; ++j)
+    {
+        if (job.jointDirty[j])
+        {
+            const JointKinematics& k = kinematics[j];
+            buildJointMatrix(k, job.dofs, sines + nextAngle, cosines + nextAngle, &job.local[j][0][0]);
+            nextAngle += k.numRotations;
+            job.jointDirty[j] = 0;
+            job.localChanged[j] = 1;
+            job.modelStale[j] = 1;
+            ++numRecomputed;
+        }
+        if (!job.computeModel) continue;
+        const int parent = parents[j];
+        // Parents come first, so modelChanged[parent] is already final for this run.
+        const bool moved = job.modelStale[j] || (parent >= 0 && job.modelChanged[parent]);
+        job.modelChanged[j] = moved ? 1 : 0;
+        if (!moved) continue;
+        job.modelStale[j] = 0;
+        if (parent >= 0)
+            multiplyAffineInto(&job.model[parent][0][0], &job.local[j][0][0], &job.model[j][0][0]);
+        else
+            job.model[j] = job.local[j];
+    }
+    return numRecomputed;
 }
 
 } // namespace
 
+glm::dmat4 multiplyAffine(const glm::dmat4& a, const glm::dmat4& b)
+{
+    glm::dmat4 result;
+    multiplyAffineInto(&a[0][0], &b[0][0], &result[0][0]);
+    return result;
+}
+
 glm::dmat4 computeJointMatrix(const JointKinematics& k, const double* dofs)
 {
-    // articulation = R_a1 * R_a2 * R_a3, then the translation DOFs (see the header for where they act).
-    glm::dmat4 articulation(1.0);
-    for (unsigned r = 0; r < k.numRotations; ++r) postRotate(articulation, k.rotationAxis[r], dofs[k.rotationDof[r]]);
-
-    glm::dvec3 t(0.0);
-    for (unsigned axis = 0; axis < 3; ++axis)
-        if (k.translationDof[axis] >= 0) t[axis] = dofs[k.translationDof[axis]];
-    const glm::dvec3 slide =
-        k.translationMode == TranslationMode::AfterRotation ? glm::dvec3(articulation * glm::dvec4(t, 0.0)) : t;
-    articulation[3] = glm::dvec4(slide, 1.0);
-
-    if (k.offsetIsTranslation)
+    double sines[3], cosines[3];
+    for (unsigned r = 0; r < k.numRotations; ++r)
     {
-        articulation[3] += glm::dvec4(glm::dvec3(k.offset[3]), 0.0);
-        return articulation;
+        sines[r] = std::sin(dofs[k.rotationDof[r]]);
+        cosines[r] = std::cos(dofs[k.rotationDof[r]]);
     }
-    return k.offset * articulation;
+    glm::dmat4 result;
+    buildJointMatrix(k, dofs, sines, cosines, &result[0][0]);
+    return result;
 }
 
 bool ForwardKinematicsJob::validate() const
 {
-    if (!definition || !jointDirty || !local || !model || !localChanged || !modelChanged) return false;
-    return dofs != nullptr || definition->getNumDofs() == 0;
+    if (!definition || !jointDirty || !local || !model || !localChanged || !modelStale || !modelChanged) return false;
+    return (dofs != nullptr && trigScratch != nullptr) || definition->getNumDofs() == 0;
 }
 
 bool ForwardKinematicsJob::run()
@@ -56,24 +204,25 @@ bool ForwardKinematicsJob::run()
     numRecomputed = 0;
     if (!validate()) return false;
     const unsigned numJoints = definition->getNumJoints();
-    const std::vector<JointKinematics>& kinematics = definition->getAllKinematics();
-    const std::vector<int>& parents = definition->getParents();
+    const JointKinematics* kinematics = definition->getAllKinematics().data();
+
+    // 1. Gather the angles of every dirty joint's rotations, in joint and product order, and take their sines and
+    //    cosines in one batch.
+    const unsigned numDofs = definition->getNumDofs();
+    double* angles = trigScratch;
+    double* sines = trigScratch + numDofs;
+    double* cosines = trigScratch + 2 * numDofs;
+    unsigned numAngles = 0;
     for (unsigned j = 0; j < numJoints; ++j)
     {
-        const bool localDirty = jointDirty[j] != 0;
-        if (localDirty)
-        {
-            local[j] = computeJointMatrix(kinematics[j], dofs);
-            jointDirty[j] = 0;
-            localChanged[j] = 1;
-            ++numRecomputed;
-        }
-        const int parent = parents[j];
-        // Parents come first, so modelChanged[parent] is already final for this run.
-        const bool moved = localDirty || (parent >= 0 && modelChanged[parent]);
-        modelChanged[j] = moved ? 1 : 0;
-        if (moved) model[j] = parent >= 0 ? model[parent] * local[j] : local[j];
+        if (!jointDirty[j]) continue;
+        const JointKinematics& k = kinematics[j];
+        for (unsigned r = 0; r < k.numRotations; ++r) angles[numAngles++] = dofs[k.rotationDof[r]];
     }
+    if (numAngles > 0) sinCos(angles, sines, cosines, numAngles);
+
+    // 2. Local matrices of dirty joints, model matrices below any change.
+    numRecomputed = computeMatrices(*this, sines, cosines);
     return true;
 }
 

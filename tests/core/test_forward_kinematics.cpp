@@ -2,11 +2,13 @@
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/core/ActorPose>
 #include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/SinCos>
 
 #include "TestMath"
 
 #include <glm/ext/scalar_constants.hpp>
 
+#include <random>
 #include <vector>
 
 using namespace osgActor;
@@ -37,8 +39,9 @@ TEST(ForwardKinematicsJob, RefusesMissingBuffers)
     b.addJoint("root").dofs(dofBit(Dof::RX));
     const ActorDefinitionPtr def = b.build().definition;
     std::vector<double> dofs(1, 0.0);
-    std::vector<std::uint8_t> dirty(1, 1), localChanged(1, 0), modelChanged(1, 0);
+    std::vector<std::uint8_t> dirty(1, 1), localChanged(1, 0), modelStale(1, 0), modelChanged(1, 0);
     std::vector<glm::dmat4> local(1), model(1);
+    std::vector<double> scratch(3);
 
     ForwardKinematicsJob job;
     EXPECT_FALSE(job.validate());
@@ -48,10 +51,14 @@ TEST(ForwardKinematicsJob, RefusesMissingBuffers)
     job.model = model.data();
     job.localChanged = localChanged.data();
     job.modelChanged = modelChanged.data();
+    EXPECT_FALSE(job.validate()) << "no model-stale flags";
+    job.modelStale = modelStale.data();
     EXPECT_FALSE(job.validate()) << "no DOF vector for an actor that has DOFs";
     EXPECT_FALSE(job.run());
     EXPECT_EQ(dirty[0], 1) << "a refused run touches nothing";
     job.dofs = dofs.data();
+    EXPECT_FALSE(job.validate()) << "no scratch for the batched trigonometry";
+    job.trigScratch = scratch.data();
     job.model = nullptr;
     EXPECT_FALSE(job.validate());
     job.model = model.data();
@@ -167,6 +174,21 @@ TEST(ForwardKinematics, ChainModelMatricesCompose)
     EXPECT_TRUE(vectorsNear(glm::dvec3(pose.getModelMatrix(2)[0]), glm::dvec3(-1, 0, 0), 1e-15));
 }
 
+TEST(ForwardKinematics, ModelMatricesCanWaitUntilAsked)
+{
+    ActorDefinitionBuilder b;
+    b.addJoint("root").dofs(dofBit(Dof::RZ));
+    b.addJoint("elbow", "root").offset(1, 0, 0).dofs(dofBit(Dof::RZ));
+    b.addJoint("tip", "elbow").offset(1, 0, 0);
+    ActorPose pose(b.build().definition);
+    pose.updateMatrices();
+    pose.setDof(0, kQuarter);
+    EXPECT_EQ(pose.updateLocalMatrices(), 1u);
+    EXPECT_TRUE(vectorsNear(glm::dvec3(pose.getModelMatrix(2)[3]), glm::dvec3(2, 0, 0), 1e-15)) << "still stale";
+    EXPECT_EQ(pose.updateMatrices(), 0u) << "no local matrix left to rebuild";
+    EXPECT_TRUE(vectorsNear(glm::dvec3(pose.getModelMatrix(2)[3]), glm::dvec3(0, 2, 0), 1e-15)) << "now current";
+}
+
 TEST(ForwardKinematics, MovingAParentMovesItsChildrenButRecomputesOneJoint)
 {
     ActorDefinitionBuilder b;
@@ -178,4 +200,31 @@ TEST(ForwardKinematics, MovingAParentMovesItsChildrenButRecomputesOneJoint)
     pose.setDof(0, kQuarter);
     EXPECT_EQ(pose.updateMatrices(), 1u);
     EXPECT_TRUE(vectorsNear(glm::dvec3(pose.getModelMatrix(2)[3]), glm::dvec3(0, 2, 0), 1e-15));
+}
+
+// --- the batched trigonometry and the affine product the job is built on ---
+
+TEST(SinCos, MatchesTheScalarFunctionsToAFewUlp)
+{
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> small(-7.0, 7.0), large(-1000.0, 1000.0);
+    std::vector<double> angles;
+    for (int i = 0; i < 1000; ++i) angles.push_back(i % 2 ? small(random) : large(random));
+    angles.push_back(0.0);
+    angles.push_back(-0.0);
+    angles.push_back(1e-300);
+    std::vector<double> sines(angles.size()), cosines(angles.size());
+    sinCos(angles.data(), sines.data(), cosines.data(), static_cast<unsigned>(angles.size()));
+    for (unsigned i = 0; i < angles.size(); ++i)
+    {
+        EXPECT_NEAR(sines[i], std::sin(angles[i]), 1e-15) << angles[i];
+        EXPECT_NEAR(cosines[i], std::cos(angles[i]), 1e-15) << angles[i];
+    }
+}
+
+TEST(MultiplyAffine, EqualsTheFullProduct)
+{
+    const glm::dmat4 a = fromRows(0.2, -0.9, 0.1, 4, 0.7, 0.3, -0.5, -2, 0.1, 0.4, 0.8, 1);
+    const glm::dmat4 b = fromRows(1, 2, 3, 4, -1, 0.5, 2, 5, 0, 0.25, -3, 6);
+    EXPECT_TRUE(matricesNear(multiplyAffine(a, b), a * b, 1e-14));
 }

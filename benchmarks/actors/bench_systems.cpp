@@ -1,0 +1,94 @@
+// osgActor against osgAnimation and plain OSG, side by side in one run: the same 31-joint humanoid and the same
+// looping clip in each system, N = 1, 10, 100, 1000 instances, the update traversal alone and update plus cull.
+// Reported per joint; the summary at the end gives each result's ratio to osgAnimation at the same N and mode.
+#include "BenchReport"
+#include "FrameLoop"
+#include "PeerScenes"
+
+#include <benchmark/benchmark.h>
+
+#include <osg/MatrixTransform>
+
+namespace {
+
+using bench::Motion;
+
+enum class System { OsgActorAll, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg };
+
+osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors)
+{
+    switch (system)
+    {
+    case System::OsgActorAll: return bench::makeOsgActorScene(numActors, Motion::All);
+    case System::OsgActorQuarter: return bench::makeOsgActorScene(numActors, Motion::Quarter);
+    case System::OsgActorIdle: return bench::makeOsgActorScene(numActors, Motion::Idle);
+    case System::OsgAnimation: return bench::makeOsgAnimationScene(numActors);
+    case System::PlainOsg: return bench::makePlainOsgScene(numActors);
+    }
+    return nullptr;
+}
+
+/** The world matrix of the last instance's deepest last-born node (a joint's box), to check that a system really
+  * moves its instances. */
+osg::Matrixd probe(osg::Group& scene)
+{
+    // Follow the path we walk down: shared geometry has many parents, so its own first parent path would be
+    // another instance's (or the prototype's).
+    osg::NodePath path{&scene};
+    while (path.back()->asGroup() && path.back()->asGroup()->getNumChildren() > 0)
+        path.push_back(path.back()->asGroup()->getChild(path.back()->asGroup()->getNumChildren() - 1));
+    return osg::computeLocalToWorld(path);
+}
+
+void runSystem(benchmark::State& state, System system, bool withCull)
+{
+    const unsigned numActors = static_cast<unsigned>(state.range(0));
+    osg::ref_ptr<osg::Group> scene = makeScene(system, numActors);
+    bench::FrameLoop loop(scene.get(), withCull);
+    // Warm up (osgAnimation links its channels on the first frame) and check that the system moves.
+    loop.frame();
+    const osg::Matrixd before = probe(*scene);
+    for (int i = 0; i < 5; ++i) loop.frame();
+    const bool moves = !(probe(*scene) == before);
+    if (moves != (system != System::OsgActorIdle))
+    {
+        state.SkipWithError(moves ? "the idle actor moved" : "the system does not animate its instances");
+        return;
+    }
+    for (auto _ : state) loop.frame();
+    const double joints = static_cast<double>(numActors) * bench::jointsPerActor();
+    state.counters["ns_per_joint"] =
+        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    if (withCull) state.counters["drawables"] = loop.lastDrawables();
+}
+
+const char* const kNames[] = {"osgActor_all", "osgActor_quarter", "osgActor_idle", "osgAnimation", "plainOSG"};
+
+void registerAll()
+{
+    // Interleaved: for each N and mode, every system in turn, so drift in machine load hits all of them alike.
+    for (bool withCull : {false, true})
+        for (int n : {1, 10, 100, 1000})
+            for (int s = 0; s < 5; ++s)
+            {
+                const System system = static_cast<System>(s);
+                const std::string name = std::string(withCull ? "update_cull/" : "update/") + kNames[s];
+                benchmark::RegisterBenchmark(name.c_str(), [system, withCull](benchmark::State& state) {
+                    runSystem(state, system, withCull);
+                })->Arg(n)->Unit(benchmark::kMicrosecond);
+            }
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    benchmark::Initialize(&argc, argv);
+    registerAll();
+    bench::registerMemoryBenchmarks();
+    bench::SummaryReporter reporter;
+    benchmark::RunSpecifiedBenchmarks(&reporter);
+    reporter.writeSummary();
+    benchmark::Shutdown();
+    return 0;
+}
