@@ -96,6 +96,17 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     writeSceneGraph();
 }
 
+bool ActorNode::setDefinition(ActorDefinitionPtr definition, SkeletonNodePolicy policy)
+{
+    if (policy == BUILD_SKELETON_NODES)
+    {
+        setDefinition(std::move(definition));
+        return true;
+    }
+    _pose = ActorPose(std::move(definition));
+    return rebindSkeletonNodes();
+}
+
 void ActorNode::buildSkeletonNodes()
 {
     const ActorDefinition* def = getDefinition().get();
@@ -368,18 +379,28 @@ osg::Matrixd ActorNode::getJointWorldMatrix(unsigned joint) const
 void ActorNode::update(const osg::NodeVisitor* nv)
 {
     const osg::FrameStamp* stamp = nv ? nv->getFrameStamp() : nullptr;
+    if (!claimFrame(stamp)) return;
+    computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
+    writeSceneGraph();
+}
+
+bool ActorNode::claimFrame(const osg::FrameStamp* stamp)
+{
     if (stamp)
     {
-        // An actor with several parents is visited once per parent; its work is done once per frame.
-        if (stamp->getFrameNumber() == _lastFrameNumber) return;
+        if (stamp->getFrameNumber() == _lastFrameNumber) return false;
         _lastFrameNumber = stamp->getFrameNumber();
     }
-    if (_blocked) return;
+    if (_blocked) return false;
     ++_numUpdatesRun;
-    if (stamp) runControllers(stamp->getSimulationTime());
+    return true;
+}
+
+void ActorNode::computeFrame(double time)
+{
+    runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
     _pose.updateLocalMatrices();
-    writeSceneGraph();
 }
 
 void ActorNode::writeSceneGraph()

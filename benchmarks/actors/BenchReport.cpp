@@ -56,28 +56,32 @@ void SummaryReporter::ReportRuns(const std::vector<Run>& runs)
     for (const Run& run : runs)
     {
         if (run.error_occurred) continue;
-        // Names look like "update/osgActor_all/1000".
+        // Names look like "update/osgActor_all/1000", perhaps followed by "/real_time" or "/iterations:1".
+        std::vector<std::string> parts;
         const std::string name = run.benchmark_name();
-        const std::size_t a = name.find('/'), b = name.rfind('/');
-        if (a == std::string::npos || b == a) continue;
-        Result result{name.substr(0, a), name.substr(a + 1, b - a - 1), std::atol(name.c_str() + b + 1), 0.0};
+        for (std::size_t start = 0, slash; start <= name.size(); start = slash + 1)
+        {
+            slash = name.find('/', start);
+            if (slash == std::string::npos) slash = name.size();
+            parts.push_back(name.substr(start, slash - start));
+        }
+        if (parts.size() < 3) continue;
+        Result result{parts[0], parts[1], std::atol(parts[2].c_str()), 0.0};
         // ns_per_joint is an inverted rate, so Google Benchmark reports it in seconds per joint.
         const auto perJoint = run.counters.find("ns_per_joint");
         if (perJoint != run.counters.end()) result.value = perJoint->second * 1e9;
-        for (const char* counter : {"bytes_per_actor", "speedup"})
-        {
-            const auto it = run.counters.find(counter);
-            if (it != run.counters.end()) result.value = it->second;
-        }
+        const auto bytes = run.counters.find("bytes_per_actor");
+        if (bytes != run.counters.end()) result.value = bytes->second;
         _results.push_back(result);
     }
 }
 
 void SummaryReporter::writeSummary() const
 {
+    // The reference of each row: osgAnimation at the same mode and N; for the parallel rows, one thread.
     std::map<std::pair<std::string, long>, double> osgAnimation;
     for (const Result& r : _results)
-        if (r.system == "osgAnimation") osgAnimation[{r.mode, r.n}] = r.value;
+        if (r.system == "osgAnimation" || r.system == "osgActor_1thread") osgAnimation[{r.mode, r.n}] = r.value;
 
     const std::string dir = outputDirectory();
     const std::string csvPath = dir + "/osgactor_bench.csv";
@@ -88,9 +92,12 @@ void SummaryReporter::writeSummary() const
     {
         const auto it = osgAnimation.find({r.mode, r.n});
         const double ratio = it != osgAnimation.end() && r.value > 0.0 ? it->second / r.value : 0.0;
-        const char* unit = r.mode == "memory" ? "bytes/actor" : r.mode == "parallel" ? "x" : "ns/joint";
+        const char* unit = r.mode == "memory" ? "bytes/actor" : "ns/joint";
         csv << r.mode << ',' << r.system << ',' << r.n << ',' << r.value << ',' << unit << ',' << ratio << '\n';
-        if (ratio > 0.0 && r.mode != "memory")
+        if (ratio > 0.0 && r.mode == "parallel")
+            std::printf("%-12s %-18s %6ld %9.1f %-11s %.2fx the speed of one thread\n", r.mode.c_str(),
+                        r.system.c_str(), r.n, r.value, unit, ratio);
+        else if (ratio > 0.0 && r.mode != "memory")
             std::printf("%-12s %-18s %6ld %9.1f %-11s %.1fx faster\n", r.mode.c_str(), r.system.c_str(), r.n,
                         r.value, unit, ratio);
         else if (ratio > 0.0)
@@ -102,30 +109,38 @@ void SummaryReporter::writeSummary() const
     csv.close();
     std::printf("\nresults: %s\n", csvPath.c_str());
 
-    // The plot: ns per joint against N for each system, update and update+cull side by side, log scales.
+    // The plot: ns per joint against N for each system, update and update+cull side by side, log scales. gnuplot
+    // reads one block per curve (blocks separated by two blank lines), so the points of a curve are joined.
     const std::string plotPath = dir + "/osgactor_bench.png";
+    const std::string dataPath = dir + "/osgactor_bench_plot.dat";
     const std::string script = dir + "/osgactor_bench.gp";
+    std::ofstream data(dataPath);
     std::ofstream gp(script);
-    gp << "set terminal pngcairo size 1100,450 font 'sans,10'\n"
+    gp << "set terminal pngcairo size 1100,520 font 'sans,10' noenhanced\n"
           "set output '" << plotPath << "'\n"
-          "set datafile separator ','\n"
-          "set logscale xy\nset grid\nset key top left\n"
+          "set logscale xy\nset grid\nset key below\nset xrange [0.7:1500]\nset yrange [0.5:5000]\n"
           "set xlabel 'actors (31 joints each)'\nset ylabel 'ns per joint'\n"
           "set multiplot layout 1,2\n";
+    int block = 0;
     for (const char* mode : {"update", "update_cull"})
     {
         gp << "set title '" << mode << "'\nplot ";
         bool first = true;
         for (const char* system : {"osgActor_all", "osgActor_quarter", "osgActor_idle", "osgAnimation", "plainOSG"})
         {
-            gp << (first ? "" : ", ") << "'" << csvPath << "' using ($1 eq '" << mode << "' && $2 eq '" << system
-               << "' ? $3 : 1/0):4 with linespoints title '" << system << "'";
+            data << "# " << mode << " " << system << "\n";
+            for (const Result& r : _results)
+                if (r.mode == mode && r.system == system) data << r.n << ' ' << r.value << '\n';
+            data << "\n\n";
+            gp << (first ? "" : ", ") << "'" << dataPath << "' index " << block++
+               << " using 1:2 with linespoints title '" << system << "'";
             first = false;
         }
         gp << "\n";
     }
     gp << "unset multiplot\n";
     gp.close();
+    data.close();
     const std::string command = "gnuplot '" + script + "' 2>/dev/null";
     if (std::system("command -v gnuplot >/dev/null 2>&1") == 0 && std::system(command.c_str()) == 0)
         std::printf("plot: %s\n", plotPath.c_str());

@@ -1,6 +1,7 @@
 #include "BenchHumanoid"
 #include "PeerScenes"
 
+#include <osgActor/ActorGroup>
 #include <osgActor/ActorNode>
 
 #include <cmath>
@@ -45,7 +46,7 @@ public:
 
 } // namespace
 
-osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, Motion motion)
+osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, Motion motion, unsigned threads)
 {
     osg::ref_ptr<osgActor::ActorNode> prototype = new osgActor::ActorNode(humanoidDefinition());
     for (unsigned j = 0; j < prototype->getNumSkeletonNodes(); ++j)
@@ -59,7 +60,15 @@ osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, Motion motion)
                 *prototype->getDefinition(), {"lclavicle", "lowerneck"}, true));
         prototype->addController(controller);
     }
-    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    osg::ref_ptr<osg::Group> scene;
+    if (threads > 0)
+    {
+        osg::ref_ptr<osgActor::ActorGroup> group = new osgActor::ActorGroup;
+        group->setNumThreads(threads);
+        scene = group;
+    }
+    else
+        scene = new osg::Group;
     for (unsigned a = 0; a < numActors; ++a)
         scene->addChild(osg::clone(prototype.get(), osg::CopyOp::SHALLOW_COPY));
     return scene;

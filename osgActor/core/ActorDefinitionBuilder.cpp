@@ -185,8 +185,9 @@ BuildResult ActorDefinitionBuilder::build() const
 {
     BuildResult result;
     const std::string actor = _name.empty() ? std::string("actor") : "actor " + quoted(_name);
-    auto fail = [&](const std::string& message) {
+    auto fail = [&](const std::string& message, int joint = -1) {
         result.error = actor + ": " + message;
+        result.errorJoint = joint;
         return result;
     };
 
@@ -196,9 +197,9 @@ BuildResult ActorDefinitionBuilder::build() const
     for (unsigned j = 0; j < _joints.size(); ++j)
     {
         const std::string error = checkJoint(_joints[j]);
-        if (!error.empty()) return fail(error);
+        if (!error.empty()) return fail(error, static_cast<int>(j));
         if (!byName.emplace(_joints[j].name, j).second)
-            return fail("joint name " + quoted(_joints[j].name) + " is used twice");
+            return fail("joint name " + quoted(_joints[j].name) + " is used twice", static_cast<int>(j));
     }
 
     std::vector<int> parents(_joints.size(), kNoParent);
@@ -208,7 +209,8 @@ BuildResult ActorDefinitionBuilder::build() const
         if (parent.empty()) continue;
         const auto it = byName.find(parent);
         if (it == byName.end())
-            return fail("joint " + quoted(_joints[j].name) + " names an unknown parent " + quoted(parent));
+            return fail("joint " + quoted(_joints[j].name) + " names an unknown parent " + quoted(parent),
+                        static_cast<int>(j));
         parents[j] = static_cast<int>(it->second);
     }
 
@@ -219,7 +221,8 @@ BuildResult ActorDefinitionBuilder::build() const
         for (unsigned j : order) placed[j] = true;
         unsigned stray = 0;
         while (placed[stray]) ++stray;
-        return fail("the joints form a parent cycle: " + describeCycle(_joints, parents, stray));
+        return fail("the joints form a parent cycle: " + describeCycle(_joints, parents, stray),
+                    static_cast<int>(stray));
     }
 
     std::shared_ptr<ActorDefinition> def(new ActorDefinition());

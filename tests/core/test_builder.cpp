@@ -77,6 +77,33 @@ TEST(Builder, RefusesAJointThatIsItsOwnParent)
     EXPECT_TRUE(refusedWith(b, "'loop' -> 'loop'"));
 }
 
+TEST(Builder, SaysWhichJointAnErrorIsAbout)
+{
+    EXPECT_EQ(ActorDefinitionBuilder("nobody").build().errorJoint, -1) << "no joint to blame";
+    ActorDefinitionBuilder duplicate;
+    duplicate.addJoint("hip");
+    duplicate.addJoint("knee", "hip");
+    duplicate.addJoint("knee", "hip");
+    EXPECT_EQ(duplicate.build().errorJoint, 2) << "the second of the two";
+    ActorDefinitionBuilder unknown;
+    unknown.addJoint("knee", "thigh");
+    unknown.addJoint("hip");
+    EXPECT_EQ(unknown.build().errorJoint, 0);
+    ActorDefinitionBuilder limits;
+    limits.addJoint("hip");
+    limits.addJoint("knee", "hip").dofs(dofBit(Dof::RX)).limits(Dof::RX, 1.0, -1.0);
+    EXPECT_EQ(limits.build().errorJoint, 1);
+    ActorDefinitionBuilder cycle;
+    cycle.addJoint("root");
+    cycle.addJoint("a", "b");
+    cycle.addJoint("b", "a");
+    const BuildResult result = cycle.build();
+    EXPECT_TRUE(result.errorJoint == 1 || result.errorJoint == 2) << "a joint on the cycle: " << result.errorJoint;
+    ActorDefinitionBuilder good;
+    good.addJoint("root");
+    EXPECT_EQ(good.build().errorJoint, -1);
+}
+
 TEST(Builder, RefusesBadLimits)
 {
     ActorDefinitionBuilder reversed;

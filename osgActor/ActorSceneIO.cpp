@@ -1,0 +1,160 @@
+#include <osgActor/ActorGeometry>
+#include <osgActor/ActorSceneIO>
+#include <osgActor/GlmOsg>
+#include <osgActor/io/ActorSyntax>
+
+#include <osg/Notify>
+#include <osg/ValueObject>
+#include <osgDB/FileNameUtils>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
+
+#include <sstream>
+
+namespace osgActor {
+
+const char* const kSectionsUserValue = "osgActorSections";
+
+namespace {
+
+/** Options whose data file path starts with the folder of the file being read, so that models are found next
+  * to it first (as OSG's own plugins do). */
+osg::ref_ptr<osgDB::Options> optionsNextTo(const std::string& fileName, const osgDB::Options* options)
+{
+    osg::ref_ptr<osgDB::Options> local =
+        options ? static_cast<osgDB::Options*>(options->clone(osg::CopyOp::SHALLOW_COPY)) : new osgDB::Options;
+    const std::string folder = osgDB::getFilePath(fileName);
+    if (!folder.empty()) local->getDatabasePathList().push_front(folder);
+    return local;
+}
+
+std::string where(const std::string& fileName, int line) { return fileName + ":" + std::to_string(line) + ": "; }
+
+/** Loads one model of the document; null and an error when it cannot. */
+osg::ref_ptr<osg::Node> loadModel(const GeometryDescription& model, const std::string& fileName,
+                                  const osgDB::Options* options, std::string& error)
+{
+    const std::string path = osgDB::findDataFile(model.file, options);
+    if (path.empty())
+    {
+        error = where(fileName, model.line) + "cannot find the model file '" + model.file + "'";
+        return nullptr;
+    }
+    osg::ref_ptr<osg::Node> node = osgDB::readRefNodeFile(path, options);
+    if (!node) error = where(fileName, model.line) + "cannot read the model file '" + path + "'";
+    return node;
+}
+
+std::string sectionsText(const std::vector<SyntaxStatement>& sections)
+{
+    std::ostringstream text;
+    writeSyntax(text, sections);
+    return text.str();
+}
+
+} // namespace
+
+ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefinitionPtr& definition,
+                                const std::string& fileName, const osgDB::Options* options)
+{
+    ActorNodeResult result;
+    if (!definition || definition->getNumJoints() != document.joints.size())
+    {
+        result.error = where(fileName, document.line) + "the definition does not belong to the document";
+        return result;
+    }
+    osg::ref_ptr<ActorNode> actor = new ActorNode(definition);
+    actor->setName(document.name);
+    actor->setPreTranslation(toOsg(document.preTranslation));
+    actor->setPreRotation(toOsg(document.preRotation));
+    actor->setPostTranslation(toOsg(document.postTranslation));
+    actor->setPostRotation(toOsg(document.postRotation));
+
+    const osg::ref_ptr<osgDB::Options> local = optionsNextTo(fileName, options);
+    for (const JointDocument& joint : document.joints)
+    {
+        const int index = definition->findJoint(joint.spec.name);
+        SkeletonNode* node = index < 0 ? nullptr : actor->getSkeletonNode(static_cast<unsigned>(index));
+        if (!node)
+        {
+            result.error = where(fileName, joint.line) + "joint '" + joint.spec.name + "' is not in the definition";
+            return result;
+        }
+        for (unsigned d = 0; d < kNumDofTypes; ++d)
+        {
+            const int dof = definition->getDofIndex(static_cast<unsigned>(index), static_cast<Dof>(d));
+            if (joint.values[d] && dof >= 0) actor->setDof(static_cast<unsigned>(dof), *joint.values[d]);
+        }
+        node->setHidden(joint.hidden);
+        for (const GeometryDescription& geometry : joint.geometry)
+        {
+            if (geometry.kind != GeometryKind::Model)
+            {
+                node->addChild(createShapeNode(geometry).get());
+                continue;
+            }
+            const osg::ref_ptr<osg::Node> model = loadModel(geometry, fileName, local.get(), result.error);
+            if (!model) return result;
+            node->addChild(createModelNode(geometry, model.get()).get());
+        }
+    }
+    if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
+    // Pose the scene graph now (a blocked actor would otherwise show its default pose until unblocked).
+    actor->update(nullptr);
+    actor->setBlocked(document.blocked);
+    result.actor = actor;
+    return result;
+}
+
+ActorDocument extractActorDocument(const ActorNode& actor)
+{
+    const ActorDefinition* definition = actor.getDefinition().get();
+    if (!definition) return ActorDocument();
+    ActorDocument document = makeDocument(*definition);
+    if (!actor.getName().empty()) document.name = actor.getName();
+    document.preTranslation = toGlm(actor.getPreTranslation());
+    document.preRotation = toGlm(actor.getPreRotation());
+    document.postTranslation = toGlm(actor.getPostTranslation());
+    document.postRotation = toGlm(actor.getPostRotation());
+    document.blocked = actor.getBlocked();
+
+    for (unsigned dof = 0; dof < definition->getNumDofs(); ++dof)
+    {
+        const double value = actor.getDof(dof);
+        if (value != definition->getDofDefault(dof))
+            document.joints[definition->getDofJoint(dof)].values[static_cast<unsigned>(definition->getDofType(dof))] =
+                value;
+    }
+    for (unsigned j = 0; j < actor.getNumSkeletonNodes() && j < document.joints.size(); ++j)
+    {
+        const SkeletonNode* node = actor.getSkeletonNode(j);
+        JointDocument& joint = document.joints[j];
+        joint.hidden = node->getHidden();
+        for (unsigned c = 0; c < node->getNumChildren(); ++c)
+        {
+            const osg::Node* child = node->getChild(c);
+            if (dynamic_cast<const SkeletonNode*>(child)) continue;
+            GeometryDescription geometry;
+            if (describeGeometryNode(*child, geometry))
+                joint.geometry.push_back(geometry);
+            else
+                OSG_WARN << "osgActor: writing actor '" << document.name << "': joint '" << joint.spec.name
+                         << "' holds a " << child->className() << " named '" << child->getName()
+                         << "' that a .actor file cannot describe; it is left out (write .osgt to keep it)"
+                         << std::endl;
+        }
+    }
+
+    std::string sections;
+    if (actor.getUserValue(kSectionsUserValue, sections) && !sections.empty())
+    {
+        std::istringstream in(sections);
+        std::string error;
+        if (!parseSyntax(in, kSectionsUserValue, document.sections, error))
+            OSG_WARN << "osgActor: writing actor '" << document.name << "': its kept sections are broken (" << error
+                     << "); they are left out" << std::endl;
+    }
+    return document;
+}
+
+} // namespace osgActor

@@ -1,0 +1,57 @@
+#include <osgActor/io/ActorDocument>
+
+namespace osgActor {
+
+namespace {
+
+const char* const kKindNames[] = {"box", "sphere", "capsule", "cylinder", "cone", "model"};
+
+} // namespace
+
+const char* geometryKindName(GeometryKind kind) { return kKindNames[static_cast<unsigned>(kind)]; }
+
+bool parseShapeKind(const std::string& text, GeometryKind& kind)
+{
+    for (unsigned i = 0; i < static_cast<unsigned>(GeometryKind::Model); ++i)
+    {
+        if (text == kKindNames[i])
+        {
+            kind = static_cast<GeometryKind>(i);
+            return true;
+        }
+    }
+    return false;
+}
+
+bool isReservedSection(const std::string& keyword) { return keyword == "clip" || keyword == "ikchain"; }
+
+BuildResult buildDefinition(const ActorDocument& document, const std::string& fileName)
+{
+    ActorDefinitionBuilder builder(document.name);
+    for (const JointDocument& joint : document.joints) builder.addJoint(joint.spec);
+    BuildResult result = builder.build();
+    if (!result)
+    {
+        // The builder's joint index is the document's, as joints were added in document order.
+        const int line = result.errorJoint >= 0 ? document.joints[static_cast<unsigned>(result.errorJoint)].line
+                                                : document.line;
+        result.error = fileName + ":" + std::to_string(line) + ": " + result.error;
+    }
+    return result;
+}
+
+ActorDocument makeDocument(const ActorDefinition& definition)
+{
+    ActorDocument document;
+    document.name = definition.getName();
+    const ActorDefinitionBuilder builder = toBuilder(definition);
+    for (unsigned j = 0; j < builder.getNumJoints(); ++j)
+    {
+        JointDocument joint;
+        joint.spec = builder.getJoint(j);
+        document.joints.push_back(joint);
+    }
+    return document;
+}
+
+} // namespace osgActor

@@ -1,0 +1,172 @@
+#include <osgActor/io/ActorNumbers>
+#include <osgActor/io/ActorWriter>
+
+#include <glm/ext/scalar_constants.hpp>
+
+#include <cmath>
+#include <map>
+
+namespace osgActor {
+
+namespace {
+
+constexpr double kDegreesPerRadian = 180.0 / glm::pi<double>();
+
+SyntaxArgument word(const std::string& text) { return SyntaxArgument{text, false, 0}; }
+SyntaxArgument nameArgument(const std::string& name) { return SyntaxArgument{name, quoteIfNeeded(name) != name, 0}; }
+SyntaxArgument numberArgument(double value) { return word(formatNumber(value)); }
+
+SyntaxStatement statement(const std::string& keyword, std::vector<SyntaxArgument> arguments = {})
+{
+    SyntaxStatement s;
+    s.keyword = keyword;
+    s.arguments = std::move(arguments);
+    return s;
+}
+
+SyntaxStatement vectorStatement(const std::string& keyword, const glm::dvec3& v)
+{
+    return statement(keyword, {numberArgument(v.x), numberArgument(v.y), numberArgument(v.z)});
+}
+
+SyntaxStatement rotationStatement(const std::string& keyword, const glm::dquat& rotation)
+{
+    const AngleAxis a = toAngleAxis(rotation);
+    return statement(keyword, {numberArgument(a.degrees), numberArgument(a.axis[0]), numberArgument(a.axis[1]),
+                               numberArgument(a.axis[2])});
+}
+
+bool isZero(const glm::dvec3& v) { return formatNumber(v.x) == "0" && formatNumber(v.y) == "0" && formatNumber(v.z) == "0"; }
+
+/** Appends "keyword x y z" and "keyword angle axis" lines where they differ from the identity. */
+void addPlacement(std::vector<SyntaxStatement>& out, const std::string& translationKeyword, const glm::dvec3& translation,
+                  const std::string& rotationKeyword, const glm::dquat& rotation)
+{
+    if (!isZero(translation)) out.push_back(vectorStatement(translationKeyword, translation));
+    if (!isIdentityRotation(rotation)) out.push_back(rotationStatement(rotationKeyword, rotation));
+}
+
+SyntaxStatement dofStatement(Dof dof, const DofSpec& spec, const std::optional<double>& value)
+{
+    const double unit = isRotation(dof) ? kDegreesPerRadian : 1.0;
+    SyntaxStatement s = statement("dof", {word(dofName(dof))});
+    auto add = [&](const char* key, double v) {
+        s.arguments.push_back(word(key));
+        s.arguments.push_back(numberArgument(v));
+    };
+    if (std::isfinite(spec.min)) add("min", spec.min * unit);
+    if (std::isfinite(spec.max)) add("max", spec.max * unit);
+    if (formatNumber(spec.defaultValue) != "0") add("default", spec.defaultValue * unit);
+    if (spec.weight != 1.0) add("weight", spec.weight);
+    // Compared as written: a value one rounding step from its default (after a trip through another format)
+    // is the default as far as the file can tell.
+    if (value && formatNumber(*value * unit) != formatNumber(spec.defaultValue * unit)) add("value", *value * unit);
+    return s;
+}
+
+SyntaxStatement geometryStatement(const GeometryDescription& g)
+{
+    SyntaxStatement s;
+    if (g.kind == GeometryKind::Model)
+    {
+        s = statement("model", {SyntaxArgument{g.file, true, 0}});
+        addPlacement(s.children, "position", g.position, "rotation", g.rotation);
+        if (formatNumber(g.scale) != "1") s.children.push_back(statement("scale", {numberArgument(g.scale)}));
+    }
+    else
+    {
+        s = statement("shape", {word(geometryKindName(g.kind))});
+        if (g.kind == GeometryKind::Box) s.children.push_back(vectorStatement("size", g.size));
+        else s.children.push_back(statement("radius", {numberArgument(g.radius)}));
+        if (g.kind != GeometryKind::Box && g.kind != GeometryKind::Sphere)
+            s.children.push_back(statement("height", {numberArgument(g.height)}));
+        addPlacement(s.children, "position", g.position, "rotation", g.rotation);
+        SyntaxStatement color = statement("color", {numberArgument(g.color.r), numberArgument(g.color.g),
+                                                    numberArgument(g.color.b)});
+        if (formatNumber(g.color.a) != "1") color.arguments.push_back(numberArgument(g.color.a));
+        s.children.push_back(color);
+    }
+    s.hasBlock = !s.children.empty();
+    return s;
+}
+
+/** Writes joints nested in their parents. */
+class JointTreeWriter
+{
+public:
+    explicit JointTreeWriter(const ActorDocument& document) : _document(document), _written(document.joints.size(), false)
+    {
+        for (std::size_t j = 0; j < document.joints.size(); ++j) _byName.emplace(document.joints[j].spec.name, j);
+        for (std::size_t j = 0; j < document.joints.size(); ++j)
+        {
+            const auto parent = _byName.find(document.joints[j].spec.parent);
+            if (parent != _byName.end() && parent->second != j) _children[parent->second].push_back(j);
+        }
+    }
+
+    void write(std::vector<SyntaxStatement>& out)
+    {
+        // Roots first, then joints whose parent is unknown, then whatever a cycle left unwritten.
+        for (std::size_t j = 0; j < _document.joints.size(); ++j)
+            if (_document.joints[j].spec.parent.empty()) writeJoint(j, false, out);
+        for (std::size_t j = 0; j < _document.joints.size(); ++j)
+            if (!_written[j] && !_byName.count(_document.joints[j].spec.parent)) writeJoint(j, true, out);
+        for (std::size_t j = 0; j < _document.joints.size(); ++j)
+            if (!_written[j]) writeJoint(j, true, out);
+    }
+
+private:
+    void writeJoint(std::size_t j, bool withParent, std::vector<SyntaxStatement>& out)
+    {
+        _written[j] = true;
+        const JointDocument& joint = _document.joints[j];
+        SyntaxStatement s = statement("joint", {nameArgument(joint.spec.name)});
+        if (withParent) s.children.push_back(statement("parent", {nameArgument(joint.spec.parent)}));
+        addPlacement(s.children, "offset", joint.spec.translation, "rotation", joint.spec.rotation);
+        if (joint.spec.eulerOrder != EulerOrder::XYZ)
+            s.children.push_back(statement("euler", {word(eulerOrderName(joint.spec.eulerOrder))}));
+        if (joint.spec.translationMode == TranslationMode::BeforeRotation)
+            s.children.push_back(statement("translation_mode", {word("before_rotation")}));
+        for (unsigned d = 0; d < kNumDofTypes; ++d)
+            if (joint.spec.dofs[d].active)
+                s.children.push_back(dofStatement(static_cast<Dof>(d), joint.spec.dofs[d], joint.values[d]));
+        if (joint.hidden) s.children.push_back(statement("hidden"));
+        for (const GeometryDescription& g : joint.geometry) s.children.push_back(geometryStatement(g));
+        const auto children = _children.find(j);
+        if (children != _children.end())
+            for (std::size_t child : children->second)
+                if (!_written[child]) writeJoint(child, false, s.children);
+        s.hasBlock = !s.children.empty();
+        out.push_back(std::move(s));
+    }
+
+    const ActorDocument& _document;
+    std::vector<bool> _written;
+    std::map<std::string, std::size_t> _byName;
+    std::map<std::size_t, std::vector<std::size_t>> _children;
+};
+
+} // namespace
+
+std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
+{
+    std::vector<SyntaxStatement> file;
+    file.push_back(statement("osgactor", {word(std::to_string(ActorDocument::kFormatVersion))}));
+    SyntaxStatement actor = statement("actor", {nameArgument(document.name)});
+    actor.hasBlock = true;
+    addPlacement(actor.children, "pre_translation", document.preTranslation, "pre_rotation", document.preRotation);
+    addPlacement(actor.children, "post_translation", document.postTranslation, "post_rotation", document.postRotation);
+    if (document.blocked) actor.children.push_back(statement("blocked"));
+    JointTreeWriter(document).write(actor.children);
+    for (const SyntaxStatement& section : document.sections) actor.children.push_back(section);
+    file.push_back(std::move(actor));
+    return file;
+}
+
+void writeActor(std::ostream& out, const ActorDocument& document)
+{
+    out << "# An osgActor actor (docs/actor-format.md): angles in degrees, lengths in model units.\n";
+    writeSyntax(out, toSyntax(document));
+}
+
+} // namespace osgActor

@@ -1,0 +1,216 @@
+#include <osgActor/io/ActorReader>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+using namespace osgActor;
+
+namespace {
+
+ActorReadResult read(const std::string& text)
+{
+    std::istringstream in(text);
+    return readActor(in, "t.actor");
+}
+
+/** Reads text that must fail, and checks nothing half-built came back. */
+std::string readError(const std::string& text)
+{
+    const ActorReadResult result = read(text);
+    EXPECT_FALSE(result) << text;
+    EXPECT_EQ(result.definition, nullptr);
+    EXPECT_TRUE(result.document.joints.empty());
+    return result.error;
+}
+
+const double kDegree = 3.14159265358979323846 / 180.0;
+
+} // namespace
+
+// --- refusals first: each names the file and the line ---
+
+TEST(ActorReader, RefusesAFileWithoutHeaderOrOfANewerVersion)
+{
+    EXPECT_EQ(readError(""), "t.actor:1: the file must start with the header 'osgactor 1'");
+    EXPECT_EQ(readError("\nactor a { joint b }"), "t.actor:2: the file must start with the header 'osgactor 1'");
+    EXPECT_EQ(readError("osgactor 2\nactor a { joint b }"),
+              "t.actor:1: format version 2 is newer than this reader's (1)");
+    EXPECT_EQ(readError("osgactor 1.5\n"), "t.actor:1: the format version must be a whole number from 1");
+    EXPECT_EQ(readError("osgactor 1\n"), "t.actor:1: the file has no 'actor' block");
+}
+
+TEST(ActorReader, RefusesATruncatedFile)
+{
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n  joint b {\n    dof rx\n"),
+              "t.actor:5: the file ends inside the block opened at line 3");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n  joint b {\n    offset 1 2"),
+              "t.actor:4: the file ends inside the block opened at line 3");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n  joint b {\n    offset 1 2\n}}"),
+              "t.actor:4: 'offset' takes 3 values, not 2");
+}
+
+TEST(ActorReader, RefusesUnknownKeywordsWhereverTheyAre)
+{
+    EXPECT_EQ(readError("osgactor 1\nactress a { }"), "t.actor:2: unknown keyword 'actress' at the top of the file");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n  jiont b\n}"), "t.actor:3: unknown keyword 'jiont' in an actor");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  ofset 1 2 3\n }\n}"),
+              "t.actor:4: unknown keyword 'ofset' in a joint");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  dof rx mni 3\n }\n}"),
+              "t.actor:4: unknown DOF attribute 'mni' (min, max, default, weight, value)");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  shape box {\n   size 1 1 1\n   colour 1 0 0\n }\n}\n}"),
+              "t.actor:6: unknown keyword 'colour' in a shape");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  shape blob { radius 1 }\n }\n}"),
+              "t.actor:4: 'blob' is not a shape (box, sphere, capsule, cylinder, cone)");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  euler XYX\n }\n}"),
+              "t.actor:4: 'XYX' is not an Euler order (XYZ, XZY, YXZ, YZX, ZXY, ZYX)");
+}
+
+TEST(ActorReader, RefusesDuplicateAndUnknownJointsAndCycles)
+{
+    const std::string duplicate = "osgactor 1\nactor a {\n joint b {\n  joint c\n }\n joint c\n}";
+    EXPECT_EQ(readError(duplicate), "t.actor:6: actor 'a': joint name 'c' is used twice");
+    const std::string unknown = "osgactor 1\nactor a {\n joint b\n joint c {\n  parent d\n }\n}";
+    EXPECT_EQ(readError(unknown), "t.actor:4: actor 'a': joint 'c' names an unknown parent 'd'");
+    const std::string cycle = "osgactor 1\nactor a {\n joint r\n joint b {\n  parent c\n }\n joint c {\n  parent b\n }\n}";
+    const std::string error = readError(cycle);
+    EXPECT_EQ(error.rfind("t.actor:4: actor 'a': the joints form a parent cycle: ", 0), 0u) << error;
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  joint c {\n   parent b\n  }\n }\n}"),
+              "t.actor:5: a nested joint's parent is the joint it is nested in; 'parent' is for joints at the "
+              "actor's level");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n}"), "t.actor:2: actor 'a': has no joints");
+}
+
+TEST(ActorReader, RefusesBadNumbersAndNaN)
+{
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  offset 1 2x 3\n }\n}"),
+              "t.actor:4: '2x' is not a number");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  offset 1 nan 3\n }\n}"),
+              "t.actor:4: 'nan' is not a finite number");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  dof rx\n  dof ry max inf\n }\n}"),
+              "t.actor:5: 'inf' is not a finite number");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  offset 1 \"2\" 3\n }\n}"),
+              "t.actor:4: '2' is not a number");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  rotation 90 0 0 0\n }\n}"),
+              "t.actor:4: the rotation axis is zero");
+}
+
+TEST(ActorReader, RefusesWhatTheBuilderRefusesAtTheJointsLine)
+{
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b\n joint c {\n  dof rx min 10 max -10\n }\n}"),
+              "t.actor:4: actor 'a': DOF 'c.rx' has its minimum 0.174533 above its maximum -0.174533")
+        << "the builder speaks in radians";
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  dof rx\n  dof rx\n }\n}"),
+              "t.actor:5: DOF 'rx' is given twice");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  offset 1 1 1\n  offset 1 1 1\n }\n}"),
+              "t.actor:5: 'offset' is given twice");
+}
+
+TEST(ActorReader, RefusesIncompleteShapes)
+{
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  shape box\n }\n}"),
+              "t.actor:4: a box needs a 'size' of three lengths greater than zero");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  shape cone { radius 1 }\n }\n}"),
+              "t.actor:4: a cone needs a 'height'");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  shape sphere { radius 1; height 2 }\n }\n}"),
+              "t.actor:4: 'height' does not apply to a sphere");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  shape sphere { radius -1 }\n }\n}"),
+              "t.actor:4: 'radius' must be greater than zero");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  shape sphere { radius 1; color 2 0 0 }\n }\n}"),
+              "t.actor:4: colour components lie between 0 and 1");
+}
+
+// --- what a good file gives ---
+
+TEST(ActorReader, ReadsJointsNestedWithDegreesTurnedIntoRadians)
+{
+    const ActorReadResult result = read(R"(osgactor 1
+# an arm
+actor "test arm" {
+    pre_translation 1 2 3
+    post_rotation 90 0 0 1
+    joint base {
+        offset 0 0 1
+        dof rz min -90 max 90 default 10 weight 2
+        joint "upper arm" {
+            rotation 180 1 0 0
+            euler ZYX
+            translation_mode before_rotation
+            dof rx value 30
+            dof tx min 0 max 0.5 default 0.25
+            hidden
+            shape capsule { radius 0.1; height 0.5; position 0 0 0.25; color 1 0 0 0.5 }
+            model "sword.osgt" { scale 2 }
+        }
+    }
+}
+)");
+    ASSERT_TRUE(result) << result.error;
+    const ActorDefinition& def = *result.definition;
+    EXPECT_EQ(def.getName(), "test arm");
+    ASSERT_EQ(def.getNumJoints(), 2u);
+    EXPECT_EQ(def.getJointName(1), "upper arm");
+    EXPECT_EQ(def.getParent(1), 0);
+    EXPECT_EQ(def.getOffsetTranslation(0), glm::dvec3(0, 0, 1));
+    const int rz = def.findDof("base.rz");
+    ASSERT_GE(rz, 0);
+    EXPECT_DOUBLE_EQ(def.getDofMin(rz), -90 * kDegree);
+    EXPECT_DOUBLE_EQ(def.getDofMax(rz), 90 * kDegree);
+    EXPECT_DOUBLE_EQ(def.getDofDefault(rz), 10 * kDegree);
+    EXPECT_EQ(def.getDofWeight(rz), 2.0);
+    const int tx = def.findDof("upper arm.tx");
+    ASSERT_GE(tx, 0);
+    EXPECT_EQ(def.getDofMin(tx), 0.0) << "translations stay in model units";
+    EXPECT_EQ(def.getDofMax(tx), 0.5);
+    EXPECT_EQ(def.getDofDefault(tx), 0.25);
+    EXPECT_TRUE(std::isinf(def.getDofMax(def.findDof("upper arm.rx")))) << "no limit written, none set";
+    EXPECT_EQ(def.getEulerOrder(1), EulerOrder::ZYX);
+    EXPECT_EQ(def.getTranslationMode(1), TranslationMode::BeforeRotation);
+    // 180 degrees about X: the quaternion (0, 1, 0, 0) up to sign.
+    const glm::dquat& r = def.getOffsetRotation(1);
+    EXPECT_NEAR(std::abs(r.x), 1.0, 1e-15);
+    EXPECT_NEAR(r.w, 0.0, 1e-15);
+
+    const ActorDocument& doc = result.document;
+    EXPECT_EQ(doc.preTranslation, glm::dvec3(1, 2, 3));
+    EXPECT_NEAR(doc.postRotation.z, std::sqrt(0.5), 1e-15);
+    ASSERT_EQ(doc.joints.size(), 2u);
+    const JointDocument& upper = doc.joints[1];
+    EXPECT_TRUE(upper.hidden);
+    ASSERT_TRUE(upper.values[0].has_value());
+    EXPECT_DOUBLE_EQ(*upper.values[0], 30 * kDegree);
+    EXPECT_FALSE(upper.values[3].has_value());
+    ASSERT_EQ(upper.geometry.size(), 2u);
+    EXPECT_EQ(upper.geometry[0].kind, GeometryKind::Capsule);
+    EXPECT_EQ(upper.geometry[0].radius, 0.1);
+    EXPECT_EQ(upper.geometry[0].height, 0.5);
+    EXPECT_EQ(upper.geometry[0].position, glm::dvec3(0, 0, 0.25));
+    EXPECT_EQ(upper.geometry[0].color, glm::dvec4(1, 0, 0, 0.5));
+    EXPECT_EQ(upper.geometry[0].line, 16);
+    EXPECT_EQ(upper.geometry[1].kind, GeometryKind::Model);
+    EXPECT_EQ(upper.geometry[1].file, "sword.osgt");
+    EXPECT_EQ(upper.geometry[1].scale, 2.0);
+}
+
+TEST(ActorReader, KeepsClipAndIkChainSectionsVerbatim)
+{
+    const ActorReadResult result = read("osgactor 1\nactor a {\n joint b\n clip walk {\n  key 0 b.rz 10\n }\n"
+                                        " ikchain arm { root b }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    ASSERT_EQ(result.document.sections.size(), 2u);
+    EXPECT_EQ(result.document.sections[0].keyword, "clip");
+    EXPECT_EQ(result.document.sections[0].arguments[0].text, "walk");
+    ASSERT_EQ(result.document.sections[0].children.size(), 1u);
+    EXPECT_EQ(result.document.sections[0].children[0].arguments.size(), 3u);
+    EXPECT_EQ(result.document.sections[1].keyword, "ikchain");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b\n clip walk\n}"), "t.actor:4: 'clip' needs a block in braces");
+}
+
+TEST(ActorReader, AcceptsFlatJointsWithParentInAnyOrder)
+{
+    const ActorReadResult result = read("osgactor 1\nactor a {\n joint c { parent b; offset 1 0 0 }\n joint b\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    EXPECT_EQ(result.definition->getJointName(0), "b") << "the definition is parent-first";
+    EXPECT_EQ(result.definition->getParent(1), 0);
+}

@@ -1,0 +1,210 @@
+#include "PluginTestUtil"
+
+#include "../nodes/NodeTestUtil"
+
+#include <osgActor/ActorGeometry>
+#include <osgActor/ActorUpdateCallback>
+
+#include <osg/ComputeBoundsVisitor>
+#include <osg/Geode>
+#include <osg/ShapeDrawable>
+#include <osgDB/FileUtils>
+#include <osgDB/WriteFile>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+const double kDegree = osg::PI / 180.0;
+
+} // namespace
+
+TEST(ActorPlugin, TheRegistryFindsOsgdbActorForTheExtension)
+{
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("actor");
+    ASSERT_NE(rw, nullptr) << "OSG_LIBRARY_PATH must point at build/lib";
+    EXPECT_TRUE(rw->acceptsExtension("actor"));
+    EXPECT_EQ(osgDB::Registry::instance()->readNode("no/such/file.actor", nullptr).status(),
+              osgDB::ReaderWriter::ReadResult::FILE_NOT_FOUND);
+}
+
+TEST(ActorPlugin, ReadsTheHumanoidStandingOnTheFloor)
+{
+    osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("humanoid.actor"));
+    ASSERT_TRUE(actor.valid());
+    EXPECT_EQ(actor->getName(), "humanoid");
+    ASSERT_EQ(actor->getNumSkeletonNodes(), 18u);
+    EXPECT_NE(dynamic_cast<ActorUpdateCallback*>(actor->getUpdateCallback()), nullptr);
+    // By hand from the file: pelvis 0.95, hip 0.1 out and 0.05 down, thigh 0.42, shin 0.41.
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(actor->getJointIndex("l_ankle")), osg::Vec3d(0.1, 0, 0.07),
+                         1e-12));
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(actor->getJointIndex("r_wrist")),
+                         osg::Vec3d(-0.23, 0, 0.95 + 0.05 + 0.42 - 0.3 - 0.27), 1e-12));
+    // The soles touch z = 0 and the head's top is at 1.55 + 0.1 + 0.11 above the pelvis' 0.95 + 0.05.
+    osg::ComputeBoundsVisitor bounds;
+    actor->accept(bounds);
+    EXPECT_NEAR(bounds.getBoundingBox().zMin(), 0.0, 1e-6);
+    EXPECT_NEAR(bounds.getBoundingBox().zMax(), 0.95 + 0.05 + 0.55 + 0.1 + 0.11, 1e-6);
+    // Geometry hangs below the skeleton nodes as shapes the writer recognises.
+    SkeletonNode* head = actor->getSkeletonNode("skullbase");
+    ASSERT_NE(head, nullptr);
+    unsigned shapes = 0;
+    for (unsigned c = 0; c < head->getNumChildren(); ++c)
+    {
+        GeometryDescription description;
+        if (describeGeometryNode(*head->getChild(c), description)) ++shapes;
+    }
+    EXPECT_EQ(shapes, 3u) << "neck, head and nose";
+    // DOF limits arrive in radians.
+    const int knee = actor->getDofIndex("l_knee.rx");
+    ASSERT_GE(knee, 0);
+    EXPECT_NEAR(actor->getDefinition()->getDofMax(static_cast<unsigned>(knee)), 150 * kDegree, 1e-12);
+}
+
+TEST(ActorPlugin, TheRobotArmSlidesAlongItsBoom)
+{
+    osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("robot_arm.actor"));
+    ASSERT_TRUE(actor.valid());
+    const unsigned wrist = static_cast<unsigned>(actor->getJointIndex("wrist"));
+    ASSERT_TRUE(actor->setDof("shoulder.ry", 0.0)); // boom horizontal along X
+    ASSERT_TRUE(actor->setDof("boom.tx", 0.1));
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(wrist), osg::Vec3d(0.1 + 0.1 + 0.75, 0, 0.65), 1e-12));
+    ASSERT_TRUE(actor->setDof("boom.tx", 0.5));
+    EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(wrist), osg::Vec3d(0.1 + 0.5 + 0.75, 0, 0.65), 1e-12));
+    actor->setDof("boom.tx", 2.0);
+    double slide = 0.0;
+    ASSERT_TRUE(actor->getDof("boom.tx", slide));
+    EXPECT_EQ(slide, 0.6) << "clamped to the file's limit";
+}
+
+TEST(ActorPlugin, TheInsectHasSixLegsOfThreeJointsWithFeetOnTheGround)
+{
+    osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("insect.actor"));
+    ASSERT_TRUE(actor.valid());
+    EXPECT_EQ(actor->getNumSkeletonNodes(), 1u + 6u * 3u);
+    for (const char* side : {"l", "r"})
+        for (const char* leg : {"front", "middle", "hind"})
+        {
+            const std::string tibia = std::string(side) + "_" + leg + "_tibia";
+            const int joint = actor->getJointIndex(tibia);
+            ASSERT_GE(joint, 0) << tibia;
+            // The foot: the tibia's end, 0.37 along its local X (or -X on the right).
+            const double sign = side[0] == 'l' ? 1.0 : -1.0;
+            const osg::Vec3d foot = osg::Vec3d(0.37 * sign, 0, 0) * actor->getJointWorldMatrix(unsigned(joint));
+            EXPECT_NEAR(foot.z(), 0.0, 0.01) << tibia;
+        }
+}
+
+TEST(ActorPlugin, WritingThenReadingGivesTheSameActorAndTheSameBytes)
+{
+    for (const char* name : {"humanoid.actor", "insect.actor", "robot_arm.actor"})
+    {
+        osg::ref_ptr<ActorNode> original = readActorFile(dataFile(name));
+        ASSERT_TRUE(original.valid());
+        original->setDof(0u, 0.25);
+        original->setPreTranslation(osg::Vec3d(1, 2, 0));
+        original->setPostRotation(osg::Quat(0.3, osg::Vec3d(0, 0, 1)));
+        original->getSkeletonNode(1u)->setHidden(true);
+        const std::string first = outFile(std::string("first_") + name);
+        ASSERT_TRUE(osgDB::writeNodeFile(*original, first));
+        osg::ref_ptr<ActorNode> again = readActorFile(first);
+        ASSERT_TRUE(again.valid());
+        ASSERT_EQ(again->getNumDofs(), original->getNumDofs());
+        for (unsigned d = 0; d < original->getNumDofs(); ++d)
+            EXPECT_NEAR(again->getDof(d), original->getDof(d), 1e-11) << name << " DOF " << d;
+        EXPECT_TRUE(vec3Near(again->getPreTranslation(), original->getPreTranslation()));
+        EXPECT_TRUE(again->getSkeletonNode(1u)->getHidden());
+        for (unsigned j = 0; j < original->getNumSkeletonNodes(); ++j)
+            EXPECT_TRUE(vec3Near(again->getJointWorldPosition(j), original->getJointWorldPosition(j), 1e-10));
+        const std::string second = outFile(std::string("second_") + name);
+        ASSERT_TRUE(osgDB::writeNodeFile(*again, second));
+        EXPECT_EQ(readTextFile(second), readTextFile(first)) << name;
+    }
+}
+
+TEST(ActorPlugin, ModelsAreFoundNextToTheActorFileAndWrittenBackAsReferences)
+{
+    // A model file in a sub-folder, referenced relative to the .actor file, read from elsewhere.
+    osgDB::makeDirectory(outFile("models/parts"));
+    osg::ref_ptr<osg::Geode> spanner = makeBox(osg::Vec3(0, 0, 0), 0.1f);
+    ASSERT_TRUE(osgDB::writeNodeFile(*spanner, outFile("models/parts/spanner.osgt")));
+    const std::string path = writeTextFile("models/with_model.actor",
+                                           "osgactor 1\nactor a {\n joint hand {\n  model \"parts/spanner.osgt\" {\n"
+                                           "   position 0 0 -0.1\n   scale 2\n  }\n }\n}\n");
+    osg::ref_ptr<ActorNode> actor = readActorFile(path);
+    ASSERT_TRUE(actor.valid());
+    SkeletonNode* hand = actor->getSkeletonNode(0u);
+    ASSERT_EQ(hand->getNumChildren(), 1u);
+    const osg::PositionAttitudeTransform* placed = dynamic_cast<osg::PositionAttitudeTransform*>(hand->getChild(0));
+    ASSERT_NE(placed, nullptr);
+    EXPECT_EQ(placed->getScale(), osg::Vec3d(2, 2, 2));
+    ASSERT_EQ(placed->getNumChildren(), 1u);
+    EXPECT_NE(placed->getChild(0)->asGeode(), nullptr) << "the loaded model";
+    ASSERT_TRUE(osgDB::writeNodeFile(*actor, outFile("models/with_model_again.actor")));
+    const std::string text = readTextFile(outFile("models/with_model_again.actor"));
+    EXPECT_NE(text.find("model \"parts/spanner.osgt\" {\n            position 0 0 -0.1\n            scale 2\n"),
+              std::string::npos)
+        << text;
+}
+
+TEST(ActorPlugin, ModelsAreFoundOnTheOptionsDataPath)
+{
+    osgDB::makeDirectory(outFile("library"));
+    ASSERT_TRUE(osgDB::writeNodeFile(*makeBox(osg::Vec3(), 0.2f), outFile("library/wheel.osgt")));
+    const std::string path = writeTextFile("uses_library.actor", "osgactor 1\nactor a {\n joint axle {\n"
+                                                                  "  model wheel.osgt\n }\n}\n");
+    EXPECT_FALSE(osgDB::readRefNodeFile(path).valid()) << "not next to the file, not on the default path";
+    osg::ref_ptr<osgDB::Options> options = new osgDB::Options;
+    options->getDatabasePathList().push_back(outFile("library"));
+    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(osgDB::readRefNodeFile(path, options.get()).get());
+    ASSERT_TRUE(actor.valid());
+    EXPECT_EQ(actor->getSkeletonNode(0u)->getNumChildren(), 1u);
+}
+
+TEST(ActorPlugin, GeometryTheFormatCannotDescribeIsLeftOutOfTheFile)
+{
+    osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("robot_arm.actor"));
+    ASSERT_TRUE(actor.valid());
+    osg::ref_ptr<osg::Geode> userGeode = makeBox(osg::Vec3(), 1.0f);
+    userGeode->setName("user_box");
+    actor->getSkeletonNode("flange")->addChild(userGeode.get());
+    const std::string with = outFile("arm_with_user_box.actor");
+    ASSERT_TRUE(osgDB::writeNodeFile(*actor, with));
+    actor->getSkeletonNode("flange")->removeChild(userGeode.get());
+    const std::string without = outFile("arm_without_user_box.actor");
+    ASSERT_TRUE(osgDB::writeNodeFile(*actor, without));
+    EXPECT_EQ(readTextFile(with), readTextFile(without));
+}
+
+TEST(ActorPlugin, ReadsFromAStream)
+{
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("actor");
+    ASSERT_NE(rw, nullptr);
+    std::istringstream in("osgactor 1\nactor streamed {\n joint a { dof rz value 90 }\n}\n");
+    osgDB::ReaderWriter::ReadResult result = rw->readNode(in, nullptr);
+    ASSERT_TRUE(result.validNode()) << result.message();
+    ActorNode* actor = dynamic_cast<ActorNode*>(result.getNode());
+    ASSERT_NE(actor, nullptr);
+    EXPECT_NEAR(actor->getDof(0u), osg::PI_2, 1e-15);
+    std::istringstream broken("osgactor 1\nactor a {\n joint a { dof rz value x }\n}\n");
+    result = rw->readNode(broken, nullptr);
+    EXPECT_FALSE(result.validNode());
+    EXPECT_EQ(result.message(), "<stream>:3: 'x' is not a number");
+}
+
+TEST(ActorPlugin, WritingAScenePicksItsOneActor)
+{
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    EXPECT_FALSE(osgDB::writeNodeFile(*root, outFile("empty.actor")));
+    osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("robot_arm.actor"));
+    ASSERT_TRUE(actor.valid());
+    root->addChild(actor.get());
+    EXPECT_TRUE(osgDB::writeNodeFile(*root, outFile("scene.actor")));
+    root->addChild(osg::clone(actor.get()));
+    osgDB::ReaderWriter* rw = osgDB::Registry::instance()->getReaderWriterForExtension("actor");
+    ASSERT_NE(rw, nullptr);
+    const osgDB::ReaderWriter::WriteResult result = rw->writeNode(*root, outFile("two.actor"), nullptr);
+    EXPECT_FALSE(result.success());
+    EXPECT_EQ(result.message(), "a .actor file holds exactly one actor; the scene has 2");
+}
