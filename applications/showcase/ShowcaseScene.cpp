@@ -19,8 +19,8 @@ namespace {
 
 // The stage, metres, Z up; the default camera looks from -Y.
 const osg::Vec3d kDancerSpot(0.0, 1.5, 0.0);
-const osg::Vec3d kInsectArea(6.0, 2.0, 0.0);
-const double kInsectScale = 0.5;
+const osg::Vec3d kInsectArea(6.6, 2.0, 0.0);
+const double kInsectScale = 0.8;
 
 osg::ref_ptr<osg::Material> makeMaterial(const osg::Vec4& colour)
 {
@@ -107,12 +107,12 @@ osg::ref_ptr<osg::Group> makeObstacles()
     const osg::Vec4 crate(0.6f, 0.42f, 0.22f, 1.0f);
     for (double side : {-1.0, 1.0})
     {
-        const osg::Vec3d centre = kInsectArea + osg::Vec3d(side * 1.25, 0.0, 0.0);
+        const osg::Vec3d centre = kInsectArea + osg::Vec3d(side * 1.5, 0.0, 0.0);
         obstacles->addChild(makeShape(new osg::Sphere(osg::Vec3(centre), 0.32f), rock));
     }
-    obstacles->addChild(makeShape(new osg::Box(osg::Vec3(kInsectArea + osg::Vec3d(0.0, 1.5, 0.3)), 0.6f), crate));
-    obstacles->addChild(makeShape(new osg::Box(osg::Vec3(kInsectArea + osg::Vec3d(0.2, -1.4, 0.2)), 0.4f), crate));
-    obstacles->addChild(makeShape(new osg::Cylinder(osg::Vec3(kInsectArea + osg::Vec3d(2.4, 0.9, 0.4)), 0.15f, 0.8f),
+    obstacles->addChild(makeShape(new osg::Box(osg::Vec3(kInsectArea + osg::Vec3d(0.0, 2.1, 0.3)), 0.6f), crate));
+    obstacles->addChild(makeShape(new osg::Box(osg::Vec3(kInsectArea + osg::Vec3d(0.4, -2.0, 0.2)), 0.4f), crate));
+    obstacles->addChild(makeShape(new osg::Cylinder(osg::Vec3(kInsectArea + osg::Vec3d(3.3, 1.3, 0.4)), 0.15f, 0.8f),
                                   rock));
     return obstacles;
 }
@@ -138,19 +138,20 @@ osg::ref_ptr<osg::Group> makeWalkingHumanoid(const std::string& file)
 
 osg::ref_ptr<osg::Group> makeWanderingInsect(const std::string& file)
 {
-    // The insect lives in a frame scaled down to half size; its path is given in that frame.
+    // The insect lives in a frame scaled down (a cockroach a metre long would be large even here); its path is
+    // given in that frame.
     osg::ref_ptr<osg::MatrixTransform> group = new osg::MatrixTransform(osg::Matrixd::scale(osg::Vec3d(1, 1, 1) * kInsectScale));
     group->setName("wandering insect");
     group->getOrCreateStateSet()->setMode(GL_RESCALE_NORMAL, osg::StateAttribute::ON);
     osg::ref_ptr<TripodGait> gait = new TripodGait;
-    // A figure of eight round the two rocks, at 0.3 m/s (in the world).
+    // A figure of eight round the two rocks, at 0.35 m/s (in the world).
     gait->setPath(makeLoopPath(
         [](double s) {
             const double t = 2.0 * osg::PI * s;
-            const osg::Vec3d world = kInsectArea + osg::Vec3d(2.1 * std::sin(t), 1.0 * std::sin(2.0 * t), 0.0);
+            const osg::Vec3d world = kInsectArea + osg::Vec3d(2.6 * std::sin(t), 1.4 * std::sin(2.0 * t), 0.0);
             return world / kInsectScale;
         },
-        0.3 / kInsectScale));
+        0.35 / kInsectScale));
     gait->setCycleDuration(0.7);
     gait->setStepHeight(0.1);
     group->setUpdateCallback(gait.get());
@@ -211,7 +212,7 @@ osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources)
     osg::ref_ptr<osg::Group> root = new osg::Group;
     root->setName("osgActor showcase");
     root->addChild(makeSun(*root->getOrCreateStateSet()).get());
-    root->addChild(makeFloor(osg::Vec3d(1.5, 2.0, 0.0), 16, 11).get());
+    root->addChild(makeFloor(osg::Vec3d(2.0, 2.0, 0.0), 18, 11).get());
     root->addChild(makeObstacles().get());
     root->addChild(makeWalkingHumanoid(sources.humanoid).get());
     root->addChild(makeWanderingInsect(sources.insect).get());

@@ -9,6 +9,7 @@
 
 #include <osg/FrameStamp>
 #include <osg/Group>
+#include <osgDB/ReadFile>
 #include <osgUtil/UpdateVisitor>
 
 #include <gtest/gtest.h>
@@ -212,4 +213,51 @@ TEST(ShowcaseScene, HasItsPartsAndDriversEvenWithoutADancer)
     }
     EXPECT_EQ(walkers, 1u);
     EXPECT_EQ(gaits, 1u);
+}
+
+TEST(ShowcaseFile, LoadsWithItsActorsAndDrivers)
+{
+    // Needs OSG_LIBRARY_PATH on the build's lib (set by ctest): osgdb_actor, the serializers, libosgActorShowcase.
+    const std::string file = std::string(OSGACTOR_TEST_DATA_DIR) + "/showcase.osgt";
+    const osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(file);
+    ASSERT_TRUE(scene.valid()) << "cannot read " << file;
+    struct Counter : public osg::NodeVisitor
+    {
+        Counter() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+        void apply(osg::Node& node) override
+        {
+            walkers += dynamic_cast<PathWalker*>(node.getUpdateCallback()) != nullptr;
+            gaits += dynamic_cast<TripodGait*>(node.getUpdateCallback()) != nullptr;
+            if (ActorNode* actor = dynamic_cast<ActorNode*>(&node)) names.push_back(actor->getDefinition()->getName());
+            traverse(node);
+        }
+        unsigned walkers = 0, gaits = 0;
+        std::vector<std::string> names;
+    } counter;
+    scene->accept(counter);
+    EXPECT_EQ(counter.walkers, 1u);
+    EXPECT_EQ(counter.gaits, 1u);
+    ASSERT_GE(counter.names.size(), 2u);
+    EXPECT_EQ(counter.names[0], "humanoid");
+    EXPECT_EQ(counter.names[1], "cockroach");
+
+    // Driven: after an update at t = 2 s the humanoid has walked away from where it was at t = 0.
+    ActorNode* humanoid = nullptr;
+    struct FirstActor : public osg::NodeVisitor
+    {
+        FirstActor() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+        void apply(osg::Transform& node) override
+        {
+            if (!actor) actor = dynamic_cast<ActorNode*>(&node);
+            traverse(node);
+        }
+        ActorNode* actor = nullptr;
+    } first;
+    scene->accept(first);
+    humanoid = first.actor;
+    ASSERT_NE(humanoid, nullptr);
+    runUpdate(*scene, 0.0, 1);
+    const osg::Vec3d start = humanoid->getPreTranslation();
+    runUpdate(*scene, 2.0, 2);
+    EXPECT_NEAR((humanoid->getPreTranslation() - start).length(), 2.0, 0.3) << "1.1 m/s on a gentle curve";
 }
