@@ -68,7 +68,7 @@ ActorNode::ActorNode(ActorDefinitionPtr definition) : ActorNode()
 }
 
 ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
-    : osg::MatrixTransform(actor, SkeletonCopyOp(copyop)), _pose(actor._pose),
+    : osg::MatrixTransform(actor, SkeletonCopyOp(copyop)), _pose(actor._pose), _clipLibrary(actor._clipLibrary),
       _lastControllerTime(std::numeric_limits<double>::quiet_NaN()),
       _preTranslation(actor._preTranslation), _preRotation(actor._preRotation),
       _postTranslation(actor._postTranslation), _postRotation(actor._postRotation),
@@ -349,7 +349,9 @@ void ActorNode::runControllers(double time)
 
 void ActorNode::updatePose() const
 {
-    if (!_blocked) _pose.updateMatrices();
+    // A blocked actor applies no new DOF values but still answers with the pose its nodes show.
+    if (_blocked) _pose.updateModelMatrices();
+    else _pose.updateMatrices();
 }
 
 osg::Matrixd ActorNode::getJointModelMatrix(unsigned joint) const

@@ -46,13 +46,17 @@ void ActorPose::markAllJointsDirty()
     _anyDirty = !_jointDirty.empty();
 }
 
-unsigned ActorPose::updateMatrices() { return runForwardKinematics(true); }
+unsigned ActorPose::updateMatrices() { return runForwardKinematics(true, true); }
 
-unsigned ActorPose::updateLocalMatrices() { return runForwardKinematics(false); }
+unsigned ActorPose::updateLocalMatrices() { return runForwardKinematics(true, false); }
 
-unsigned ActorPose::runForwardKinematics(bool computeModel)
+void ActorPose::updateModelMatrices() { runForwardKinematics(false, true); }
+
+unsigned ActorPose::runForwardKinematics(bool rebuildLocal, bool computeModel)
 {
-    if (!_anyDirty && !(computeModel && _anyModelStale)) return 0;
+    const bool localWork = rebuildLocal && _anyDirty;
+    const bool modelWork = computeModel && (_anyModelStale || localWork);
+    if (!localWork && !modelWork) return 0;
     ForwardKinematicsJob job;
     job.definition = _definition.get();
     job.dofs = _dofs.data();
@@ -64,8 +68,9 @@ unsigned ActorPose::runForwardKinematics(bool computeModel)
     job.modelChanged = _modelChanged.data();
     job.trigScratch = _trigScratch.data();
     job.computeModel = computeModel;
+    job.rebuildLocal = rebuildLocal;
     job.run();
-    _anyDirty = false;
+    if (rebuildLocal) _anyDirty = false;
     _anyModelStale = !computeModel && (_anyModelStale || job.numRecomputed > 0);
     _anyLocalChanged = _anyLocalChanged || job.numRecomputed > 0;
     _totalRecomputed += job.numRecomputed;

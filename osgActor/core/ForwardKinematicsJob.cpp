@@ -146,7 +146,7 @@ OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, cons
     unsigned nextAngle = 0;
     for (unsigned j = 0; j < numJoints; ++j)
     {
-        if (job.jointDirty[j])
+        if (job.rebuildLocal && job.jointDirty[j])
         {
             const JointKinematics& k = kinematics[j];
             buildJointMatrix(k, job.dofs, sines + nextAngle, cosines + nextAngle, &job.local[j][0][0]);
@@ -213,7 +213,7 @@ bool ForwardKinematicsJob::run()
     double* sines = trigScratch + numDofs;
     double* cosines = trigScratch + 2 * numDofs;
     unsigned numAngles = 0;
-    for (unsigned j = 0; j < numJoints; ++j)
+    for (unsigned j = 0; rebuildLocal && j < numJoints; ++j)
     {
         if (!jointDirty[j]) continue;
         const JointKinematics& k = kinematics[j];

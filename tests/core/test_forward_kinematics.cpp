@@ -228,3 +228,19 @@ TEST(MultiplyAffine, EqualsTheFullProduct)
     const glm::dmat4 b = fromRows(1, 2, 3, 4, -1, 0.5, 2, 5, 0, 0.25, -3, 6);
     EXPECT_TRUE(matricesNear(multiplyAffine(a, b), a * b, 1e-14));
 }
+
+TEST(ForwardKinematics, ModelMatricesCanCatchUpWithoutApplyingNewDofs)
+{
+    ActorDefinitionBuilder b;
+    b.addJoint("root").dofs(dofBit(Dof::RZ));
+    b.addJoint("tip", "root").offset(1, 0, 0);
+    ActorPose pose(b.build().definition);
+    pose.setDof(0, kQuarter);
+    pose.updateLocalMatrices(); // what the nodes show: turned a quarter
+    pose.setDof(0, 0.0);        // a later write, not applied
+    pose.updateModelMatrices();
+    EXPECT_TRUE(vectorsNear(glm::dvec3(pose.getModelMatrix(1)[3]), glm::dvec3(0, 1, 0), 1e-15));
+    EXPECT_TRUE(pose.isJointDirty(0)) << "the new value is still waiting";
+    pose.updateMatrices();
+    EXPECT_TRUE(vectorsNear(glm::dvec3(pose.getModelMatrix(1)[3]), glm::dvec3(1, 0, 0), 1e-15));
+}

@@ -1,0 +1,227 @@
+/* osgactorconv: converts motion capture (BVH, ASF+AMC) and dumps joint positions so other tools can check the
+ * import. Exit status 0 on success, 1 on bad input (with file:line on stderr), 2 on bad usage. */
+#include <osgActor/mocap/AmcReader>
+#include <osgActor/mocap/AsfReader>
+#include <osgActor/mocap/BvhReader>
+#include <osgActor/mocap/BvhWriter>
+#include <osgActor/mocap/PositionsCsv>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <string>
+#include <vector>
+
+using namespace osgActor;
+
+namespace {
+
+const char* const kUsage =
+    "usage: osgactorconv [options] INPUT.bvh\n"
+    "       osgactorconv [options] INPUT.asf [MOTION.amc]\n"
+    "\n"
+    "Reads motion capture into an osgActor actor and clip, then writes it out or dumps joint positions.\n"
+    "\n"
+    "  --dump-positions   print CSV 'frame,joint,x,y,z' to stdout (or -o), one row per joint per frame: the\n"
+    "                     world position of each joint's origin (BVH: each ROOT/JOINT; ASF/AMC: 'root' and the\n"
+    "                     start of each bone), in the file's own axes and units (no scale, no axis change),\n"
+    "                     frames numbered from 0 at the first frame of data\n"
+    "  --frames A:B       only frames A (included) to B (excluded); 'A:' and ':B' leave an end open\n"
+    "  -o, --output FILE  write to FILE: .bvh exports BVH (the file's own axes and units, so it reads back\n"
+    "                     the same); .actor needs the format plugin (osgdb_actor), not yet in this build\n"
+    "  --amc FILE         the AMC motion of an ASF skeleton (or give it after the ASF)\n"
+    "  --fps N            frame rate of AMC motion (default 120, CMU's)\n"
+    "  --scale S          multiply lengths by S when converting (not for --dump-positions)\n"
+    "  --drop-first-frame drop frame 0 (the reference pose of CMU BVH conversions) when converting\n"
+    "  --absolute-root    BVH root positions are absolute (3ds Max), not added to the root OFFSET\n"
+    "  -h, --help         this text\n";
+
+struct Arguments
+{
+    std::vector<std::string> inputs;
+    std::string amc;
+    std::string output;
+    bool dumpPositions = false;
+    unsigned firstFrame = 0;
+    unsigned endFrame = std::numeric_limits<unsigned>::max();
+    double fps = 120.0;
+    double scale = 1.0;
+    bool dropFirstFrame = false;
+    bool absoluteRoot = false;
+};
+
+bool endsWith(std::string text, const std::string& suffix)
+{
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+bool parseUnsigned(const std::string& text, unsigned& value)
+{
+    if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 9) return false;
+    value = static_cast<unsigned>(std::stoul(text));
+    return true;
+}
+
+bool parsePositive(const std::string& text, double& value)
+{
+    char* end = nullptr;
+    value = std::strtod(text.c_str(), &end);
+    return !text.empty() && *end == '\0' && value > 0.0 && value < std::numeric_limits<double>::infinity();
+}
+
+/** Parses the command line; returns an error message, empty on success. */
+std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
+{
+    for (int i = 1; i < argc; ++i)
+    {
+        const std::string arg = argv[i];
+        auto value = [&](std::string& into) {
+            if (i + 1 >= argc) return false;
+            into = argv[++i];
+            return true;
+        };
+        std::string text;
+        if (arg == "-h" || arg == "--help") help = true;
+        else if (arg == "--dump-positions") args.dumpPositions = true;
+        else if (arg == "--drop-first-frame") args.dropFirstFrame = true;
+        else if (arg == "--absolute-root") args.absoluteRoot = true;
+        else if (arg == "-o" || arg == "--output")
+        {
+            if (!value(args.output)) return arg + " needs a file name";
+        }
+        else if (arg == "--amc")
+        {
+            if (!value(args.amc)) return "--amc needs a file name";
+        }
+        else if (arg == "--fps")
+        {
+            if (!value(text) || !parsePositive(text, args.fps)) return "--fps needs a positive number";
+        }
+        else if (arg == "--scale")
+        {
+            if (!value(text) || !parsePositive(text, args.scale)) return "--scale needs a positive number";
+        }
+        else if (arg == "--frames")
+        {
+            const std::size_t colon = value(text) ? text.find(':') : std::string::npos;
+            if (colon == std::string::npos) return "--frames needs A:B";
+            const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
+            if ((!a.empty() && !parseUnsigned(a, args.firstFrame)) || (!b.empty() && !parseUnsigned(b, args.endFrame)))
+                return "--frames needs whole numbers, as in 10:20";
+        }
+        else if (!arg.empty() && arg[0] == '-') return "unknown option " + arg;
+        else args.inputs.push_back(arg);
+    }
+    if (help) return std::string();
+    if (args.inputs.empty() || args.inputs.size() > 2) return "give one input file (and an AMC after an ASF)";
+    if (args.inputs.size() == 2) args.amc = args.inputs[1];
+    if (!args.dumpPositions && args.output.empty()) return "nothing to do: give --dump-positions or -o FILE";
+    return std::string();
+}
+
+/** Reads the input; dump selects the file's own frame and units (no scale, no axis change, no limits). */
+MocapImport readInput(const Arguments& args, bool dump)
+{
+    const std::string& input = args.inputs[0];
+    if (endsWith(input, ".bvh"))
+    {
+        BvhImportOptions options;
+        options.convertToZUp = false; // BVH output and the dump stay in the file's frame
+        options.endSitesAsJoints = !dump;
+        options.absoluteRootPosition = args.absoluteRoot;
+        options.scale = dump ? 1.0 : args.scale;
+        options.dropFirstFrame = !dump && args.dropFirstFrame;
+        return readBvhFile(input, options);
+    }
+    if (endsWith(input, ".asf"))
+    {
+        AsfImportOptions options;
+        options.convertToZUp = false;
+        options.applyLimits = !dump;
+        options.frameRate = args.fps;
+        options.scale = dump ? 1.0 : args.scale;
+        const AsfImport skeleton = readAsfFile(input, options);
+        MocapImport failed;
+        if (!skeleton)
+        {
+            failed.error = skeleton.error;
+            return failed;
+        }
+        if (args.amc.empty())
+        {
+            failed.definition = skeleton.definition; // a skeleton without motion
+            return failed;
+        }
+        return readAmcFile(args.amc, skeleton);
+    }
+    MocapImport failed;
+    failed.error = input + ": unknown input format (expected .bvh or .asf)";
+    return failed;
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    Arguments args;
+    bool help = false;
+    const std::string usageError = parseArguments(argc, argv, args, help);
+    if (help)
+    {
+        std::cout << kUsage;
+        return 0;
+    }
+    if (!usageError.empty())
+    {
+        std::cerr << "osgactorconv: " << usageError << "\n\n" << kUsage;
+        return 2;
+    }
+
+    const MocapImport imported = readInput(args, args.dumpPositions);
+    if (!imported)
+    {
+        std::cerr << "osgactorconv: " << imported.error << "\n";
+        return 1;
+    }
+    for (const std::string& warning : imported.warnings) std::cerr << "osgactorconv: warning: " << warning << "\n";
+
+    std::ofstream file;
+    if (!args.output.empty())
+    {
+        if (endsWith(args.output, ".actor"))
+        {
+            std::cerr << "osgactorconv: .actor output needs the format plugin (osgdb_actor), not in this build yet\n";
+            return 2;
+        }
+        if (!args.dumpPositions && !endsWith(args.output, ".bvh"))
+        {
+            std::cerr << "osgactorconv: " << args.output << ": unknown output format (expected .bvh)\n";
+            return 2;
+        }
+        file.open(args.output, std::ios::binary);
+        if (!file)
+        {
+            std::cerr << "osgactorconv: " << args.output << ": cannot write the file\n";
+            return 1;
+        }
+    }
+    std::ostream& out = args.output.empty() ? std::cout : file;
+    std::string error;
+    bool written = false;
+    if (args.dumpPositions)
+    {
+        if (!imported.clip) error = args.inputs[0] + ": the input holds no motion to dump";
+        else written = writePositionsCsv(out, imported.definition, *imported.clip, args.firstFrame, args.endFrame, error);
+    }
+    else
+        written = writeBvh(out, *imported.definition, imported.clip.get(), error);
+    if (!written)
+    {
+        std::cerr << "osgactorconv: " << error << "\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,172 @@
+#include <osgActor/MocapActor>
+#include <osgActor/StickFigure>
+#include <osgActor/mocap/AmcReader>
+#include <osgActor/mocap/BvhReader>
+
+#include <osg/Notify>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+namespace osgActor {
+
+namespace {
+
+std::string lowerExtension(const std::string& path)
+{
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension;
+}
+
+MocapImport importFile(const std::string& path, const MocapActorOptions& options)
+{
+    const std::string extension = lowerExtension(path);
+    if (extension == ".bvh")
+    {
+        BvhImportOptions bvh;
+        bvh.scale = options.scale;
+        bvh.fileUpAxis = options.fileUpAxis;
+        bvh.dropFirstFrame = options.dropFirstFrame;
+        bvh.absoluteRootPosition = options.absoluteRootPosition;
+        return readBvhFile(path, bvh);
+    }
+    MocapImport failed;
+    if (extension != ".asf")
+    {
+        failed.error = path + ": not a motion-capture file (expected .bvh or .asf)";
+        return failed;
+    }
+    AsfImportOptions asf;
+    asf.scale = options.scale;
+    asf.fileUpAxis = options.fileUpAxis;
+    asf.frameRate = options.amcFrameRate;
+    asf.applyLimits = options.applyAsfLimits;
+    const AsfImport skeleton = readAsfFile(path, asf);
+    if (!skeleton)
+    {
+        failed.error = skeleton.error;
+        return failed;
+    }
+    const std::string amc = options.amcFile.empty() ? findAmcBeside(path) : options.amcFile;
+    if (amc.empty())
+    {
+        failed.error = path + ": no AMC motion given and none found beside it";
+        return failed;
+    }
+    return readAmcFile(amc, skeleton);
+}
+
+} // namespace
+
+bool parseMocapOptionString(const std::string& text, MocapActorOptions& options, std::string& error)
+{
+    std::istringstream words(text);
+    std::string word;
+    while (words >> word)
+    {
+        const std::size_t equals = word.find('=');
+        const std::string key = word.substr(0, equals);
+        const std::string value = equals == std::string::npos ? std::string() : word.substr(equals + 1);
+        auto positive = [&](double& into) {
+            char* end = nullptr;
+            const double number = std::strtod(value.c_str(), &end);
+            if (value.empty() || *end != '\0' || !(number > 0.0) || !std::isfinite(number))
+            {
+                error = "option " + key + " needs a positive number, not '" + value + "'";
+                return false;
+            }
+            into = number;
+            return true;
+        };
+        auto bad = [&](const char* expected) {
+            error = "option " + key + " must be " + expected + ", not '" + value + "'";
+            return false;
+        };
+        if (key == "amc") options.amcFile = value;
+        else if (key == "scale") { if (!positive(options.scale)) return false; }
+        else if (key == "fps") { if (!positive(options.amcFrameRate)) return false; }
+        else if (key == "up")
+        {
+            if (value == "Y" || value == "y") options.fileUpAxis = UpAxis::Y;
+            else if (value == "Z" || value == "z") options.fileUpAxis = UpAxis::Z;
+            else return bad("Y or Z");
+        }
+        else if (key == "mode")
+        {
+            if (value == "loop") options.playMode = PlayMode::Loop;
+            else if (value == "once") options.playMode = PlayMode::Once;
+            else if (value == "pingpong") options.playMode = PlayMode::PingPong;
+            else return bad("loop, once or pingpong");
+        }
+        else if (key == "rootMotion")
+        {
+            if (value == "skeleton") options.rootMotion = RootMotion::InSkeleton;
+            else if (value == "transforms") options.rootMotion = RootMotion::ToTransforms;
+            else if (value == "inplace") options.rootMotion = RootMotion::InPlace;
+            else return bad("skeleton, transforms or inplace");
+        }
+        else if (word == "dropFirstFrame") options.dropFirstFrame = true;
+        else if (word == "absoluteRoot") options.absoluteRootPosition = true;
+        else if (word == "limits") options.applyAsfLimits = true;
+        else if (word == "noFigure") options.addFigure = false;
+        // anything else belongs to another plugin
+    }
+    return true;
+}
+
+std::string findAmcBeside(const std::string& asfPath)
+{
+    namespace fs = std::filesystem;
+    const fs::path asf(asfPath);
+    const std::string base = asf.stem().string();
+    const fs::path folder = asf.has_parent_path() ? asf.parent_path() : fs::path(".");
+    std::error_code ec;
+    if (fs::exists(folder / (base + ".amc"), ec)) return (folder / (base + ".amc")).string();
+    std::vector<std::string> candidates;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+    {
+        const std::string name = it->path().filename().string();
+        if (name.size() > base.size() && name.compare(0, base.size(), base) == 0 && lowerExtension(name) == ".amc")
+            candidates.push_back(it->path().string());
+    }
+    std::sort(candidates.begin(), candidates.end());
+    return candidates.empty() ? std::string() : candidates.front();
+}
+
+osg::ref_ptr<ActorNode> readMocapActor(const std::string& path, const MocapActorOptions& options, std::string& error)
+{
+    const MocapImport imported = importFile(path, options);
+    if (!imported)
+    {
+        error = imported.error;
+        return nullptr;
+    }
+    for (const std::string& warning : imported.warnings) OSG_WARN << "osgActor: " << warning << std::endl;
+
+    osg::ref_ptr<ActorNode> actor = new ActorNode(imported.definition);
+    actor->setName(imported.definition->getName());
+    if (imported.clip)
+    {
+        ClipLibraryPtr library = std::make_shared<ClipLibrary>();
+        library->addClip(imported.clip);
+        actor->setClipLibrary(library);
+        auto player = std::make_shared<ClipPlayer>(imported.clip);
+        player->setName("mocap");
+        player->setPlayMode(options.playMode);
+        player->setRootMotion(options.rootMotion);
+        actor->addController(player);
+        // Pose the first frame at once, so bounds and queries are right before the first update.
+        actor->runControllers(0.0);
+        actor->updatePose();
+    }
+    if (options.addFigure) addStickFigure(*actor);
+    return actor;
+}
+
+} // namespace osgActor

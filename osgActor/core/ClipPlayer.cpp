@@ -1,0 +1,261 @@
+#include <osgActor/core/ClipPlayer>
+#include <osgActor/core/ForwardKinematicsJob>
+
+#include <glm/ext/matrix_double3x3.hpp>
+#include <glm/ext/quaternion_trigonometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace osgActor {
+
+namespace {
+
+const glm::dvec3 kUp(0.0, 0.0, 1.0);
+
+glm::dquat headingRotation(double heading) { return glm::angleAxis(heading, kUp); }
+
+} // namespace
+
+ClipPlayer::ClipPlayer(ClipPtr clip) : _clip(std::move(clip)) {}
+
+void ClipPlayer::setClip(ClipPtr clip)
+{
+    _clip = std::move(clip);
+    _boundTo.reset(); // bind again on the next update
+}
+
+void ClipPlayer::setSpeed(double speed)
+{
+    if (std::isfinite(speed)) _speed = speed;
+}
+
+void ClipPlayer::seek(double playTime)
+{
+    if (!std::isfinite(playTime)) return;
+    _playTime = playTime;
+    // A jump is not travel: root motion carries on from here without adding the cycles skipped.
+    const double duration = _clip ? _clip->getDuration() : 0.0;
+    if (duration > 0.0) _cycle = std::floor(_playTime / duration);
+}
+
+bool ClipPlayer::isFinished() const
+{
+    if (_mode != PlayMode::Once || !_clip) return false;
+    return _speed >= 0.0 ? _playTime >= _clip->getDuration() : _playTime <= 0.0;
+}
+
+void ClipPlayer::setFadeWeight(double weight)
+{
+    if (!std::isfinite(weight)) return;
+    _fade = _fadeTarget = std::min(1.0, std::max(0.0, weight));
+    _fadeRate = 0.0;
+}
+
+void ClipPlayer::fadeTo(double weight, double seconds, double delay)
+{
+    if (!std::isfinite(weight) || std::isnan(seconds) || !std::isfinite(delay)) return;
+    const double target = std::min(1.0, std::max(0.0, weight));
+    _fadeDelay = std::max(0.0, delay);
+    if (!(seconds > 0.0) && _fadeDelay == 0.0)
+    {
+        setFadeWeight(target);
+        return;
+    }
+    _fadeTarget = target;
+    _fadeRate = seconds > 0.0 ? (_fadeTarget - _fade) / seconds
+                              : std::copysign(std::numeric_limits<double>::infinity(), _fadeTarget - _fade);
+}
+
+void ClipPlayer::setRootMotion(RootMotion mode, const std::string& rootJoint)
+{
+    _rootMotion = mode;
+    _rootJointName = rootJoint;
+    _boundTo.reset();
+    _haveBase = false;
+}
+
+double ClipPlayer::clipTimeAt(double t) const
+{
+    const double duration = _clip ? _clip->getDuration() : 0.0;
+    if (!(duration > 0.0)) return 0.0;
+    switch (_mode)
+    {
+    case PlayMode::Once: return std::min(std::max(t, 0.0), duration);
+    case PlayMode::Loop: return t - duration * std::floor(t / duration);
+    case PlayMode::PingPong:
+    {
+        const double u = t - 2.0 * duration * std::floor(t / (2.0 * duration));
+        return u <= duration ? u : 2.0 * duration - u;
+    }
+    }
+    return 0.0;
+}
+
+bool ClipPlayer::bind(const ActorDefinition& definition)
+{
+    const unsigned numChannels = _clip->getNumChannels();
+    _channelDof.assign(numChannels, -1);
+    for (unsigned c = 0; c < numChannels; ++c) _channelDof[c] = definition.findDof(_clip->getChannel(c).target);
+    _clip->initCursor(_cursor);
+    _sample.assign(numChannels, 0.0);
+    _scratchDofs = definition.getDefaultDofs();
+    bindRootMotion(definition);
+    return true;
+}
+
+void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
+{
+    _rootJoint = -1;
+    if (_rootMotion == RootMotion::InSkeleton) return;
+    if (!_rootJointName.empty()) _rootJoint = definition.findJoint(_rootJointName);
+    else
+        for (unsigned j = 0; j < definition.getNumJoints() && _rootJoint < 0; ++j)
+            if (definition.getDofMask(j) & kTranslationDofs) _rootJoint = static_cast<int>(j);
+    if (_rootJoint < 0) return;
+    const unsigned root = static_cast<unsigned>(_rootJoint);
+    for (unsigned axis = 0; axis < 3; ++axis)
+    {
+        const int dof = definition.getDofIndex(root, static_cast<Dof>(3 + axis));
+        _rootChannel[axis] = dof >= 0 ? _clip->findChannel(definition.getDofName(static_cast<unsigned>(dof))) : -1;
+    }
+
+    // The heading is measured on the root-local axis that lies flattest at clip time 0 (so its ground projection
+    // is well defined), relative to its direction then.
+    _clip->sample(0.0, _cursor, _sample.data());
+    for (unsigned c = 0; c < _sample.size(); ++c)
+        if (_channelDof[c] >= 0) _scratchDofs[static_cast<unsigned>(_channelDof[c])] = _sample[c];
+    const glm::dmat3 rotation0(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data()));
+    double flattest = 2.0;
+    for (unsigned axis = 0; axis < 3; ++axis)
+        if (std::abs(rotation0[axis].z) < flattest)
+        {
+            flattest = std::abs(rotation0[axis].z);
+            _forwardAxis = glm::dvec3(0.0);
+            _forwardAxis[axis] = 1.0;
+        }
+    const glm::dvec3 forward0 = rotation0 * _forwardAxis;
+    _heading0 = std::atan2(forward0.y, forward0.x);
+    glm::dvec3 start, end;
+    double heading;
+    rootTravelFromSample(definition, start, heading); // heading is 0 here by construction
+
+    // One loop cycle moves the reference point from the start's ground point to the end's, turning it by the
+    // heading gained: delta = (g_end, Rz(h_end)) * (-g_0, identity).
+    _clip->sample(_clip->getDuration(), _cursor, _sample.data());
+    rootTravelFromSample(definition, end, heading);
+    _cycleRotation = headingRotation(heading);
+    _cycleTranslation = glm::dvec3(end.x, end.y, 0.0) - _cycleRotation * glm::dvec3(start.x, start.y, 0.0);
+    _haveBase = false;
+}
+
+void ClipPlayer::rootTravelFromSample(const ActorDefinition& definition, glm::dvec3& displacement, double& heading)
+{
+    const unsigned root = static_cast<unsigned>(_rootJoint);
+    glm::dvec3 p(0.0);
+    for (unsigned axis = 0; axis < 3; ++axis)
+        if (_rootChannel[axis] >= 0) p[axis] = _sample[static_cast<unsigned>(_rootChannel[axis])];
+    // The root's translation DOFs act before its rotation, in its offset frame: L = offset * T(p) * R.
+    displacement = definition.getOffsetRotation(root) * p;
+    for (unsigned c = 0; c < _sample.size(); ++c)
+        if (_channelDof[c] >= 0) _scratchDofs[static_cast<unsigned>(_channelDof[c])] = _sample[c];
+    const glm::dvec3 forward =
+        glm::dmat3(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data())) * _forwardAxis;
+    heading = std::atan2(forward.y, forward.x) - _heading0;
+}
+
+void ClipPlayer::applyRootMotion(const ActorDefinition& definition, ControllerTarget& target)
+{
+    glm::dvec3 displacement;
+    double heading;
+    rootTravelFromSample(definition, displacement, heading);
+    const unsigned root = static_cast<unsigned>(_rootJoint);
+    for (unsigned axis = 0; axis < 3; ++axis)
+    {
+        const int dof = definition.getDofIndex(root, static_cast<Dof>(3 + axis));
+        if (dof >= 0 && _rootChannel[axis] >= 0) writeDof(target.pose, static_cast<unsigned>(dof), 0.0, _fade);
+    }
+    const glm::dvec3 ground(displacement.x, displacement.y, 0.0); // model space, over the ground (Z-up)
+    const glm::dvec3 bob(0.0, 0.0, displacement.z);
+    ActorTransforms& transforms = target.transforms;
+    if (_rootMotion == RootMotion::InPlace)
+    {
+        transforms.postTranslation = bob;
+        transforms.postRotation = glm::dquat(1.0, 0.0, 0.0, 0.0);
+    }
+    else
+    {
+        const double duration = _clip->getDuration();
+        const double cycle = _mode == PlayMode::Loop && duration > 0.0 ? std::floor(_playTime / duration) : 0.0;
+        if (!_haveBase)
+        {
+            _baseTranslation = transforms.preTranslation;
+            _baseRotation = transforms.preRotation;
+            _cycle = cycle;
+            _haveBase = true;
+        }
+        for (; _cycle < cycle; _cycle += 1.0)
+        {
+            _baseTranslation += _baseRotation * _cycleTranslation;
+            _baseRotation = _baseRotation * _cycleRotation;
+        }
+        for (; _cycle > cycle; _cycle -= 1.0)
+        {
+            _baseRotation = _baseRotation * glm::conjugate(_cycleRotation);
+            _baseTranslation -= _baseRotation * _cycleTranslation;
+        }
+        const glm::dquat turn = headingRotation(heading);
+        // pre * post = base * T(ground) * Rz(h) * T(bob) * Rz(-h) = base * T(ground + bob): the world pose is
+        // the one the skeleton had with its translation DOFs.
+        transforms.preTranslation = _baseTranslation + _baseRotation * ground;
+        transforms.preRotation = _baseRotation * turn;
+        transforms.postTranslation = bob;
+        transforms.postRotation = glm::conjugate(turn);
+    }
+    target.transformsChanged = true;
+}
+
+void ClipPlayer::update(const ControllerContext& context, ControllerTarget& target)
+{
+    const ActorDefinitionPtr& definition = target.pose.getDefinition();
+    if (!_clip || !definition) return;
+    if (_boundTo != definition)
+    {
+        bind(*definition);
+        _boundTo = definition;
+    }
+    if (_playing) _playTime += context.deltaTime * _speed;
+    double fadeTime = context.deltaTime;
+    if (_fadeDelay > 0.0)
+    {
+        const double waited = std::min(fadeTime, _fadeDelay);
+        _fadeDelay -= waited;
+        fadeTime -= waited;
+    }
+    if (_fadeRate != 0.0 && fadeTime > 0.0)
+    {
+        _fade += _fadeRate * fadeTime;
+        if ((_fadeRate > 0.0 && _fade >= _fadeTarget) || (_fadeRate < 0.0 && _fade <= _fadeTarget))
+        {
+            _fade = _fadeTarget;
+            _fadeRate = 0.0;
+        }
+    }
+    if (_fade <= 0.0) return;
+    _clip->sample(clipTimeAt(_playTime), _cursor, _sample.data());
+    for (unsigned c = 0; c < _sample.size(); ++c)
+        if (_channelDof[c] >= 0) writeDof(target.pose, static_cast<unsigned>(_channelDof[c]), _sample[c], _fade);
+    if (_rootJoint >= 0) applyRootMotion(*definition, target);
+}
+
+void crossFade(ClipPlayer& from, ClipPlayer& to, double seconds)
+{
+    from.fadeTo(0.0, 0.0, std::max(0.0, seconds));
+    to.setFadeWeight(0.0);
+    to.fadeIn(seconds);
+    to.play();
+}
+
+} // namespace osgActor

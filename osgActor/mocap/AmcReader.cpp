@@ -1,0 +1,134 @@
+#include <osgActor/mocap/AmcReader>
+#include <osgActor/mocap/TextLines>
+
+#include <osgActor/core/ClipBuilder>
+
+#include <glm/ext/scalar_constants.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <unordered_map>
+
+namespace osgActor {
+
+MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImport& skeleton)
+{
+    MocapImport result;
+    if (!skeleton.definition)
+    {
+        result.error = fileName + ": the ASF skeleton was not read";
+        return result;
+    }
+    const ActorDefinition& def = *skeleton.definition;
+    std::unordered_map<std::string, const AsfAmcLayout*> layouts;
+    for (const AsfAmcLayout& layout : skeleton.layouts) layouts.emplace(layout.bone, &layout);
+
+    TextLines text(in, fileName);
+    auto failed = [&](const std::string& message) {
+        MocapImport error;
+        error.error = text.where() + message;
+        return error;
+    };
+    const unsigned numDofs = def.getNumDofs();
+    bool degrees = skeleton.degrees;
+    std::vector<double> values;    // frame-major, numDofs per frame
+    std::vector<double> rootTranslation(3, 0.0);
+    unsigned long numFrames = 0;
+    unsigned linesInFrame = 0;
+    unsigned long incompleteFrames = 0;
+    auto endFrame = [&]() {
+        if (numFrames > 0 && linesInFrame < skeleton.layouts.size()) ++incompleteFrames;
+    };
+    while (text.nextLine())
+    {
+        const std::vector<std::string_view>& t = text.tokens();
+        if (t.empty() || t[0].front() == '#') continue;
+        if (t[0].front() == ':')
+        {
+            if (sameWord(t[0], ":DEGREES")) degrees = true;
+            else if (sameWord(t[0], ":RADIANS")) degrees = false;
+            continue; // :FULLY-SPECIFIED and others
+        }
+        unsigned long frameNumber;
+        if (t.size() == 1 && parseCount(t[0], frameNumber))
+        {
+            endFrame();
+            // A new frame starts from the previous one, so a bone left out keeps its values.
+            if (numFrames == 0) values.assign(def.getDefaultDofs().begin(), def.getDefaultDofs().end());
+            else
+            {
+                values.resize(values.size() + numDofs);
+                std::copy(values.end() - 2 * numDofs, values.end() - numDofs, values.end() - numDofs);
+            }
+            ++numFrames;
+            linesInFrame = 0;
+            continue;
+        }
+        if (numFrames == 0) return failed("'" + std::string(t[0]) + "' comes before the first frame number");
+        const auto found = layouts.find(std::string(t[0]));
+        if (found == layouts.end())
+            return failed("unknown bone '" + std::string(t[0]) + "' (not a bone with dofs in the ASF skeleton)");
+        const AsfAmcLayout& layout = *found->second;
+        if (t.size() - 1 != layout.dofs.size())
+            return failed("bone '" + layout.bone + "' has " + std::to_string(t.size() - 1) + " values; its dof list has " +
+                          std::to_string(layout.dofs.size()));
+        double* row = values.data() + (numFrames - 1) * numDofs;
+        const double angle = degrees ? glm::pi<double>() / 180.0 : 1.0;
+        bool hasTranslation = false;
+        for (std::size_t i = 0; i < layout.dofs.size(); ++i)
+        {
+            double value;
+            if (!parseNumber(t[i + 1], value))
+                return failed("value " + std::to_string(i + 1) + " of bone '" + layout.bone + "' ('" +
+                              std::string(t[i + 1]) + "') is not a finite number");
+            if (layout.angular[i]) row[layout.dofs[i]] = value * angle;
+            else
+            {
+                rootTranslation[static_cast<unsigned>(layout.translationAxis[i])] = value;
+                hasTranslation = true;
+            }
+        }
+        if (hasTranslation)
+        {
+            // Root translations act in the root's axis frame and model units.
+            const glm::dvec3 mapped =
+                skeleton.rootTranslationMap * glm::dvec3(rootTranslation[0], rootTranslation[1], rootTranslation[2]);
+            for (std::size_t i = 0; i < layout.dofs.size(); ++i)
+                if (!layout.angular[i]) row[layout.dofs[i]] = mapped[layout.translationAxis[i]];
+        }
+        ++linesInFrame;
+    }
+    endFrame();
+    if (numFrames == 0) return failed("the file holds no frame");
+    if (incompleteFrames > 0)
+        result.warnings.push_back(fileName + ": " + std::to_string(incompleteFrames) +
+                                  " frames leave out some bones; those keep their previous values");
+    result.definition = skeleton.definition;
+    if (numDofs == 0) return result;
+    ClipBuilder clip(baseNameOf(fileName));
+    for (unsigned d = 0; d < numDofs; ++d) clip.addChannel(def.getDofName(d), skeleton.options.interpolation);
+    clip.setFrames(skeleton.options.frameRate, std::move(values));
+    const ClipBuildResult built = clip.build();
+    if (!built)
+    {
+        MocapImport error;
+        error.error = fileName + ": " + built.error;
+        return error;
+    }
+    result.clip = built.clip;
+    return result;
+}
+
+MocapImport readAmcFile(const std::string& path, const AsfImport& skeleton)
+{
+    std::ifstream in(path, std::ios::binary);
+    if (!in)
+    {
+        MocapImport failed;
+        failed.error = path + ": cannot open the file";
+        return failed;
+    }
+    return readAmc(in, path, skeleton);
+}
+
+} // namespace osgActor

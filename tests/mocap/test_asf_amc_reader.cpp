@@ -1,0 +1,226 @@
+#include "MocapTestUtil"
+#include "ReferenceMocap"
+
+#include <TestMath>
+
+#include <osgActor/mocap/AmcReader>
+#include <osgActor/mocap/AsfReader>
+
+#include <gtest/gtest.h>
+
+#include <glm/ext/scalar_constants.hpp>
+
+#include <algorithm>
+#include <sstream>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+const char* const kSmallAsf = ":version 1.10\n:name small\n:units\n  mass 1.0\n  length 0.45\n  angle deg\n"
+                              ":root\n   order TX TY TZ RX RY RZ\n   axis XYZ\n   position 0 0 0\n   orientation 0 0 0\n"
+                              ":bonedata\n  begin\n     id 1\n     name femur\n     direction 0 -1 0\n     length 2\n"
+                              "     axis 0 0 90  XYZ\n    dof rx rz\n    limits (-160.0 20.0)\n           (-70.0 70.0)\n  end\n"
+                              "  begin\n     id 2\n     name tibia\n     direction 0 -1 0\n     length 3\n"
+                              "     axis 0 0 0 XYZ\n    dof rx\n    limits (10.0 170.0)\n  end\n"
+                              ":hierarchy\n  begin\n    root femur\n    femur tibia\n  end\n";
+
+AsfImport readAsfText(const std::string& text, AsfImportOptions options = AsfImportOptions())
+{
+    std::istringstream in(text);
+    return readAsf(in, "inline.asf", options);
+}
+
+AsfImportOptions fileFrame()
+{
+    AsfImportOptions options;
+    options.convertToZUp = false;
+    options.applyLimits = false;
+    return options;
+}
+
+void expectAsfError(const std::string& text, const std::string& fileLine, const std::string& what)
+{
+    const AsfImport result = readAsfText(text);
+    EXPECT_FALSE(result);
+    EXPECT_EQ(result.definition, nullptr);
+    EXPECT_EQ(result.error.rfind(fileLine, 0), 0u) << result.error;
+    EXPECT_NE(result.error.find(what), std::string::npos) << result.error;
+}
+
+void expectAmcError(const std::string& text, const std::string& fileLine, const std::string& what)
+{
+    const AsfImport skeleton = readAsfText(kSmallAsf, fileFrame());
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    std::istringstream in(text);
+    const MocapImport result = readAmc(in, "inline.amc", skeleton);
+    EXPECT_FALSE(result);
+    EXPECT_EQ(result.clip, nullptr);
+    EXPECT_EQ(result.error.rfind(fileLine, 0), 0u) << result.error;
+    EXPECT_NE(result.error.find(what), std::string::npos) << result.error;
+}
+
+/** Our import of a real pair against the reference computation, at several frames, to 1e-6 of its size. */
+void expectMatchesReference(const std::string& asfPath, const std::string& amcPath)
+{
+    SCOPED_TRACE(amcPath);
+    const AsfImport skeleton = readAsfFile(asfPath, fileFrame());
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    const MocapImport motion = readAmcFile(amcPath, skeleton);
+    ASSERT_TRUE(motion) << motion.error;
+    EXPECT_TRUE(motion.warnings.empty());
+    const reference::Asf asf = reference::readAsf(asfPath);
+    const std::vector<reference::AmcFrame> frames = reference::readAmc(amcPath);
+    ASSERT_EQ(motion.clip->getNumFrames(), frames.size());
+    EXPECT_DOUBLE_EQ(motion.clip->getFrameRate(), 120.0);
+
+    ActorPose pose(motion.definition);
+    const unsigned last = motion.clip->getNumFrames() - 1;
+    std::vector<glm::dvec3> rest;
+    for (const auto& entry : reference::asfPositions(asf, frames[0])) rest.push_back(entry.second);
+    const double size = extent(rest);
+    ASSERT_GT(size, 0.0);
+    for (unsigned frame : {0u, 1u, last / 3, last / 2, last})
+    {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        const std::map<std::string, glm::dvec3> expected = reference::asfPositions(asf, frames[frame]);
+        const std::vector<glm::dvec3> actual = posedOrigins(pose, *motion.clip, frame);
+        ASSERT_EQ(expected.size(), actual.size());
+        for (const auto& entry : expected)
+        {
+            const int joint = motion.definition->findJoint(entry.first);
+            ASSERT_GE(joint, 0) << entry.first;
+            EXPECT_TRUE(vectorsNear(actual[static_cast<unsigned>(joint)], entry.second, 1e-6 * size)) << entry.first;
+        }
+    }
+}
+
+} // namespace
+
+// --- invalid input first ---
+
+TEST(AsfReader, RefusesAMissingFileAndMissingSections)
+{
+    EXPECT_NE(readAsfFile("/nonexistent/a.asf").error.find("/nonexistent/a.asf: cannot open"), std::string::npos);
+    expectAsfError(":version 1.10\n:hierarchy\nbegin\nend\n", "inline.asf:4: ", "no :root");
+    expectAsfError(":root\n order TX TY TZ RX RY RZ\n axis XYZ\n", "inline.asf:3: ", "no :hierarchy");
+}
+
+TEST(AsfReader, RefusesBrokenBones)
+{
+    std::string text = kSmallAsf;
+    expectAsfError(std::string(text).replace(text.find("length 2"), 8, "length -2"), "inline.asf:17: ",
+                   "length of 'femur'");
+    expectAsfError(std::string(text).replace(text.find("dof rx rz"), 9, "dof rx rw"), "inline.asf:19: ",
+                   "dof 'rw' of 'femur'");
+    expectAsfError(std::string(text).replace(text.find("axis 0 0 90  XYZ"), 16, "axis 0 nan 90 XYZ"),
+                   "inline.asf:18: ", "'nan'");
+    expectAsfError(std::string(text).replace(text.find("femur tibia"), 11, "femur fibula"), "inline.asf:35: ",
+                   "unknown bone 'fibula'");
+    expectAsfError(std::string(text).replace(text.find("(-70.0 70.0)"), 12, "(70.0 -70.0)"), "inline.asf:21: ",
+                   "minimum above its maximum");
+    expectAsfError(std::string(kSmallAsf, text.find("  end\n  begin")), "inline.asf:21: ", "missing 'end'");
+}
+
+TEST(AmcReader, RefusesUnknownBonesWrongCountsAndNonNumbers)
+{
+    expectAmcError(":FULLY-SPECIFIED\n:DEGREES\n1\nroot 0 0 0 0 0 0\nfibula 1\n", "inline.amc:5: ",
+                   "unknown bone 'fibula'");
+    expectAmcError("1\nroot 0 0 0 0 0 0\nfemur 1\n", "inline.amc:3: ", "bone 'femur' has 1 values; its dof list has 2");
+    expectAmcError("1\nroot 0 0 0 0 0 0\nfemur 1 nan\n", "inline.amc:3: ", "'nan'");
+    expectAmcError("root 0 0 0 0 0 0\n", "inline.amc:1: ", "before the first frame number");
+    expectAmcError(":DEGREES\n", "inline.amc:1: ", "no frame");
+}
+
+// --- the mapping ---
+
+TEST(AsfReader, MapsBonesAxesDofsAndLimitsOntoJoints)
+{
+    const AsfImport skeleton = readAsfText(kSmallAsf);
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    const ActorDefinition& def = *skeleton.definition;
+    EXPECT_DOUBLE_EQ(skeleton.lengthUnit, 0.45);
+    ASSERT_EQ(def.getNumJoints(), 3u);
+    EXPECT_EQ(def.getJointName(0), "root");
+    EXPECT_EQ(def.getDofMask(0), kRotationDofs | kTranslationDofs);
+    EXPECT_EQ(def.getEulerOrder(0), EulerOrder::ZYX) << "RX RY RZ, first applied first, is Rz * Ry * Rx";
+    const unsigned femur = static_cast<unsigned>(def.findJoint("femur"));
+    EXPECT_EQ(def.getDofMask(femur), Dof::RX | Dof::RZ);
+    // rx rz, first applied first, is Rz * Rx: any order with Z left of X (the Y rotation is inactive).
+    unsigned axes[3];
+    eulerOrderAxes(def.getEulerOrder(femur), axes);
+    const auto at = [&](unsigned axis) { return std::find(axes, axes + 3, axis) - axes; };
+    EXPECT_LT(at(2), at(0));
+    const double deg = glm::pi<double>() / 180.0;
+    const int femurRz = def.getDofIndex(femur, Dof::RZ);
+    EXPECT_DOUBLE_EQ(def.getDofMin(static_cast<unsigned>(femurRz)), -70 * deg);
+    EXPECT_DOUBLE_EQ(def.getDofMax(static_cast<unsigned>(femurRz)), 70 * deg);
+    // tibia's limits (10, 170) exclude 0: its rest value is the nearest limit.
+    const int tibiaRx = def.findDof("tibia.rx");
+    EXPECT_DOUBLE_EQ(def.getDofDefault(static_cast<unsigned>(tibiaRx)), 10 * deg);
+    // tibia starts at the femur's end: 2 along the femur's direction, in the femur's axis frame (C = Rz(90)).
+    const unsigned tibia = static_cast<unsigned>(def.findJoint("tibia"));
+    EXPECT_TRUE(vectorsNear(def.getOffsetTranslation(tibia), glm::dvec3(-2, 0, 0), 1e-12));
+}
+
+TEST(AmcReader, AppliesTheDofOrderUnitsAndHeldValues)
+{
+    const AsfImport skeleton = readAsfText(kSmallAsf, fileFrame());
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    // Frame 2 leaves out the tibia: it keeps frame 1's value (with a warning).
+    std::istringstream in("#!OML:ASF small.asf\n:FULLY-SPECIFIED\n:RADIANS\n1\nroot 1 2 3 0 0 0\nfemur 0.5 0.25\n"
+                          "tibia 1.5\n2\nroot 0 0 0 0 0 0\nfemur 0 0\n");
+    const MocapImport motion = readAmc(in, "inline.amc", skeleton);
+    ASSERT_TRUE(motion) << motion.error;
+    ASSERT_EQ(motion.clip->getNumFrames(), 2u);
+    EXPECT_EQ(motion.warnings.size(), 1u);
+    const ActorDefinition& def = *motion.definition;
+    const double* f0 = motion.clip->getFrame(0);
+    EXPECT_DOUBLE_EQ(f0[def.findDof("root.ty")], 2.0);
+    EXPECT_DOUBLE_EQ(f0[def.findDof("femur.rx")], 0.5);
+    EXPECT_DOUBLE_EQ(f0[def.findDof("femur.rz")], 0.25);
+    EXPECT_DOUBLE_EQ(motion.clip->getFrame(1)[def.findDof("tibia.rx")], 1.5);
+}
+
+TEST(AsfReader, ScalesAndTurnsYUpIntoZUp)
+{
+    AsfImportOptions options;
+    options.scale = 0.5;
+    options.applyLimits = false;
+    const AsfImport skeleton = readAsfText(kSmallAsf, options);
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    std::istringstream in("1\nroot 1 2 3 0 0 0\nfemur 0 0\ntibia 0\n");
+    const MocapImport motion = readAmc(in, "inline.amc", skeleton);
+    ASSERT_TRUE(motion) << motion.error;
+    ActorPose pose(motion.definition);
+    const std::vector<glm::dvec3> origins = posedOrigins(pose, *motion.clip, 0);
+    // File frame: root (1,2,3); the femur points down 2, so the tibia starts at (1,0,3). Scaled, Z-up.
+    EXPECT_TRUE(vectorsNear(origins[0], glm::dvec3(0.5, -1.5, 1.0), 1e-12));
+    EXPECT_TRUE(vectorsNear(origins[2], glm::dvec3(0.5, -1.5, 0.0), 1e-12));
+}
+
+// --- real files against the reference computation ---
+
+TEST(AsfAmc, MatchesTheReferenceOnCmuSubject11)
+{
+    expectMatchesReference(sharedMocap("asfamc/11.asf"), sharedMocap("asfamc/11_01.amc"));
+}
+
+TEST(AsfAmc, MatchesTheReferenceOnCharleston)
+{
+    expectMatchesReference(sharedMocap("asfamc/charleston.asf"), sharedMocap("asfamc/charleston1.amc"));
+}
+
+TEST(AsfAmc, ReadsSeveralMotionsAgainstOneSkeleton)
+{
+    const AsfImport skeleton = readAsfFile(sharedMocap("asfamc/11.asf"), fileFrame());
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    const MocapImport first = readAmcFile(sharedMocap("asfamc/11_01.amc"), skeleton);
+    std::istringstream in("1\nroot 0 0 0 0 0 0\n");
+    const MocapImport second = readAmc(in, "still.amc", skeleton);
+    ASSERT_TRUE(first) << first.error;
+    ASSERT_TRUE(second) << second.error;
+    EXPECT_EQ(first.definition, second.definition) << "one shared definition";
+    EXPECT_EQ(second.clip->getName(), "still");
+}

@@ -1,0 +1,192 @@
+#include "MocapTestUtil"
+#include "ReferenceMocap"
+#include "../nodes/NodeTestUtil"
+
+#include <osgActor/MocapActor>
+#include <osgActor/StickFigure>
+#include <osgActor/mocap/AsfReader>
+
+#include <osg/Geode>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+/** Y-up file coordinates as the actor shows them in OSG's Z-up frame. */
+osg::Vec3d zUp(const glm::dvec3& p) { return osg::Vec3d(p.x, -p.z, p.y); }
+
+double distance(const osg::Vec3d& a, const osg::Vec3d& b) { return (a - b).length(); }
+
+} // namespace
+
+TEST(MocapActor, RefusesMissingAndUnknownFilesAndAnAsfWithoutMotion)
+{
+    std::string error;
+    EXPECT_FALSE(readMocapActor("/nonexistent/walk.bvh", MocapActorOptions(), error).valid());
+    EXPECT_NE(error.find("/nonexistent/walk.bvh: cannot open"), std::string::npos) << error;
+    EXPECT_FALSE(readMocapActor("walk.fbx", MocapActorOptions(), error).valid());
+    EXPECT_NE(error.find("expected .bvh or .asf"), std::string::npos) << error;
+
+    const std::filesystem::path folder = std::filesystem::path(OSGACTOR_TEST_BINARY_DIR) / "lonely";
+    std::filesystem::create_directories(folder);
+    std::ofstream(folder / "stick.asf") << ":root\n order TX TY TZ RX RY RZ\n axis XYZ\n:bonedata\n:hierarchy\n begin\n end\n";
+    EXPECT_FALSE(readMocapActor((folder / "stick.asf").string(), MocapActorOptions(), error).valid());
+    EXPECT_NE(error.find("no AMC motion given and none found beside it"), std::string::npos) << error;
+
+    std::ofstream(folder / "broken.bvh") << "HIERARCHY\nROOT hips\n{\n  OFFSET 0 0\n}\n";
+    EXPECT_FALSE(readMocapActor((folder / "broken.bvh").string(), MocapActorOptions(), error).valid());
+    EXPECT_NE(error.find("broken.bvh:5: "), std::string::npos) << error;
+}
+
+TEST(MocapActor, FindsTheAmcBesideAnAsf)
+{
+    EXPECT_EQ(findAmcBeside(sharedMocap("asfamc/11.asf")), sharedMocap("asfamc/11_01.amc"));
+    EXPECT_EQ(findAmcBeside(sharedMocap("asfamc/charleston.asf")), sharedMocap("asfamc/charleston1.amc"));
+}
+
+TEST(MocapActor, PlaysABvhFileFromTheFrameStamp)
+{
+    const std::string path = sharedMocap("bvh/12_03.bvh");
+    std::string error;
+    osg::ref_ptr<ActorNode> actor = readMocapActor(path, MocapActorOptions(), error);
+    ASSERT_TRUE(actor.valid()) << error;
+    ASSERT_TRUE(actor->findController("mocap"));
+    ASSERT_TRUE(actor->getClipLibrary());
+    EXPECT_TRUE(actor->getClipLibrary()->getClip("12_03"));
+
+    const reference::Bvh bvh = reference::readBvh(path);
+    const double size = extent(reference::bvhPositions(bvh, 0));
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    // runUpdate gives frame n the simulation time n / 60 s: clip frame 2n of this 120 Hz file.
+    for (unsigned n : {0u, 1u, 2u, 7u})
+    {
+        runUpdate(*root, n);
+        const std::vector<glm::dvec3> expected = reference::bvhPositions(bvh, 2 * n);
+        for (std::size_t j = 0; j < bvh.joints.size(); ++j)
+        {
+            const std::string name = bvh.joints[j].endSite ? bvh.joints[bvh.joints[j].parent].name + "_end"
+                                                           : bvh.joints[j].name;
+            const int joint = actor->getJointIndex(name);
+            ASSERT_GE(joint, 0) << name;
+            EXPECT_LT(distance(actor->getJointWorldPosition(static_cast<unsigned>(joint)), zUp(expected[j])), 1e-6 * size)
+                << name << " at frame " << 2 * n;
+        }
+    }
+}
+
+TEST(MocapActor, PlaysAnAsfAmcPairFoundBesideEachOther)
+{
+    const std::string asfPath = sharedMocap("asfamc/11.asf");
+    std::string error;
+    osg::ref_ptr<ActorNode> actor = readMocapActor(asfPath, MocapActorOptions(), error);
+    ASSERT_TRUE(actor.valid()) << error;
+    const reference::Asf asf = reference::readAsf(asfPath);
+    const std::vector<reference::AmcFrame> frames = reference::readAmc(sharedMocap("asfamc/11_01.amc"));
+    std::vector<glm::dvec3> rest;
+    for (const auto& entry : reference::asfPositions(asf, frames[0])) rest.push_back(entry.second);
+    const double size = extent(rest);
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    for (unsigned n : {0u, 3u})
+    {
+        runUpdate(*root, n);
+        for (const auto& entry : reference::asfPositions(asf, frames[2 * n]))
+        {
+            const int joint = actor->getJointIndex(entry.first);
+            ASSERT_GE(joint, 0) << entry.first;
+            EXPECT_LT(distance(actor->getJointWorldPosition(static_cast<unsigned>(joint)), zUp(entry.second)), 1e-6 * size)
+                << entry.first;
+        }
+    }
+}
+
+TEST(StickFigure, HangsABallOnEveryJointAndBonesOnParents)
+{
+    std::string error;
+    osg::ref_ptr<ActorNode> actor = readMocapActor(sharedMocap("bvh/12_03.bvh"), MocapActorOptions(), error);
+    ASSERT_TRUE(actor.valid()) << error;
+    const osg::Node* ball = nullptr;
+    for (unsigned j = 0; j < actor->getNumSkeletonNodes(); ++j)
+    {
+        const SkeletonNode* node = actor->getSkeletonNode(j);
+        const osg::Geode* first = nullptr;
+        unsigned bones = 0;
+        for (unsigned c = 0; c < node->getNumChildren(); ++c)
+        {
+            const osg::Geode* geode = dynamic_cast<const osg::Geode*>(node->getChild(c));
+            if (!geode) continue;
+            if (geode->getName() == "joint ball") first = geode;
+            if (geode->getName() == "bones") ++bones;
+        }
+        ASSERT_NE(first, nullptr) << node->getName();
+        if (ball)
+        {
+            EXPECT_EQ(first, ball) << "one ball shared by every joint";
+        }
+        ball = first;
+        const bool hasChildJoints = node->getNumChildren() > 1u + bones;
+        EXPECT_EQ(bones, hasChildJoints ? 1u : 0u) << node->getName();
+    }
+    EXPECT_TRUE(actor->getBound().valid());
+}
+
+TEST(MocapActor, ClonesShareTheClipLibraryButPlayOnTheirOwn)
+{
+    std::string error;
+    osg::ref_ptr<ActorNode> actor = readMocapActor(sharedMocap("bvh/12_03.bvh"), MocapActorOptions(), error);
+    ASSERT_TRUE(actor.valid()) << error;
+    osg::ref_ptr<ActorNode> twin = osg::clone(actor.get(), osg::CopyOp::SHALLOW_COPY);
+    EXPECT_EQ(twin->getClipLibrary(), actor->getClipLibrary());
+    auto twinPlayer = std::dynamic_pointer_cast<ClipPlayer>(twin->findController("mocap"));
+    ASSERT_TRUE(twinPlayer);
+    EXPECT_NE(twinPlayer, actor->findController("mocap"));
+    twinPlayer->pause();
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    root->addChild(twin.get());
+    runUpdate(*root, 0);
+    runUpdate(*root, 30);
+    const unsigned hand = static_cast<unsigned>(actor->getJointIndex("LeftHand"));
+    EXPECT_GT(distance(actor->getJointWorldPosition(hand), twin->getJointWorldPosition(hand)), 1e-3)
+        << "the paused twin stayed behind";
+}
+
+TEST(MocapOptionString, RefusesBadValuesOfKnownWords)
+{
+    MocapActorOptions options;
+    std::string error;
+    EXPECT_FALSE(parseMocapOptionString("scale=abc", options, error));
+    EXPECT_NE(error.find("scale needs a positive number"), std::string::npos) << error;
+    EXPECT_FALSE(parseMocapOptionString("fps=-3", options, error));
+    EXPECT_FALSE(parseMocapOptionString("up=X", options, error));
+    EXPECT_NE(error.find("up must be Y or Z"), std::string::npos) << error;
+    EXPECT_FALSE(parseMocapOptionString("mode=forever", options, error));
+    EXPECT_FALSE(parseMocapOptionString("rootMotion=sideways", options, error));
+}
+
+TEST(MocapOptionString, ReadsEveryOptionAndLeavesOtherWordsAlone)
+{
+    MocapActorOptions options;
+    std::string error;
+    ASSERT_TRUE(parseMocapOptionString("amc=11_01.amc scale=0.5 up=Z fps=60 dropFirstFrame absoluteRoot limits "
+                                       "mode=pingpong rootMotion=inplace noFigure noRotation",
+                                       options, error))
+        << error;
+    EXPECT_EQ(options.amcFile, "11_01.amc");
+    EXPECT_DOUBLE_EQ(options.scale, 0.5);
+    EXPECT_EQ(options.fileUpAxis, UpAxis::Z);
+    EXPECT_DOUBLE_EQ(options.amcFrameRate, 60.0);
+    EXPECT_TRUE(options.dropFirstFrame);
+    EXPECT_TRUE(options.absoluteRootPosition);
+    EXPECT_TRUE(options.applyAsfLimits);
+    EXPECT_EQ(options.playMode, PlayMode::PingPong);
+    EXPECT_EQ(options.rootMotion, RootMotion::InPlace);
+    EXPECT_FALSE(options.addFigure);
+}

@@ -1,0 +1,57 @@
+#include "../nodes/NodeTestUtil"
+
+#include <osgActor/core/ClipBuilder>
+#include <osgActor/core/Trajectory>
+#include <osgActor/mocap/TrajectoryCsv>
+
+#include <gtest/gtest.h>
+
+#include <glm/ext/scalar_constants.hpp>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+/** A cockroach: a body and one leg 1 along X that swings about Z. */
+ActorDefinitionPtr makeCockroach()
+{
+    ActorDefinitionBuilder b("cockroach");
+    b.addJoint("body");
+    b.addJoint("leg", "body").dofs(dofBit(Dof::RZ));
+    b.addJoint("foot", "leg").offset(1, 0, 0);
+    return b.build().definition;
+}
+
+} // namespace
+
+TEST(ActorMotion, ATrajectoryMovesTheBodyWhileAClipMovesTheLegs)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makeCockroach());
+    ClipBuilder gait("gait");
+    const unsigned leg = gait.addChannel("leg.rz");
+    gait.addKey(leg, 0.0, 0.0);
+    gait.addKey(leg, 1.0, glm::pi<double>() / 2);
+    ClipLibraryPtr library = std::make_shared<ClipLibrary>();
+    ASSERT_TRUE(library->addClip(gait.build().clip));
+    actor->setClipLibrary(library);
+
+    auto legs = std::make_shared<ClipPlayer>(actor->getClipLibrary()->getClip("gait"));
+    legs->setPlayMode(PlayMode::Once);
+    const TrajectoryPtr path =
+        readTrajectoryCsvFile(std::string(OSGACTOR_TEST_SOURCE_DIR) + "/motion/data/cockroach.csv").trajectory;
+    ASSERT_TRUE(path);
+    actor->addController(std::make_shared<TrajectoryPlayer>(path));
+    actor->addController(legs);
+
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    runUpdate(*root, 0);  // t = 0
+    runUpdate(*root, 30); // t = 0.5 s: body at (1, 0, 0) facing +X, leg turned 45 degrees
+    EXPECT_LT((actor->getPreTranslation() - osg::Vec3d(1, 0, 0)).length(), 1e-12);
+    const double half = std::sqrt(0.5);
+    EXPECT_LT((actor->getJointWorldPosition(2) - osg::Vec3d(1 + half, half, 0)).length(), 1e-12);
+    runUpdate(*root, 120); // t = 2 s: body at (2, 2, 0) facing +Y, leg at 90 degrees: the foot points to -X
+    EXPECT_LT((actor->getJointWorldPosition(2) - osg::Vec3d(1, 2, 0)).length(), 1e-12);
+    EXPECT_LT((actor->getMatrix().getTrans() - osg::Vec3d(2, 2, 0)).length(), 1e-12) << "written to the node";
+}
