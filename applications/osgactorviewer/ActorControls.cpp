@@ -1,4 +1,5 @@
 #include "ActorControls.h"
+#include "ClipControls.h"
 
 #include <osg/Math>
 
@@ -21,6 +22,7 @@ struct KeyHelp
 const KeyHelp kKeys[] = {
     {"p", "play/pause"},
     {"< >", "speed"},
+    {"n N", "next/previous clip"},
     {"Left Right", "scrub (pauses)"},
     {"a", "next actor"},
     {"j J", "next/previous joint"},
@@ -110,6 +112,10 @@ bool ActorControls::handleKey(int key)
     case '<': _clock.setSpeed(_clock.getSpeed() * 0.5); return true;
     case osgGA::GUIEventAdapter::KEY_Right: _clock.scrub(+1); return true;
     case osgGA::GUIEventAdapter::KEY_Left: _clock.scrub(-1); return true;
+    case 'n':
+    case 'N':
+        if (osgActor::ActorNode* actor = getSelectedActor()) _message = switchClip(*actor, key == 'n' ? +1 : -1);
+        return true;
     case 'a': selectActor(_actors.empty() ? 0 : (_actor + 1) % unsigned(_actors.size())); return true;
     case 'j': selectJoint(+1); return true;
     case 'J': selectJoint(-1); return true;
@@ -230,7 +236,7 @@ std::string ActorControls::statusText() const
             else text << "  (no DOF)";
             text << "\n";
         }
-        text << "clip: none\n";
+        text << "clip: " << describeClip(*actor) << "\n";
     }
     text << "time " << _clock.getTime() << " s  x" << _clock.getSpeed() << (_clock.isPlaying() ? "  playing" : "  paused")
          << "\n";

@@ -1,7 +1,11 @@
 // osgactorviewer's parts, driven without a window: keys through the real event handler, overlays, the clock.
 #include "ActorControls.h"
 #include "ActorFinder.h"
+#include "ClipControls.h"
 #include "TestFigure.h"
+
+#include <osgActor/core/ClipBuilder>
+#include <osgActor/core/ClipLibrary>
 
 #include <osg/Group>
 #include <osgViewer/View>
@@ -202,4 +206,42 @@ TEST(ActorFinder, FindsEveryActorOnceWhereverItIs)
     EXPECT_EQ(actors[2], third);
     osg::ref_ptr<osg::Group> empty = new osg::Group;
     EXPECT_TRUE(findActors(*empty).empty());
+}
+
+TEST_F(ViewerControls, ClipKeysSayWhenThereAreNoClips)
+{
+    press('n');
+    EXPECT_EQ(findClipPlayer(*figure), nullptr);
+}
+
+TEST_F(ViewerControls, ClipKeysCycleThroughTheClipLibrary)
+{
+    // Two keyed clips on the elbow: "bend" holds it at -1, "reach" at -2.
+    osgActor::ClipLibraryPtr library = std::make_shared<osgActor::ClipLibrary>();
+    for (const auto& clip : {std::make_pair("bend", -1.0), std::make_pair("reach", -2.0)})
+    {
+        osgActor::ClipBuilder builder(clip.first);
+        const unsigned channel = builder.addChannel("l_elbow.rx");
+        builder.addKey(channel, 0.0, clip.second);
+        builder.addKey(channel, 1.0, clip.second);
+        const osgActor::ClipBuildResult built = builder.build();
+        ASSERT_TRUE(built) << built.error;
+        library->addClip(built.clip);
+    }
+    figure->setClipLibrary(library);
+
+    press('n');
+    std::shared_ptr<osgActor::ClipPlayer> player = findClipPlayer(*figure);
+    ASSERT_NE(player, nullptr);
+    EXPECT_EQ(player->getClip()->getName(), "bend");
+    figure->runControllers(0.1);
+    EXPECT_NEAR(figure->getDof(unsigned(figure->getDofIndex("l_elbow.rx"))), -1.0, 1e-9);
+    press('n');
+    EXPECT_EQ(player->getClip()->getName(), "reach");
+    figure->runControllers(0.2);
+    EXPECT_NEAR(figure->getDof(unsigned(figure->getDofIndex("l_elbow.rx"))), -2.0, 1e-9);
+    press('N');
+    EXPECT_EQ(player->getClip()->getName(), "bend");
+    EXPECT_EQ(describeClip(*figure).rfind("bend", 0), 0u) << describeClip(*figure);
+    EXPECT_EQ(figure->getControllers().size(), 1u) << "one player, reused";
 }
