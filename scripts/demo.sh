@@ -20,8 +20,8 @@ fi
 out="${OSGACTOR_DEMO_OUT:-$root/out/demo}"
 mkdir -p "$out"
 echo "demo: no display, rendering $scene offscreen"
-"$build/bin/osgactorrender" "$scene" --size 640 360 --frames 0 119 --fps 20 \
-    --fov 45 --eye 2.8 -5.8 2.8 --center 3.0 2.0 0.5 --background 0.62 0.72 0.85 \
-    -o "$out/frame_%04d.png" --contact-sheet "$out/contact_sheet.png" --sheet-columns 8 --sheet-tile-width 160
-echo "demo: 120 frames (6 s at 20 frames/s) in $out/frame_0000.png .. $out/frame_0119.png"
+"$build/bin/osgactorrender" "$scene" --size 640 360 --frames 0 59 --fps 10 \
+    --fov 50 --eye 2.4 -6.0 6.0 --center 2.4 2.0 0.0 --background 0.62 0.72 0.85 \
+    -o "$out/frame_%04d.png" --contact-sheet "$out/contact_sheet.png" --sheet-columns 6 --sheet-tile-width 200
+echo "demo: 60 frames (6 s at 10 frames/s) in $out/frame_0000.png .. $out/frame_0059.png"
 echo "demo: contact sheet $out/contact_sheet.png"
