@@ -12,6 +12,9 @@
 
 namespace osgActorRender {
 
+using osgActorApps::CameraView;
+using osgActorApps::frameBoundingSphere;
+
 /** Everything osgactorrender was asked to do. */
 struct RenderOptions
 {

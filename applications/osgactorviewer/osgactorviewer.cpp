@@ -6,6 +6,7 @@
 //   osgactorviewer --frames 10 data/humanoid.actor     (quits after 10 frames: for tests)
 #include "ActorControls.h"
 #include "ActorFinder.h"
+#include "CameraView.h"
 #include "InfoPanel.h"
 #include "PlaybackClock.h"
 #include "SceneLoader.h"
@@ -141,6 +142,12 @@ int main(int argc, char** argv)
     int height = 0;
     panelSize(viewer, width, height);
     panel->resize(width, height);
+
+    // Home: the scene from the front, a little above (as osgactorrender frames it), not edge-on to a floor.
+    const osgActorApps::CameraView home = osgActorApps::frameBoundingSphere(scene->getBound(), 30.0, double(width) / height);
+    manipulators->setAutoComputeHomePosition(false);
+    manipulators->setHomePosition(home.eye, home.center, home.up);
+    viewer.home();
 
     // The frame loop of osgViewer::Viewer::run(), with the simulation time taken from the playback clock.
     const osg::Timer* timer = osg::Timer::instance();

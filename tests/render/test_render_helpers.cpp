@@ -8,6 +8,7 @@
 #include <cmath>
 
 using namespace osgActorRender;
+using namespace osgActorApps;
 
 TEST(OutputPattern, RefusesEmptyAndUnsafePatterns)
 {

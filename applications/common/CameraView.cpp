@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace osgActorRender {
+namespace osgActorApps {
 
 CameraView frameBoundingSphere(const osg::BoundingSphere& bound, double fovyDegrees, double aspect)
 {
@@ -27,4 +27,4 @@ CameraView frameBoundingSphere(const osg::BoundingSphere& bound, double fovyDegr
     return view;
 }
 
-} // namespace osgActorRender
+} // namespace osgActorApps

@@ -1,11 +1,11 @@
-/* osgactorrender: where the camera stands, and how to frame a scene automatically. */
-#ifndef OSGACTORRENDER_CAMERAVIEW_H
-#define OSGACTORRENDER_CAMERAVIEW_H 1
+/* Shared by the applications: where the camera stands, and how to frame a scene automatically. */
+#ifndef OSGACTORAPPS_CAMERAVIEW_H
+#define OSGACTORAPPS_CAMERAVIEW_H 1
 
 #include <osg/BoundingSphere>
 #include <osg/Vec3d>
 
-namespace osgActorRender {
+namespace osgActorApps {
 
 /** A look-at camera in world space (model units). */
 struct CameraView
@@ -20,6 +20,6 @@ struct CameraView
   * height). An invalid or empty bound gives the default view. */
 CameraView frameBoundingSphere(const osg::BoundingSphere& bound, double fovyDegrees, double aspect);
 
-} // namespace osgActorRender
+} // namespace osgActorApps
 
 #endif
