@@ -79,6 +79,7 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
 {
     for (const ControllerPtr& controller : actor._controllers)
         if (controller) _controllers.push_back(controller->cloneController());
+    _ikChains = actor._ikChains; // immutable: shared
     rebindSkeletonNodes();
 }
 
@@ -90,6 +91,7 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     }
     _skeletonNodes.clear();
     _pose = ActorPose(std::move(definition));
+    dropUnfittingIkChains();
     buildSkeletonNodes();
     // Pose the new nodes at once, so a fresh actor has correct bounds and queries before its first frame.
     _pose.updateMatrices();
@@ -104,7 +106,48 @@ bool ActorNode::setDefinition(ActorDefinitionPtr definition, SkeletonNodePolicy 
         return true;
     }
     _pose = ActorPose(std::move(definition));
+    dropUnfittingIkChains();
     return rebindSkeletonNodes();
+}
+
+void ActorNode::dropUnfittingIkChains()
+{
+    const ActorDefinition* def = getDefinition().get();
+    _ikChains.erase(std::remove_if(_ikChains.begin(), _ikChains.end(),
+                                   [def](const IkChainPtr& chain) { return !def || !chain->fits(*def); }),
+                    _ikChains.end());
+}
+
+bool ActorNode::addIkChain(IkChainPtr chain)
+{
+    const ActorDefinition* def = getDefinition().get();
+    std::string why;
+    if (!chain) why = "a null IK chain";
+    else if (!def || !chain->fits(*def)) why = "IK chain '" + chain->getName() + "', built for another skeleton";
+    else if (findIkChain(chain->getName())) why = "a second IK chain named '" + chain->getName() + "'";
+    if (!why.empty())
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused " << why << std::endl;
+        return false;
+    }
+    _ikChains.push_back(std::move(chain));
+    return true;
+}
+
+bool ActorNode::removeIkChain(const std::string& name)
+{
+    const auto it = std::find_if(_ikChains.begin(), _ikChains.end(),
+                                 [&name](const IkChainPtr& chain) { return chain->getName() == name; });
+    if (it == _ikChains.end()) return false;
+    _ikChains.erase(it);
+    return true;
+}
+
+IkChainPtr ActorNode::findIkChain(const std::string& name) const
+{
+    for (const IkChainPtr& chain : _ikChains)
+        if (chain->getName() == name) return chain;
+    return IkChainPtr();
 }
 
 void ActorNode::buildSkeletonNodes()
@@ -212,52 +255,38 @@ void ActorNode::resetDofs() { _pose.resetDofs(); }
 
 // --- pre- and post-transforms ---
 
+template <class Value>
+bool ActorNode::storeTransform(const Value& value, Value& member, bool& dirty, const char* what)
+{
+    if (!isFinite(value))
+    {
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite " << what << std::endl;
+        return false;
+    }
+    member = value;
+    dirty = true;
+    _actorMatrixWritten = false;
+    return true;
+}
+
 void ActorNode::setPreTranslation(const osg::Vec3d& translation)
 {
-    if (!isFinite(translation))
-    {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a non-finite pre-translation" << std::endl;
-        return;
-    }
-    _preTranslation = translation;
-    _preTransformDirty = true;
-    _actorMatrixWritten = false;
+    storeTransform(translation, _preTranslation, _preTransformDirty, "pre-translation");
 }
 
 void ActorNode::setPreRotation(const osg::Quat& rotation)
 {
-    if (!isFinite(rotation))
-    {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite pre-rotation" << std::endl;
-        return;
-    }
-    _preRotation = rotation;
-    _preTransformDirty = true;
-    _actorMatrixWritten = false;
+    storeTransform(rotation, _preRotation, _preTransformDirty, "pre-rotation");
 }
 
 void ActorNode::setPostTranslation(const osg::Vec3d& translation)
 {
-    if (!isFinite(translation))
-    {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a non-finite post-translation" << std::endl;
-        return;
-    }
-    _postTranslation = translation;
-    _postTransformDirty = true;
-    _actorMatrixWritten = false;
+    storeTransform(translation, _postTranslation, _postTransformDirty, "post-translation");
 }
 
 void ActorNode::setPostRotation(const osg::Quat& rotation)
 {
-    if (!isFinite(rotation))
-    {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite post-rotation" << std::endl;
-        return;
-    }
-    _postRotation = rotation;
-    _postTransformDirty = true;
-    _actorMatrixWritten = false;
+    storeTransform(rotation, _postRotation, _postTransformDirty, "post-rotation");
 }
 
 void ActorNode::updateTransformMatrices() const
@@ -335,6 +364,9 @@ void ActorNode::runControllers(double time)
     transforms.preRotation = toGlm(_preRotation);
     transforms.postTranslation = toGlm(_postTranslation);
     transforms.postRotation = toGlm(_postRotation);
+    if (std::any_of(_controllers.begin(), _controllers.end(),
+                    [](const ControllerPtr& c) { return c && c->getEnabled() && c->usesWorldSpace(); }))
+        context.parentToWorld = toGlm(computeParentWorldMatrix());
     ControllerTarget target{_pose, transforms};
     osgActor::runControllers(_controllers, context, target);
     if (!target.transformsChanged) return;
@@ -362,18 +394,19 @@ osg::Matrixd ActorNode::getJointModelMatrix(unsigned joint) const
 
 osg::Matrixd ActorNode::getJointWorldMatrix(unsigned joint) const
 {
-    // The parent's world matrix comes from the graph above us; actor_m is taken fresh rather than from our own
-    // node matrix, which only the update traversal writes.
-    osg::Matrixd parentWorld;
-    const osg::NodePathList paths = getParentalNodePaths();
-    if (!paths.empty())
-    {
-        osg::NodePath above = paths.front();
-        above.pop_back(); // this node
-        parentWorld = osg::computeLocalToWorld(above);
-    }
+    // actor_m is taken fresh rather than from our own node matrix, which only the update traversal writes.
     const osg::Matrixd& actor = _blocked ? getMatrix() : getActorMatrix();
-    return getJointModelMatrix(joint) * actor * parentWorld;
+    return getJointModelMatrix(joint) * actor * computeParentWorldMatrix();
+}
+
+osg::Matrixd ActorNode::computeParentWorldMatrix() const
+{
+    // The graph above us, through the first parent path; identity for an actor with no parent.
+    const osg::NodePathList paths = getParentalNodePaths();
+    if (paths.empty()) return osg::Matrixd();
+    osg::NodePath above = paths.front();
+    above.pop_back(); // this node
+    return osg::computeLocalToWorld(above);
 }
 
 // --- per-frame work ---

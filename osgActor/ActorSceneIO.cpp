@@ -98,6 +98,9 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
             node->addChild(createModelNode(geometry, model.get()).get());
         }
     }
+    std::vector<IkChainPtr> chains;
+    if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
+    for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
     if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
     // Pose the scene graph now (a blocked actor would otherwise show its default pose until unblocked).
     actor->update(nullptr);
@@ -144,6 +147,8 @@ ActorDocument extractActorDocument(const ActorNode& actor)
                          << std::endl;
         }
     }
+
+    for (const IkChainPtr& chain : actor.getIkChains()) document.ikChains.push_back(IkChainDocument{chain->getSpec(), 0});
 
     std::string sections;
     if (actor.getUserValue(kSectionsUserValue, sections) && !sections.empty())

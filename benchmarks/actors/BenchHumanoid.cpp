@@ -1,6 +1,7 @@
 #include "BenchHumanoid"
 
 #include <osgActor/core/ActorDefinitionBuilder>
+#include <osgActor/core/ClipBuilder>
 
 #include <cmath>
 
@@ -64,6 +65,34 @@ osgActor::ActorDefinitionPtr humanoidDefinition()
             ref.dofs(kRotationDofs);
     }
     return builder.build().definition;
+}
+
+osgActor::ClipPtr humanoidOsgActorClip()
+{
+    static const osgActor::ClipPtr clip = [] {
+        const BenchClip& bench = humanoidClip();
+        const std::vector<BenchJoint>& joints = humanoidJoints();
+        osgActor::ClipBuilder builder("bench");
+        static const char* const rotations[] = {".rx", ".ry", ".rz"};
+        static const char* const translations[] = {".tx", ".ty", ".tz"};
+        for (unsigned j = 0; j < joints.size(); ++j)
+        {
+            for (const char* dof : rotations) builder.addChannel(joints[j].name + dof);
+            if (j == 0)
+                for (const char* dof : translations) builder.addChannel(joints[j].name + dof);
+        }
+        std::vector<double> values;
+        for (unsigned f = 0; f < bench.numFrames; ++f)
+            for (unsigned j = 0; j < joints.size(); ++j)
+            {
+                for (unsigned a = 0; a < 3; ++a) values.push_back(bench.anglesAt(f, j)[a]);
+                if (j == 0)
+                    for (unsigned a = 0; a < 3; ++a) values.push_back(bench.rootPosition[f * 3 + a]);
+            }
+        builder.setFrames(bench.framesPerSecond, std::move(values));
+        return builder.build().clip;
+    }();
+    return clip;
 }
 
 } // namespace bench

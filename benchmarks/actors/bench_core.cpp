@@ -1,7 +1,9 @@
-// The pose alone, no scene graph: sampling the clip into the DOF vector and forward kinematics, per joint.
+// The pose alone, no scene graph: a ClipPlayer sampling the clip into the DOF vector, and forward kinematics to
+// model space, per joint (what ozz-animation's sampling and local-to-model jobs do).
 #include "BenchHumanoid"
 
 #include <osgActor/core/ActorPose>
+#include <osgActor/core/ClipPlayer>
 
 #include <benchmark/benchmark.h>
 
@@ -9,24 +11,12 @@
 
 namespace {
 
-/** Samples the bench clip linearly at time t into a pose (DOF order: root rx ry rz tx ty tz, then rx ry rz). */
-void sampleInto(const bench::BenchClip& clip, double t, osgActor::ActorPose& pose)
+/** Reports the run's time per joint of numActors humanoids. */
+void countJoints(benchmark::State& state, unsigned numActors, const osgActor::ActorDefinition& def)
 {
-    const double frame = std::fmod(t, clip.duration()) * clip.framesPerSecond;
-    const unsigned f0 = static_cast<unsigned>(frame);
-    const unsigned f1 = std::min(f0 + 1, clip.numFrames - 1);
-    const double alpha = frame - f0;
-    unsigned dof = 0;
-    for (unsigned j = 0; j < clip.jointCount; ++j)
-    {
-        const double* a0 = clip.anglesAt(f0, j);
-        const double* a1 = clip.anglesAt(f1, j);
-        for (unsigned a = 0; a < 3; ++a) pose.setDof(dof++, a0[a] + alpha * (a1[a] - a0[a]));
-        if (j == 0)
-            for (unsigned a = 0; a < 3; ++a)
-                pose.setDof(dof++, clip.rootPosition[f0 * 3 + a] +
-                                       alpha * (clip.rootPosition[f1 * 3 + a] - clip.rootPosition[f0 * 3 + a]));
-    }
+    const double joints = static_cast<double>(numActors) * def.getNumJoints();
+    state.counters["ns_per_joint"] =
+        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void BM_CorePoseSampleAndFK(benchmark::State& state)
@@ -34,21 +24,30 @@ void BM_CorePoseSampleAndFK(benchmark::State& state)
     const unsigned numActors = static_cast<unsigned>(state.range(0));
     const osgActor::ActorDefinitionPtr def = bench::humanoidDefinition();
     std::vector<osgActor::ActorPose> poses(numActors, osgActor::ActorPose(def));
-    const bench::BenchClip& clip = bench::humanoidClip();
-    double t = 0.0;
+    std::vector<osgActor::ActorTransforms> transforms(numActors);
+    std::vector<std::vector<osgActor::ControllerPtr>> players(numActors);
+    for (unsigned a = 0; a < numActors; ++a)
+    {
+        auto player = std::make_shared<osgActor::ClipPlayer>(bench::humanoidOsgActorClip());
+        player->setPlayMode(osgActor::PlayMode::Loop);
+        player->seek(0.01 * a);
+        player->play();
+        players[a].push_back(player);
+    }
+    osgActor::ControllerContext context;
+    context.deltaTime = 1.0 / 60.0;
     for (auto _ : state)
     {
-        t += 1.0 / 60.0;
+        context.time += context.deltaTime;
         for (unsigned a = 0; a < numActors; ++a)
         {
-            sampleInto(clip, t + 0.01 * a, poses[a]);
-            poses[a].updateMatrices();
+            osgActor::ControllerTarget target{poses[a], transforms[a]};
+            osgActor::runControllers(players[a], context, target);
+            poses[a].updateMatrices(); // local and model matrices, as ozz-animation's sampling + local-to-model
         }
         benchmark::ClobberMemory();
     }
-    const double joints = static_cast<double>(numActors) * def->getNumJoints();
-    state.counters["ns_per_joint"] =
-        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    countJoints(state, numActors, *def);
 }
 BENCHMARK(BM_CorePoseSampleAndFK)->Arg(1)->Arg(1000);
 
@@ -57,8 +56,6 @@ void BM_CoreFKOnly(benchmark::State& state)
     const unsigned numActors = static_cast<unsigned>(state.range(0));
     const osgActor::ActorDefinitionPtr def = bench::humanoidDefinition();
     std::vector<osgActor::ActorPose> poses(numActors, osgActor::ActorPose(def));
-    const bench::BenchClip& clip = bench::humanoidClip();
-    for (unsigned a = 0; a < numActors; ++a) sampleInto(clip, 0.3 + 0.01 * a, poses[a]);
     for (auto _ : state)
     {
         for (unsigned a = 0; a < numActors; ++a)
@@ -68,9 +65,7 @@ void BM_CoreFKOnly(benchmark::State& state)
         }
         benchmark::ClobberMemory();
     }
-    const double joints = static_cast<double>(numActors) * def->getNumJoints();
-    state.counters["ns_per_joint"] =
-        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    countJoints(state, numActors, *def);
 }
 BENCHMARK(BM_CoreFKOnly)->Arg(1)->Arg(1000);
 

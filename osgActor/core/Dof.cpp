@@ -25,38 +25,34 @@ std::string uppered(std::string text)
     return text;
 }
 
+/** Index of key in names (compared after normalize), or -1. */
+template <class Normalize>
+int findName(const std::string& text, const char* const* names, unsigned count, Normalize normalize)
+{
+    const std::string key = normalize(text);
+    for (unsigned i = 0; i < count; ++i)
+        if (key == names[i]) return static_cast<int>(i);
+    return -1;
+}
+
 } // namespace
 
 const char* dofName(Dof dof) { return kDofNames[static_cast<unsigned>(dof)]; }
 
 bool parseDof(const std::string& text, Dof& dof)
 {
-    const std::string key = lowered(text);
-    for (unsigned i = 0; i < kNumDofTypes; ++i)
-    {
-        if (key == kDofNames[i])
-        {
-            dof = static_cast<Dof>(i);
-            return true;
-        }
-    }
-    return false;
+    const int index = findName(text, kDofNames, kNumDofTypes, lowered);
+    if (index >= 0) dof = static_cast<Dof>(index);
+    return index >= 0;
 }
 
 const char* eulerOrderName(EulerOrder order) { return kOrderNames[static_cast<unsigned>(order)]; }
 
 bool parseEulerOrder(const std::string& text, EulerOrder& order)
 {
-    const std::string key = uppered(text);
-    for (unsigned i = 0; i < kNumOrders; ++i)
-    {
-        if (key == kOrderNames[i])
-        {
-            order = static_cast<EulerOrder>(i);
-            return true;
-        }
-    }
-    return false;
+    const int index = findName(text, kOrderNames, kNumOrders, uppered);
+    if (index >= 0) order = static_cast<EulerOrder>(index);
+    return index >= 0;
 }
 
 void eulerOrderAxes(EulerOrder order, unsigned axes[3])

@@ -23,7 +23,7 @@ bool parseShapeKind(const std::string& text, GeometryKind& kind)
     return false;
 }
 
-bool isReservedSection(const std::string& keyword) { return keyword == "clip" || keyword == "ikchain"; }
+bool isReservedSection(const std::string& keyword) { return keyword == "clip"; }
 
 BuildResult buildDefinition(const ActorDocument& document, const std::string& fileName)
 {
@@ -38,6 +38,25 @@ BuildResult buildDefinition(const ActorDocument& document, const std::string& fi
         result.error = fileName + ":" + std::to_string(line) + ": " + result.error;
     }
     return result;
+}
+
+bool buildIkChains(const ActorDocument& document, const ActorDefinition& definition, const std::string& fileName,
+                   std::vector<IkChainPtr>& chains, std::string& error)
+{
+    std::vector<IkChainPtr> built;
+    for (const IkChainDocument& chain : document.ikChains)
+    {
+        const IkChainBuildResult result = buildIkChain(definition, chain.spec);
+        if (!result)
+        {
+            error = fileName + ":" + std::to_string(chain.line) + ": " + result.error;
+            chains.clear();
+            return false;
+        }
+        built.push_back(result.chain);
+    }
+    chains.swap(built);
+    return true;
 }
 
 ActorDocument makeDocument(const ActorDefinition& definition)

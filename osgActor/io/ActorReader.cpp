@@ -3,6 +3,7 @@
 
 #include <glm/ext/scalar_constants.hpp>
 
+#include <cmath>
 #include <set>
 
 namespace osgActor {
@@ -167,6 +168,7 @@ private:
             else if (k == "post_translation") ok = once(seen, s) && vector3(s, document.postTranslation);
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
+            else if (k == "ikchain") ok = readIkChain(s, document);
             else if (isReservedSection(k))
             {
                 if (!s.hasBlock) return fail(s.line, "'" + k + "' needs a block in braces");
@@ -175,6 +177,66 @@ private:
             else return unknownKeyword(s, "in an actor");
             if (!ok) return false;
         }
+        return true;
+    }
+
+    /** "ikchain name { root j; effector j; ... }" (docs/ik.md); the chain is checked against the skeleton once the
+      * definition is built (buildIkChains). */
+    bool readIkChain(const SyntaxStatement& statement, ActorDocument& document)
+    {
+        if (!statement.hasBlock) return fail(statement.line, "'ikchain' needs a block in braces");
+        if (!expectArguments(statement, 1)) return false;
+        IkChainDocument chain;
+        chain.spec.name = statement.arguments.front().text;
+        chain.line = statement.line;
+        for (const IkChainDocument& other : document.ikChains)
+            if (other.spec.name == chain.spec.name)
+                return fail(statement.line, "IK chain '" + chain.spec.name + "' is given twice (first at line " +
+                                                std::to_string(other.line) + ")");
+        std::set<std::string> seen;
+        for (const SyntaxStatement& c : statement.children)
+        {
+            const std::string& k = c.keyword;
+            bool ok = true;
+            if (k == "root") ok = once(seen, c) && expectNoBlock(c) && name(c, chain.spec.rootJoint);
+            else if (k == "effector") ok = once(seen, c) && expectNoBlock(c) && name(c, chain.spec.effectorJoint);
+            else if (k == "effector_offset") ok = once(seen, c) && vector3(c, chain.spec.effectorOffset);
+            else if (k == "solver")
+            {
+                std::string solver;
+                ok = once(seen, c) && expectNoBlock(c) && name(c, solver);
+                if (ok && !parseIkSolver(solver, chain.spec.solver))
+                    return fail(c.line, "unknown IK solver '" + solver + "' (twobone, ccd or dls)");
+            }
+            else if (k == "iterations")
+            {
+                double iterations = 0.0;
+                ok = once(seen, c) && numbers(c, 1, &iterations);
+                if (ok && !(iterations >= 1.0 && iterations <= 1e6 && iterations == std::floor(iterations)))
+                    return fail(c.line, "'iterations' must be a whole number from 1 to 1000000");
+                chain.spec.maxIterations = static_cast<unsigned>(iterations);
+            }
+            else if (k == "tolerance")
+            {
+                ok = once(seen, c) && numbers(c, 1, &chain.spec.tolerance);
+                if (ok && !(chain.spec.tolerance > 0.0 && chain.spec.tolerance < 1.0))
+                    return fail(c.line, "'tolerance' must be between 0 and 1 (a fraction of the chain's length)");
+            }
+            else if (k == "joint_weight" || k == "dof_weight")
+            {
+                IkWeightSpec weight;
+                ok = expectNoBlock(c) && expectArguments(c, 2) && number(c.arguments[1], weight.weight);
+                if (ok && weight.weight < 0.0) return fail(c.line, "'" + k + "' must not be negative");
+                weight.name = c.arguments.front().text;
+                (k == "joint_weight" ? chain.spec.jointWeights : chain.spec.dofWeights).push_back(weight);
+            }
+            else return unknownKeyword(c, "in an ikchain");
+            if (!ok) return false;
+        }
+        if (chain.spec.rootJoint.empty()) return fail(statement.line, "IK chain '" + chain.spec.name + "' has no 'root'");
+        if (chain.spec.effectorJoint.empty())
+            return fail(statement.line, "IK chain '" + chain.spec.name + "' has no 'effector'");
+        document.ikChains.push_back(chain);
         return true;
     }
 
@@ -375,6 +437,7 @@ ActorReadResult readActor(std::istream& in, const std::string& fileName)
         result.error = built.error;
         return result;
     }
+    if (!buildIkChains(document, *built.definition, fileName, result.ikChains, result.error)) return result;
     result.document = std::move(document);
     result.definition = built.definition;
     return result;

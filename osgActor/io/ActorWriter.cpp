@@ -90,6 +90,25 @@ SyntaxStatement geometryStatement(const GeometryDescription& g)
     return s;
 }
 
+/** "ikchain name { ... }": root, effector and solver always, the rest where it differs from the defaults. */
+SyntaxStatement ikChainStatement(const IkChainSpec& spec)
+{
+    SyntaxStatement s = statement("ikchain", {nameArgument(spec.name)});
+    s.children.push_back(statement("root", {nameArgument(spec.rootJoint)}));
+    s.children.push_back(statement("effector", {nameArgument(spec.effectorJoint)}));
+    if (!isZero(spec.effectorOffset)) s.children.push_back(vectorStatement("effector_offset", spec.effectorOffset));
+    s.children.push_back(statement("solver", {word(ikSolverName(spec.solver))}));
+    if (spec.maxIterations != kDefaultIkIterations)
+        s.children.push_back(statement("iterations", {word(std::to_string(spec.maxIterations))}));
+    if (spec.tolerance != kDefaultIkTolerance) s.children.push_back(statement("tolerance", {numberArgument(spec.tolerance)}));
+    for (const IkWeightSpec& w : spec.jointWeights)
+        s.children.push_back(statement("joint_weight", {nameArgument(w.name), numberArgument(w.weight)}));
+    for (const IkWeightSpec& w : spec.dofWeights)
+        s.children.push_back(statement("dof_weight", {nameArgument(w.name), numberArgument(w.weight)}));
+    s.hasBlock = true;
+    return s;
+}
+
 /** Writes joints nested in their parents. */
 class JointTreeWriter
 {
@@ -158,6 +177,7 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     addPlacement(actor.children, "post_translation", document.postTranslation, "post_rotation", document.postRotation);
     if (document.blocked) actor.children.push_back(statement("blocked"));
     JointTreeWriter(document).write(actor.children);
+    for (const IkChainDocument& chain : document.ikChains) actor.children.push_back(ikChainStatement(chain.spec));
     for (const SyntaxStatement& section : document.sections) actor.children.push_back(section);
     file.push_back(std::move(actor));
     return file;

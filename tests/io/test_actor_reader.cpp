@@ -193,17 +193,20 @@ actor "test arm" {
     EXPECT_EQ(upper.geometry[1].scale, 2.0);
 }
 
-TEST(ActorReader, KeepsClipAndIkChainSectionsVerbatim)
+TEST(ActorReader, KeepsClipSectionsVerbatim)
 {
+    // IK chains are read, not kept verbatim (tests/ik/test_ik_format.cpp).
     const ActorReadResult result = read("osgactor 1\nactor a {\n joint b\n clip walk {\n  key 0 b.rz 10\n }\n"
-                                        " ikchain arm { root b }\n}\n");
+                                        " joint c { parent b; offset 1 0 0; dof rz }\n"
+                                        " ikchain arm { root b; effector c; solver ccd }\n}\n");
     ASSERT_TRUE(result) << result.error;
-    ASSERT_EQ(result.document.sections.size(), 2u);
+    ASSERT_EQ(result.document.sections.size(), 1u);
     EXPECT_EQ(result.document.sections[0].keyword, "clip");
     EXPECT_EQ(result.document.sections[0].arguments[0].text, "walk");
     ASSERT_EQ(result.document.sections[0].children.size(), 1u);
     EXPECT_EQ(result.document.sections[0].children[0].arguments.size(), 3u);
-    EXPECT_EQ(result.document.sections[1].keyword, "ikchain");
+    ASSERT_EQ(result.document.ikChains.size(), 1u);
+    EXPECT_EQ(result.document.ikChains[0].spec.name, "arm");
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b\n clip walk\n}"), "t.actor:4: 'clip' needs a block in braces");
 }
 

@@ -67,7 +67,11 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
         for (const std::string& line : readBlockTokens(fr)) text += line + "\n";
         std::istringstream in(text);
         const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
-        if (read) actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES);
+        if (read)
+        {
+            actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES);
+            for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
+        }
         else OSG_WARN << "osgActor: " << read.error << std::endl;
         advanced = true;
     }
@@ -107,8 +111,11 @@ bool writeActorNode(const osg::Object& object, osgDB::Output& fw)
     const osgActor::ActorNode& actor = static_cast<const osgActor::ActorNode&>(object);
     if (const osgActor::ActorDefinition* definition = actor.getDefinition().get())
     {
+        osgActor::ActorDocument document = osgActor::makeDocument(*definition);
+        for (const osgActor::IkChainPtr& chain : actor.getIkChains())
+            document.ikChains.push_back(osgActor::IkChainDocument{chain->getSpec(), 0});
         std::ostringstream text;
-        osgActor::writeActor(text, osgActor::makeDocument(*definition));
+        osgActor::writeActor(text, document);
         std::vector<std::string> lines;
         std::istringstream in(text.str());
         for (std::string line; std::getline(in, line);) lines.push_back(line);

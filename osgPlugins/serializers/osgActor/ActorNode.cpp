@@ -71,10 +71,14 @@ osg::Quat readExactQuat(osgDB::InputStream& is)
     return q;
 }
 
-std::vector<std::string> definitionLines(const osgActor::ActorDefinition& definition)
+/** The definition and the actor's IK chains, as the lines of a .actor file. */
+std::vector<std::string> definitionLines(const osgActor::ActorNode& actor)
 {
+    osgActor::ActorDocument document = osgActor::makeDocument(*actor.getDefinition());
+    for (const osgActor::IkChainPtr& chain : actor.getIkChains())
+        document.ikChains.push_back(osgActor::IkChainDocument{chain->getSpec(), 0});
     std::ostringstream text;
-    osgActor::writeActor(text, osgActor::makeDocument(definition));
+    osgActor::writeActor(text, document);
     std::vector<std::string> lines;
     std::istringstream in(text.str());
     for (std::string line; std::getline(in, line);) lines.push_back(line);
@@ -111,12 +115,13 @@ static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
                           "' do not match its definition");
         return false;
     }
+    for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
     return true;
 }
 
 static bool writeDefinition(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
 {
-    const std::vector<std::string> lines = definitionLines(*actor.getDefinition());
+    const std::vector<std::string> lines = definitionLines(actor);
     os.writeSize(static_cast<unsigned int>(lines.size()));
     os << os.BEGIN_BRACKET << std::endl;
     for (const std::string& line : lines)

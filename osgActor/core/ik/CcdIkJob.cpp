@@ -1,0 +1,142 @@
+#include <osgActor/core/ik/CcdIkJob>
+#include <osgActor/core/ik/IkKinematics>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace osgActor {
+
+namespace {
+
+// A sweep that lowers the cost by less than this fraction is slow; this many in a row are a stall, answered by a
+// restart from a kicked pose (kickDofs), at most kMaxKicks times per solve.
+constexpr double kSlowProgress = 1e-3;
+constexpr unsigned kMaxSlowSweeps = 10;
+constexpr unsigned kMaxKicks = 64;
+
+/** The angle about unit axis a (through pivot) that maximizes positionWeight * (goal - pivot) . R (effector - pivot)
+  * + orientationWeight * sum_i goalAxis_i . R effectorAxis_i, i.e. that best turns the effector onto the goal. */
+double bestAngle(const glm::dvec3& a, const glm::dvec3& pivot, const glm::dvec3& effector,
+                 const glm::dmat3& effectorRotation, const glm::dvec3& goal, const glm::dmat3& goalRotation,
+                 double positionWeight, double orientationWeight)
+{
+    // Each objective is c0 + C cos(angle) + S sin(angle); their weighted sum peaks at atan2(S, C).
+    double cosTerm = 0.0, sinTerm = 0.0;
+    if (positionWeight > 0.0)
+    {
+        const glm::dvec3 from = effector - pivot;
+        const glm::dvec3 to = goal - pivot;
+        const glm::dvec3 f = from - a * glm::dot(a, from);
+        const glm::dvec3 t = to - a * glm::dot(a, to);
+        cosTerm += positionWeight * glm::dot(f, t);
+        sinTerm += positionWeight * glm::dot(a, glm::cross(f, t));
+    }
+    if (orientationWeight > 0.0)
+    {
+        for (unsigned i = 0; i < 3; ++i)
+        {
+            const glm::dvec3& e = effectorRotation[i];
+            const glm::dvec3& g = goalRotation[i];
+            cosTerm += orientationWeight * (glm::dot(e, g) - glm::dot(a, e) * glm::dot(a, g));
+            sinTerm += orientationWeight * glm::dot(a, glm::cross(e, g));
+        }
+    }
+    if (cosTerm * cosTerm + sinTerm * sinTerm < 1e-30) return 0.0;
+    return std::atan2(sinTerm, cosTerm);
+}
+
+} // namespace
+
+void runCcdSweep(const IkChain& chain, const IkGoal& goal, const glm::dmat3& goalRotation, double positionWeight,
+                 double orientationWeight, bool moveSlides, unsigned first, unsigned end, double* dofs,
+                 IkWorkspace& workspace)
+{
+    glm::dvec3& effector = workspace.effectorPosition;
+    glm::dmat3& effectorRotation = workspace.effectorRotation;
+    for (unsigned d = end; d-- > first;)
+    {
+        if (workspace.frozen[d]) continue;
+        const IkChainDof& chainDof = chain.getDof(d);
+        const glm::dvec3& axis = workspace.axis[d];
+        const double current = dofs[chainDof.dof];
+        if (isRotation(chainDof.type))
+        {
+            const double angle = bestAngle(axis, workspace.pivot[d], effector, effectorRotation, goal.position,
+                                           goalRotation, positionWeight, orientationWeight);
+            const double next = std::min(std::max(current + chainDof.weight * angle, chainDof.min), chainDof.max);
+            const double turn = next - current;
+            if (turn == 0.0) continue;
+            dofs[chainDof.dof] = next;
+            // Everything below this DOF turns with it about its axis: the effector exactly so.
+            const glm::dmat3 rotation = glm::mat3_cast(glm::angleAxis(turn, axis));
+            effector = workspace.pivot[d] + rotation * (effector - workspace.pivot[d]);
+            effectorRotation = rotation * effectorRotation;
+        }
+        else if (moveSlides && positionWeight > 0.0)
+        {
+            const double slide = glm::dot(goal.position - effector, axis);
+            const double next = std::min(std::max(current + chainDof.weight * slide, chainDof.min), chainDof.max);
+            dofs[chainDof.dof] = next;
+            effector += axis * (next - current);
+        }
+    }
+}
+
+bool CcdIkJob::run()
+{
+    result = IkResult();
+    if (!validate()) return false;
+    const IkChain& c = *chain;
+    IkWorkspace& ws = *workspace;
+    const glm::dmat3 goalRotation =
+        goal->hasOrientation ? glm::mat3_cast(glm::normalize(goal->orientation)) : glm::dmat3(1.0);
+    // Radians weigh like arcs on a circle of the chain's length.
+    const double orientationWeight = goal->hasOrientation ? c.getLength() * c.getLength() : 0.0;
+
+    auto cost = [&](const IkError& e) { return glm::dot(e.position, e.position) + orientationWeight * e.angle * e.angle; };
+    startChainPose(*this);
+    IkError error = measureIkError(*goal, goalRotation, ws);
+    double currentCost = cost(error);
+    // The best pose before the last restart, should a kick lead nowhere better.
+    IkError earlierBestError;
+    double earlierBestCost = std::numeric_limits<double>::infinity();
+    unsigned kicks = 0, slowSweeps = 0, sweeps = 0;
+    while (!withinTolerance(c, *goal, error) && sweeps < c.getMaxIterations())
+    {
+        ++sweeps;
+        computeDofAxes(*definition, c, dofs, ws);
+        runCcdSweep(c, *goal, goalRotation, 1.0, orientationWeight, true, 0, c.getNumDofs(), dofs, ws);
+        // The sweep tracked the effector exactly; recompute anyway so rounding cannot pile up over sweeps.
+        computeChainPose(*definition, c, rootParentModel, dofs, ws);
+        error = measureIkError(*goal, goalRotation, ws);
+        const double sweepCost = cost(error);
+        slowSweeps = sweepCost > currentCost * (1.0 - kSlowProgress) ? slowSweeps + 1 : 0;
+        currentCost = sweepCost;
+        if (slowSweeps < kMaxSlowSweeps || kicks == kMaxKicks || withinTolerance(c, *goal, error)) continue;
+        // Stalled (a hinge on its limit, a chain wound up against its limits): restart from a kicked pose.
+        if (currentCost < earlierBestCost)
+        {
+            earlierBestCost = currentCost;
+            earlierBestError = error;
+            for (unsigned d = 0; d < c.getNumDofs(); ++d) ws.bestDofs[d] = dofs[c.getDof(d).dof];
+        }
+        kickDofs(c, ws, kicks++, dofs);
+        computeChainPose(*definition, c, rootParentModel, dofs, ws);
+        error = measureIkError(*goal, goalRotation, ws);
+        currentCost = cost(error);
+        slowSweeps = 0;
+    }
+    if (earlierBestCost < currentCost)
+    {
+        for (unsigned d = 0; d < c.getNumDofs(); ++d) dofs[c.getDof(d).dof] = ws.bestDofs[d];
+        error = earlierBestError;
+    }
+    setIkResult(c, *goal, error, sweeps, result);
+    return true;
+}
+
+} // namespace osgActor
