@@ -30,6 +30,7 @@ const KeyHelp kKeys[] = {
     {"Up Down", "turn the DOF"},
     {"r", "reset the pose"},
     {"v", "hide/show the limb"},
+    {"g", "IK goal on the joint (drag it)"},
     {"x", "joint axes"},
     {"k", "skeleton lines"},
     {"i", "this panel"},
@@ -128,6 +129,7 @@ bool ActorControls::handleKey(int key)
         _message = "pose reset";
         return true;
     case 'v': toggleSelectedJointHidden(); return true;
+    case 'g': toggleIkGoal(); return true;
     case 'x': _showAxes = !_showAxes; showOverlays(); return true;
     case 'k': _showLines = !_showLines; showOverlays(); return true;
     case 'i':
@@ -139,6 +141,7 @@ bool ActorControls::handleKey(int key)
 
 void ActorControls::selectActor(unsigned index)
 {
+    if (_ikGoal) _ikGoal->detach();
     _actor = index;
     _joint = getSelectedActor() && getSelectedActor()->getNumSkeletonNodes() > 0 ? 0 : -1;
     _dofSlot = 0;
@@ -186,6 +189,23 @@ void ActorControls::toggleSelectedJointHidden()
     osgActor::SkeletonNode* node = actor->getSkeletonNode(unsigned(_joint));
     node->setHidden(!node->getHidden());
     _message = node->getName() + (node->getHidden() ? " hidden (still posed)" : " shown");
+}
+
+void ActorControls::toggleIkGoal()
+{
+    if (!_ikGoal)
+    {
+        _message = "IK goals are off in this viewer";
+        return;
+    }
+    if (_ikGoal->isAttached())
+    {
+        _ikGoal->detach();
+        _message = "IK goal removed";
+        return;
+    }
+    osgActor::ActorNode* actor = getSelectedActor();
+    _message = actor != nullptr && _joint >= 0 ? _ikGoal->attach(*actor, unsigned(_joint)) : "no joint selected";
 }
 
 void ActorControls::showOverlays()

@@ -2,6 +2,7 @@
 #ifndef OSGACTORVIEWER_ACTORCONTROLS_H
 #define OSGACTORVIEWER_ACTORCONTROLS_H 1
 
+#include "IkGoalDragger.h"
 #include "InfoPanel.h"
 #include "PlaybackClock.h"
 #include "SkeletonOverlay.h"
@@ -10,6 +11,7 @@
 
 #include <osgGA/GUIEventHandler>
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,9 @@ public:
     bool handle(const osgGA::GUIEventAdapter& ea, osgGA::GUIActionAdapter& aa, osg::Object*,
                 osg::NodeVisitor*) override;
     void getUsage(osg::ApplicationUsage& usage) const override;
+
+    /** Where 'g' puts IK goals; without one, 'g' says that IK dragging is off. */
+    void setIkGoalDragger(const std::shared_ptr<IkGoalDragger>& dragger) { _ikGoal = dragger; }
 
     /** One line per key, as the panel lists them. */
     static std::string keyList();
@@ -46,6 +51,7 @@ protected:
     void selectDof(int step);
     void turnSelectedDof(int direction);
     void toggleSelectedJointHidden();
+    void toggleIkGoal();
     void showOverlays();
     void updatePanel(double frameSeconds);
     std::string statusText() const;
@@ -54,6 +60,7 @@ protected:
     std::vector<osg::ref_ptr<SkeletonOverlay>> _overlays; // one per actor, same order
     PlaybackClock& _clock;
     osg::ref_ptr<InfoPanel> _panel;
+    std::shared_ptr<IkGoalDragger> _ikGoal;
     unsigned _actor;
     int _joint;        // index in the selected actor's definition
     unsigned _dofSlot; // which of the joint's DOFs

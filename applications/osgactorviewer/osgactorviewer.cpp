@@ -110,6 +110,8 @@ int main(int argc, char** argv)
         overlays.push_back(new SkeletonOverlay(actor.get()));
         root->addChild(overlays.back().get());
     }
+    osg::ref_ptr<osg::Group> ikGoals = new osg::Group; // where the IK goal's dragger goes
+    root->addChild(ikGoals.get());
     osg::ref_ptr<InfoPanel> panel = new InfoPanel(1280, 1024);
     panel->setKeys(ActorControls::keyList());
     root->addChild(panel.get());
@@ -126,7 +128,9 @@ int main(int argc, char** argv)
     viewer.addEventHandler(new osgViewer::ThreadingHandler);
     viewer.addEventHandler(new osgViewer::ScreenCaptureHandler);
     viewer.addEventHandler(new osgViewer::HelpHandler(arguments.getApplicationUsage()));
-    viewer.addEventHandler(new ActorControls(actors, overlays, clock, panel.get()));
+    osg::ref_ptr<ActorControls> controls = new ActorControls(actors, overlays, clock, panel.get());
+    controls->setIkGoalDragger(std::make_shared<IkGoalDragger>(ikGoals.get()));
+    viewer.addEventHandler(controls.get());
     viewer.setSceneData(root.get());
     osg::ref_ptr<WindowCapture> capture = new WindowCapture;
     if (!captureFile.empty())

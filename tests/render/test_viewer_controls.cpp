@@ -3,6 +3,7 @@
 #include "ActorFinder.h"
 #include "ClipControls.h"
 #include "TestFigure.h"
+#include "nodes/NodeTestUtil"
 
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/core/ClipLibrary>
@@ -244,4 +245,42 @@ TEST_F(ViewerControls, ClipKeysCycleThroughTheClipLibrary)
     EXPECT_EQ(player->getClip()->getName(), "bend");
     EXPECT_EQ(describeClip(*figure).rfind("bend", 0), 0u) << describeClip(*figure);
     EXPECT_EQ(figure->getControllers().size(), 1u) << "one player, reused";
+}
+
+TEST_F(ViewerControls, GWithoutADraggerSaysSo)
+{
+    press('g');
+    EXPECT_EQ(figure->getControllers().size(), 0u);
+}
+
+TEST_F(ViewerControls, GPutsAnIkGoalThatTheChainFollows)
+{
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    osg::ref_ptr<osg::Group> goals = new osg::Group;
+    root->addChild(figure.get());
+    root->addChild(goals.get());
+    const auto dragger = std::make_shared<IkGoalDragger>(goals.get());
+    controls->setIkGoalDragger(dragger);
+
+    selectJoint("l_elbow"); // chain chest .. l_elbow: the shoulder's three rotations move the elbow
+    press('g');
+    ASSERT_TRUE(dragger->isAttached());
+    EXPECT_EQ(goals->getNumChildren(), 1u);
+    ASSERT_EQ(figure->getControllers().size(), 1u);
+    const unsigned elbow = unsigned(figure->getJointIndex("l_elbow"));
+    const osg::Vec3d shoulder = figure->getJointWorldPosition(unsigned(figure->getJointIndex("l_shoulder")));
+    // The goal starts on the elbow: nothing moves until it is dragged.
+    EXPECT_TRUE(vec3Near(osg::Vec3d(dragger->getGoalNode()->getMatrix().getTrans()),
+                         figure->getJointWorldPosition(elbow), 1e-9));
+
+    // Drag the goal (as the dragger does, through the goal node's matrix) to hold the arm out forwards.
+    const osg::Vec3d goal = shoulder + osg::Vec3d(0.0, -0.3, 0.0);
+    dragger->getGoalNode()->setMatrix(osg::Matrixd::translate(goal));
+    for (unsigned frame = 1; frame <= 5; ++frame) runUpdate(*root, frame);
+    EXPECT_TRUE(vec3Near(figure->getJointWorldPosition(elbow), goal, 1e-3));
+
+    press('g');
+    EXPECT_FALSE(dragger->isAttached());
+    EXPECT_EQ(goals->getNumChildren(), 0u);
+    EXPECT_EQ(figure->getControllers().size(), 0u);
 }
