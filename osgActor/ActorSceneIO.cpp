@@ -1,3 +1,4 @@
+#include <osgActor/ActorClips>
 #include <osgActor/ActorGeometry>
 #include <osgActor/ActorSceneIO>
 #include <osgActor/GlmOsg>
@@ -102,6 +103,8 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
     if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
     for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
     if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
+    // Clip sections become the actor's clips (docs/mocap.md); the text above keeps them for the writer.
+    if (!addClipSections(*actor, document.sections, fileName, result.error)) return result;
     // Pose the scene graph now (a blocked actor would otherwise show its default pose until unblocked).
     actor->update(nullptr);
     actor->setBlocked(document.blocked);

@@ -161,8 +161,10 @@ osg::ref_ptr<ActorNode> readMocapActor(const std::string& path, const MocapActor
         player->setPlayMode(options.playMode);
         player->setRootMotion(options.rootMotion);
         actor->addController(player);
-        // Pose the first frame at once, so bounds and queries are right before the first update.
-        actor->runControllers(0.0);
+        // Pose the first frame at once, so bounds and queries are right before the first update. (Not by running
+        // the controllers: their clock starts at the first frame stamp the actor sees, whenever that is.)
+        const double* first = imported.clip->getFrame(0);
+        actor->setDofs(std::vector<double>(first, first + imported.clip->getNumChannels()));
         actor->updatePose();
     }
     if (options.addFigure) addStickFigure(*actor);

@@ -1,5 +1,8 @@
 /* osgactorconv: converts motion capture (BVH, ASF+AMC) and dumps joint positions so other tools can check the
  * import. Exit status 0 on success, 1 on bad input (with file:line on stderr), 2 on bad usage. */
+#include <osgActor/io/ActorDocument>
+#include <osgActor/io/ActorWriter>
+#include <osgActor/io/ClipSection>
 #include <osgActor/mocap/AmcReader>
 #include <osgActor/mocap/AsfReader>
 #include <osgActor/mocap/BvhReader>
@@ -29,11 +32,13 @@ const char* const kUsage =
     "                     start of each bone), in the file's own axes and units (no scale, no axis change),\n"
     "                     frames numbered from 0 at the first frame of data\n"
     "  --frames A:B       only frames A (included) to B (excluded); 'A:' and ':B' leave an end open\n"
-    "  -o, --output FILE  write to FILE: .bvh exports BVH (the file's own axes and units, so it reads back\n"
-    "                     the same); .actor needs the format plugin (osgdb_actor), not yet in this build\n"
+    "  -o, --output FILE  write to FILE: .actor writes the actor (turned Z-up, scaled) with its motion as a\n"
+    "                     'clip' section; .bvh exports BVH (the file's own axes and units, so it reads back\n"
+    "                     the same)\n"
     "  --amc FILE         the AMC motion of an ASF skeleton (or give it after the ASF)\n"
     "  --fps N            frame rate of AMC motion (default 120, CMU's)\n"
-    "  --scale S          multiply lengths by S when converting (not for --dump-positions)\n"
+    "  --scale S          multiply lengths by S when converting to .actor (not for --dump-positions)\n"
+    "  --up Y|Z           the input's up axis for .actor output (default Y; .actor is Z-up like OSG)\n"
     "  --drop-first-frame drop frame 0 (the reference pose of CMU BVH conversions) when converting\n"
     "  --absolute-root    BVH root positions are absolute (3ds Max), not added to the root OFFSET\n"
     "  -h, --help         this text\n";
@@ -50,6 +55,7 @@ struct Arguments
     double scale = 1.0;
     bool dropFirstFrame = false;
     bool absoluteRoot = false;
+    UpAxis up = UpAxis::Y;
 };
 
 bool endsWith(std::string text, const std::string& suffix)
@@ -104,6 +110,11 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         {
             if (!value(text) || !parsePositive(text, args.scale)) return "--scale needs a positive number";
         }
+        else if (arg == "--up")
+        {
+            if (!value(text) || (text != "Y" && text != "y" && text != "Z" && text != "z")) return "--up needs Y or Z";
+            args.up = text == "Y" || text == "y" ? UpAxis::Y : UpAxis::Z;
+        }
         else if (arg == "--frames")
         {
             const std::size_t colon = value(text) ? text.find(':') : std::string::npos;
@@ -122,27 +133,30 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
     return std::string();
 }
 
-/** Reads the input; dump selects the file's own frame and units (no scale, no axis change, no limits). */
-MocapImport readInput(const Arguments& args, bool dump)
+/** Reads the input; dump selects the file's own frame and units (no scale, no axis change, no limits); toActor
+  * turns it Z-up and scales it, as an actor in OSG is. */
+MocapImport readInput(const Arguments& args, bool dump, bool toActor)
 {
     const std::string& input = args.inputs[0];
     if (endsWith(input, ".bvh"))
     {
         BvhImportOptions options;
-        options.convertToZUp = false; // BVH output and the dump stay in the file's frame
+        options.convertToZUp = toActor; // BVH output and the dump stay in the file's frame
+        options.fileUpAxis = args.up;
         options.endSitesAsJoints = !dump;
         options.absoluteRootPosition = args.absoluteRoot;
-        options.scale = dump ? 1.0 : args.scale;
+        options.scale = toActor ? args.scale : 1.0;
         options.dropFirstFrame = !dump && args.dropFirstFrame;
         return readBvhFile(input, options);
     }
     if (endsWith(input, ".asf"))
     {
         AsfImportOptions options;
-        options.convertToZUp = false;
+        options.convertToZUp = toActor;
+        options.fileUpAxis = args.up;
         options.applyLimits = !dump;
         options.frameRate = args.fps;
-        options.scale = dump ? 1.0 : args.scale;
+        options.scale = toActor ? args.scale : 1.0;
         const AsfImport skeleton = readAsfFile(input, options);
         MocapImport failed;
         if (!skeleton)
@@ -180,7 +194,8 @@ int main(int argc, char** argv)
         return 2;
     }
 
-    const MocapImport imported = readInput(args, args.dumpPositions);
+    const bool toActor = !args.dumpPositions && endsWith(args.output, ".actor");
+    const MocapImport imported = readInput(args, args.dumpPositions, toActor);
     if (!imported)
     {
         std::cerr << "osgactorconv: " << imported.error << "\n";
@@ -191,14 +206,9 @@ int main(int argc, char** argv)
     std::ofstream file;
     if (!args.output.empty())
     {
-        if (endsWith(args.output, ".actor"))
+        if (!args.dumpPositions && !toActor && !endsWith(args.output, ".bvh"))
         {
-            std::cerr << "osgactorconv: .actor output needs the format plugin (osgdb_actor), not in this build yet\n";
-            return 2;
-        }
-        if (!args.dumpPositions && !endsWith(args.output, ".bvh"))
-        {
-            std::cerr << "osgactorconv: " << args.output << ": unknown output format (expected .bvh)\n";
+            std::cerr << "osgactorconv: " << args.output << ": unknown output format (expected .actor or .bvh)\n";
             return 2;
         }
         file.open(args.output, std::ios::binary);
@@ -215,6 +225,15 @@ int main(int argc, char** argv)
     {
         if (!imported.clip) error = args.inputs[0] + ": the input holds no motion to dump";
         else written = writePositionsCsv(out, imported.definition, *imported.clip, args.firstFrame, args.endFrame, error);
+    }
+    else if (toActor)
+    {
+        ActorDocument document = makeDocument(*imported.definition);
+        document.name = imported.definition->getName();
+        if (imported.clip) document.sections.push_back(clipToSection(*imported.clip, PlayMode::Loop));
+        writeActor(out, document);
+        written = static_cast<bool>(out);
+        if (!written) error = args.output + ": cannot write the file";
     }
     else
         written = writeBvh(out, *imported.definition, imported.clip.get(), error);

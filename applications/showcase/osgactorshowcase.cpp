@@ -17,8 +17,10 @@ int main(int argc, char** argv)
     usage->setApplicationName(arguments.getApplicationName());
     usage->setDescription(arguments.getApplicationName() + " writes the osgActor showcase scene.");
     usage->setCommandLineUsage(arguments.getApplicationName() + " [options] output.osgt");
-    usage->addCommandLineOption("--dancer <file>", "The motion-capture dancer, as osgDB reads it (default: none).");
-    usage->addCommandLineOption("--dancer-scale <s>", "Scale from the dancer file's units to metres (default 1).");
+    usage->addCommandLineOption("--dancer <file>", "The motion-capture dancer, as osgDB reads it, relative to the "
+                                                   "output's folder (default: the CMU Charleston in ../shared/mocap).");
+    usage->addCommandLineOption("--no-dancer", "Leave the dancer out.");
+    usage->addCommandLineOption("--dancer-scale <s>", "Scale from the dancer file's units to metres (default CMU's).");
     usage->addCommandLineOption("--dancer-y-up", "The dancer file is Y up (turned to Z up).");
     if (arguments.read("-h") || arguments.read("--help"))
     {
@@ -28,6 +30,7 @@ int main(int argc, char** argv)
 
     osgActorShowcase::ShowcaseSources sources;
     while (arguments.read("--dancer", sources.dancer)) {}
+    while (arguments.read("--no-dancer")) sources.dancer.clear();
     while (arguments.read("--dancer-scale", sources.dancerScale)) {}
     while (arguments.read("--dancer-y-up")) sources.dancerYUp = true;
     arguments.reportRemainingOptionsAsUnrecognized();

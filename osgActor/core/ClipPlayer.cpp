@@ -77,6 +77,11 @@ void ClipPlayer::setRootMotion(RootMotion mode, const std::string& rootJoint)
     _haveBase = false;
 }
 
+void ClipPlayer::setSwayWindow(double seconds)
+{
+    if (std::isfinite(seconds)) _swayWindow = std::max(0.0, seconds);
+}
+
 double ClipPlayer::clipTimeAt(double t) const
 {
     const double duration = _clip ? _clip->getDuration() : 0.0;
@@ -100,7 +105,9 @@ bool ClipPlayer::bind(const ActorDefinition& definition)
     _channelDof.assign(numChannels, -1);
     for (unsigned c = 0; c < numChannels; ++c) _channelDof[c] = definition.findDof(_clip->getChannel(c).target);
     _clip->initCursor(_cursor);
+    _clip->initCursor(_swayCursor);
     _sample.assign(numChannels, 0.0);
+    _swaySample.assign(numChannels, 0.0);
     _scratchDofs = definition.getDefaultDofs();
     bindRootMotion(definition);
     return true;
@@ -166,7 +173,17 @@ void ClipPlayer::rootTravelFromSample(const ActorDefinition& definition, glm::dv
     heading = std::atan2(forward.y, forward.x) - _heading0;
 }
 
-void ClipPlayer::applyRootMotion(const ActorDefinition& definition, ControllerTarget& target)
+glm::dvec3 ClipPlayer::groundAt(const ActorDefinition& definition, double clipTime)
+{
+    _clip->sample(clipTime, _swayCursor, _swaySample.data());
+    glm::dvec3 p(0.0);
+    for (unsigned axis = 0; axis < 3; ++axis)
+        if (_rootChannel[axis] >= 0) p[axis] = _swaySample[static_cast<unsigned>(_rootChannel[axis])];
+    const glm::dvec3 displacement = definition.getOffsetRotation(static_cast<unsigned>(_rootJoint)) * p;
+    return glm::dvec3(displacement.x, displacement.y, 0.0);
+}
+
+void ClipPlayer::applyRootMotion(const ActorDefinition& definition, double clipTime, ControllerTarget& target)
 {
     glm::dvec3 displacement;
     double heading;
@@ -207,11 +224,21 @@ void ClipPlayer::applyRootMotion(const ActorDefinition& definition, ControllerTa
             _baseTranslation -= _baseRotation * _cycleTranslation;
         }
         const glm::dquat turn = headingRotation(heading);
-        // pre * post = base * T(ground) * Rz(h) * T(bob) * Rz(-h) = base * T(ground + bob): the world pose is
-        // the one the skeleton had with its translation DOFs.
-        transforms.preTranslation = _baseTranslation + _baseRotation * ground;
+        // The reference path: the ground point itself, or the midpoint of the ground points half a sway window
+        // before and after (the sway, ground - path, then goes to the post-transform).
+        glm::dvec3 path = ground;
+        if (_swayWindow > 0.0)
+        {
+            const double duration = _clip->getDuration();
+            const double half = 0.5 * _swayWindow;
+            path = 0.5 * (groundAt(definition, std::max(0.0, clipTime - half)) +
+                          groundAt(definition, std::min(duration, clipTime + half)));
+        }
+        // pre * post = base * T(path) * Rz(h) * T(Rz(-h) (ground - path) + bob) * Rz(-h) = base * T(ground + bob):
+        // the world pose is the one the skeleton had with its translation DOFs.
+        transforms.preTranslation = _baseTranslation + _baseRotation * path;
         transforms.preRotation = _baseRotation * turn;
-        transforms.postTranslation = bob;
+        transforms.postTranslation = glm::conjugate(turn) * (ground - path) + bob;
         transforms.postRotation = glm::conjugate(turn);
     }
     target.transformsChanged = true;
@@ -244,10 +271,11 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
         }
     }
     if (_fade <= 0.0) return;
-    _clip->sample(clipTimeAt(_playTime), _cursor, _sample.data());
+    const double clipTime = clipTimeAt(_playTime);
+    _clip->sample(clipTime, _cursor, _sample.data());
     for (unsigned c = 0; c < _sample.size(); ++c)
         if (_channelDof[c] >= 0) writeDof(target.pose, static_cast<unsigned>(_channelDof[c]), _sample[c], _fade);
-    if (_rootJoint >= 0) applyRootMotion(*definition, target);
+    if (_rootJoint >= 0) applyRootMotion(*definition, clipTime, target);
 }
 
 void crossFade(ClipPlayer& from, ClipPlayer& to, double seconds)

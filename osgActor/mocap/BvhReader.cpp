@@ -70,7 +70,7 @@ bool BvhParser::readNumber(double& value, const char* what)
 {
     std::string_view token;
     if (!_text.nextToken(token)) return fail(std::string("the file ends where ") + what + " was expected");
-    if (!parseNumber(token, value))
+    if (!parseNumberToken(token, value))
         return fail(std::string("expected ") + what + ", found '" + std::string(token) + "'");
     return true;
 }
@@ -175,6 +175,13 @@ bool BvhParser::buildDefinition(MocapImport& result)
     const glm::dquat toZUp = _options.convertToZUp ? upAxisToZUp(_options.fileUpAxis) : glm::dquat(1, 0, 0, 0);
     std::unordered_set<std::string> names;
     for (const BvhJoint& joint : _joints)
+        if (!joint.endSite) names.insert(joint.name);
+    // An End Site is named after its parent; should a real joint already have that name, it takes the next free one.
+    for (BvhJoint& joint : _joints)
+        if (joint.endSite && _options.endSitesAsJoints)
+            while (!names.insert(joint.name).second) joint.name += "_";
+    names.clear();
+    for (const BvhJoint& joint : _joints)
     {
         if (joint.endSite && !_options.endSitesAsJoints) continue;
         if (!names.insert(joint.name).second)
@@ -253,7 +260,7 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
         for (unsigned c = 0; c < numChannels; ++c)
         {
             double value;
-            if (!parseNumber(tokens[c], value))
+            if (!parseNumberToken(tokens[c], value))
                 return fail("value " + std::to_string(c + 1) + " of frame " + std::to_string(frame) + " ('" +
                             std::string(tokens[c]) + "') is not a finite number");
             row[columnDof[c]] = value * columnFactor[c];

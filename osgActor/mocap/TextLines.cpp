@@ -125,7 +125,7 @@ bool parseDecimalFast(std::string_view token, double& value)
 
 } // namespace
 
-bool parseNumber(std::string_view token, double& value)
+bool parseNumberToken(std::string_view token, double& value)
 {
     if (!token.empty() && token.front() == '+') token.remove_prefix(1);
     if (token.empty()) return false;

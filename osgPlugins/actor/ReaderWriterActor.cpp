@@ -1,4 +1,7 @@
-/* osgdb_actor: the osgDB plugin for .actor files (docs/actor-format.md). */
+/* osgdb_actor: the osgDB plugin for .actor files (docs/actor-format.md), and the mocap pseudo-loader
+ * ("walk.bvh.actor", docs/mocap.md). */
+#include "MocapPseudoLoader"
+
 #include <osgActor/ActorSceneIO>
 #include <osgActor/io/ActorReader>
 #include <osgActor/io/ActorWriter>
@@ -28,7 +31,16 @@ public:
 class ReaderWriterActor : public osgDB::ReaderWriter
 {
 public:
-    ReaderWriterActor() { supportsExtension("actor", "osgActor actor (definition, pose and geometry)"); }
+    ReaderWriterActor()
+    {
+        supportsExtension("actor", "osgActor actor (definition, pose and geometry)");
+        supportsOption("amc=<file>", "walk.asf.actor: the AMC motion of the ASF skeleton (else one found beside it)");
+        supportsOption("scale=<s>", "walk.bvh.actor / .asf.actor: file units to model units");
+        supportsOption("up=<Y|Z>", "walk.bvh.actor / .asf.actor: the file's up axis (Y by default)");
+        supportsOption("fps=<n>", "walk.asf.actor: AMC frame rate (120 by default)");
+        supportsOption("dropFirstFrame", "walk.bvh.actor: drop the reference pose in frame 0");
+        supportsOption("rootMotion=<skeleton|transforms|inplace>", "mocap pseudo-loader: where the root's travel goes");
+    }
 
     const char* className() const override { return "osgActor .actor reader/writer"; }
 
@@ -50,6 +62,7 @@ public:
     {
         const std::string extension = osgDB::getLowerCaseFileExtension(file);
         if (!acceptsExtension(extension)) return ReadResult::FILE_NOT_HANDLED;
+        if (osgActorPlugin::isMocapPseudoFile(file)) return osgActorPlugin::readMocapPseudoFile(file, options);
         return readActorFile(file, options);
     }
 

@@ -7,6 +7,8 @@
 #include <osgActor/ActorNode>
 #include <osgActor/GlmOsg>
 #include <osgActor/IkNodeController>
+#include <osgActor/core/ClipBuilder>
+#include <osgActor/core/ClipPlayer>
 #include <osgActor/core/ik/IkController>
 
 #include <osg/MatrixTransform>
@@ -167,4 +169,54 @@ TEST(IkNodes, IkWritesOnTopOfAClipAndClonesSolveOnTheirOwn)
     const double tolerance = 1e-4 * scene.chain->getLength();
     EXPECT_TRUE(vectorsNear(glm::dvec3(toGlm(scene.actor->getJointModelMatrix(ankle))[3]), goal.position, tolerance));
     EXPECT_TRUE(vectorsNear(glm::dvec3(toGlm(clone->getJointModelMatrix(ankle))[3]), cloneGoal.position, tolerance));
+}
+
+TEST(IkNodes, AFootStaysPlantedWhileAClipPlays)
+{
+    // A clip sways the pelvis and swings the leg; IK, added after it, keeps the ankle on one point of the ground.
+    LegScene scene(IkSolverType::TwoBone);
+    const ActorDefinitionPtr leg = scene.actor->getDefinition();
+    ClipBuilder sway("sway");
+    for (const char* dof : {"pelvis.rx", "pelvis.rz", "hip.rx", "knee.rx"})
+    {
+        const unsigned channel = sway.addChannel(dof, Interpolation::Cubic);
+        sway.addKey(channel, 0.0, 0.1);
+        sway.addKey(channel, 0.5, std::string(dof) == "knee.rx" ? 0.6 : -0.15);
+        sway.addKey(channel, 1.0, 0.1);
+    }
+    const ClipBuildResult clip = sway.build();
+    ASSERT_TRUE(clip) << clip.error;
+    auto player = std::make_shared<ClipPlayer>(clip.clip);
+    player->setPlayMode(PlayMode::Loop);
+    scene.actor->addController(player);
+    // The same clip alone on a twin, to see what the clip wrote.
+    osg::ref_ptr<ActorNode> clipOnly = osg::clone(scene.actor.get(), osg::CopyOp::SHALLOW_COPY);
+    scene.place->addChild(clipOnly);
+
+    std::vector<double> planted = leg->getDefaultDofs();
+    planted[static_cast<unsigned>(leg->findDof("knee.rx"))] = 0.5;
+    planted[static_cast<unsigned>(leg->findDof("hip.rx"))] = -0.25;
+    const osg::Vec3d ground = scene.worldAnkleFor(planted);
+    auto foot = std::make_shared<IkController>(scene.chain);
+    IkGoal goal;
+    goal.position = toGlm(ground);
+    foot->setGoal(goal, IkGoalSpace::World);
+    scene.actor->addController(foot);
+
+    const unsigned ankle = scene.chain->getEffectorJoint();
+    for (unsigned frame = 1; frame <= 60; frame += 7)
+    {
+        runUpdate(*scene.root, frame);
+        EXPECT_TRUE(vec3Near(sceneGraphWorldPosition(*scene.actor, ankle), ground, 1e-4 * scene.chain->getLength()))
+            << "frame " << frame;
+        EXPECT_TRUE(foot->getLastResult().reached) << "frame " << frame;
+        for (const char* dof : {"pelvis.rx", "pelvis.rz"})
+        {
+            const unsigned d = static_cast<unsigned>(leg->findDof(dof));
+            EXPECT_EQ(scene.actor->getDof(d), clipOnly->getDof(d)) << dof << " is the clip's, frame " << frame;
+        }
+        EXPECT_NE(scene.actor->getDof(static_cast<unsigned>(leg->findDof("knee.rx"))),
+                  clipOnly->getDof(static_cast<unsigned>(leg->findDof("knee.rx"))))
+            << "IK overrides the clip's knee, frame " << frame;
+    }
 }

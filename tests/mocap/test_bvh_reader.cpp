@@ -174,6 +174,22 @@ TEST(BvhReader, ReadsEndSitesAsJointsWithoutDofsOrLeavesThemOut)
     EXPECT_EQ(readText(text, fileFrame()).definition->getNumJoints(), 2u);
 }
 
+TEST(BvhReader, NamesEndSitesApartFromRealJoints)
+{
+    // A real joint already named "knee_end": the End Site below the knee takes "knee_end_".
+    const std::string text = "HIERARCHY\nROOT knee\n{\n OFFSET 0 0 0\n CHANNELS 1 Xrotation\n JOINT knee_end\n {\n"
+                             "  OFFSET 1 0 0\n  CHANNELS 0\n }\n End Site\n {\n  OFFSET 0 1 0\n }\n}\n"
+                             "MOTION\nFrames: 1\nFrame Time: 1\n0\n";
+    BvhImportOptions options = fileFrame();
+    options.endSitesAsJoints = true;
+    const MocapImport result = readText(text, options);
+    ASSERT_TRUE(result) << result.error;
+    EXPECT_GE(result.definition->findJoint("knee_end"), 0);
+    const int end = result.definition->findJoint("knee_end_");
+    ASSERT_GE(end, 0);
+    EXPECT_EQ(result.definition->getDofMask(static_cast<unsigned>(end)), 0);
+}
+
 TEST(BvhReader, TakesQuirksOfRealFilesInItsStride)
 {
     // CRLF, tabs, trailing spaces, two rotation channels, position channels on a child, .0083 and 1e-014.

@@ -190,3 +190,22 @@ TEST(MocapOptionString, ReadsEveryOptionAndLeavesOtherWordsAlone)
     EXPECT_EQ(options.rootMotion, RootMotion::InPlace);
     EXPECT_FALSE(options.addFigure);
 }
+
+TEST(MocapActor, StartsItsClipAtTheFirstFrameStampItSees)
+{
+    const std::string path = sharedMocap("bvh/12_03.bvh");
+    std::string error;
+    osg::ref_ptr<ActorNode> actor = readMocapActor(path, MocapActorOptions(), error);
+    ASSERT_TRUE(actor.valid()) << error;
+    const reference::Bvh bvh = reference::readBvh(path);
+    const double size = extent(reference::bvhPositions(bvh, 0));
+    const unsigned hips = static_cast<unsigned>(actor->getJointIndex("Hips"));
+    // Posed at frame 0 before any update, then still frame 0 when the scene is already 10 s old, then 2 frames on.
+    EXPECT_LT(distance(actor->getJointWorldPosition(hips), zUp(reference::bvhPositions(bvh, 0)[0])), 1e-6 * size);
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    runUpdate(*root, 600);
+    EXPECT_LT(distance(actor->getJointWorldPosition(hips), zUp(reference::bvhPositions(bvh, 0)[0])), 1e-6 * size);
+    runUpdate(*root, 601);
+    EXPECT_LT(distance(actor->getJointWorldPosition(hips), zUp(reference::bvhPositions(bvh, 2)[0])), 1e-6 * size);
+}

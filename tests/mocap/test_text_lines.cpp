@@ -9,15 +9,15 @@
 
 using namespace osgActor;
 
-TEST(ParseNumber, RefusesWhatIsNotADecimalNumber)
+TEST(ParseNumberToken, RefusesWhatIsNotADecimalNumber)
 {
     double value = 0.0;
     for (const char* bad : {"", "+", "-", ".", "e5", "1e", "1e+", "--1", "1.2.3", "0x10", "1,5", "12a", "nan", "NaN",
                             "inf", "-inf", "1e400", "-1e999"})
-        EXPECT_FALSE(parseNumber(bad, value)) << bad;
+        EXPECT_FALSE(parseNumberToken(bad, value)) << bad;
 }
 
-TEST(ParseNumber, ReadsTheFormsRealFilesUse)
+TEST(ParseNumberToken, ReadsTheFormsRealFilesUse)
 {
     const std::pair<const char*, double> cases[] = {
         {".0083333", 0.0083333}, {"-0.000000", -0.0},     {"1e-014", 1e-14},   {"9.27E-16", 9.27e-16},
@@ -27,12 +27,12 @@ TEST(ParseNumber, ReadsTheFormsRealFilesUse)
     for (const auto& c : cases)
     {
         double value = 1.0;
-        ASSERT_TRUE(parseNumber(c.first, value)) << c.first;
+        ASSERT_TRUE(parseNumberToken(c.first, value)) << c.first;
         EXPECT_EQ(value, c.second) << c.first;
     }
 }
 
-TEST(ParseNumber, AgreesWithStrtodToTheBit)
+TEST(ParseNumberToken, AgreesWithStrtodToTheBit)
 {
     std::mt19937_64 random(7);
     std::uniform_real_distribution<double> mantissa(-1000.0, 1000.0);
@@ -42,10 +42,10 @@ TEST(ParseNumber, AgreesWithStrtodToTheBit)
     {
         std::snprintf(text, sizeof(text), "%.*f", digits(random), mantissa(random));
         double value = 0.0;
-        ASSERT_TRUE(parseNumber(text, value)) << text;
+        ASSERT_TRUE(parseNumberToken(text, value)) << text;
         EXPECT_EQ(value, std::strtod(text, nullptr)) << text;
         std::snprintf(text, sizeof(text), "%.*e", digits(random), mantissa(random) * 1e-5);
-        ASSERT_TRUE(parseNumber(text, value)) << text;
+        ASSERT_TRUE(parseNumberToken(text, value)) << text;
         EXPECT_EQ(value, std::strtod(text, nullptr)) << text;
     }
 }

@@ -204,3 +204,28 @@ TEST(ClipPlayer, PlaysInPlace)
     EXPECT_TRUE(vectorsNear(rig.transforms.preTranslation, glm::dvec3(5, 0, 0)));
     EXPECT_TRUE(vectorsNear(glm::dvec3(rig.world(0)[3]), glm::dvec3(5, 0, 1.25), 1e-12));
 }
+
+TEST(ClipPlayer, PutsTheSwayInThePostTransformWhenAsked)
+{
+    // Walks 4 along X in 4 s, swaying 0.1 to either side every second.
+    const ClipPtr walk = makeClip({{"hips.tx", {{0, 0}, {4, 4}}},
+                                   {"hips.ty", {{0, 0}, {0.5, 0.1}, {1, 0}, {1.5, -0.1}, {2, 0}, {2.5, 0.1}, {3, 0},
+                                                {3.5, -0.1}, {4, 0}}}});
+    Rig stored(makeWalker()), split(makeWalker());
+    auto storedPlayer = std::make_shared<ClipPlayer>(walk);
+    auto splitPlayer = std::make_shared<ClipPlayer>(walk);
+    splitPlayer->setRootMotion(RootMotion::ToTransforms);
+    splitPlayer->setSwayWindow(1.0);
+    stored.run({storedPlayer}, 0.0);
+    split.run({splitPlayer}, 0.0);
+    for (int step = 0; step < 3; ++step)
+    {
+        stored.run({storedPlayer}, 0.5);
+        split.run({splitPlayer}, 0.5);
+        SCOPED_TRACE("time " + std::to_string(split.time));
+        for (unsigned j = 0; j < 2; ++j) EXPECT_TRUE(matricesNear(split.world(j), stored.world(j), 1e-12)) << j;
+    }
+    // At 1.5 s the hips are at (1.5, -0.1): the path (midpoint of 1 s and 2 s) is (1.5, 0), the sway -0.1.
+    EXPECT_TRUE(vectorsNear(split.transforms.preTranslation, glm::dvec3(1.5, 0, 0), 1e-12));
+    EXPECT_TRUE(vectorsNear(split.transforms.postTranslation, glm::dvec3(0, -0.1, 0), 1e-12));
+}

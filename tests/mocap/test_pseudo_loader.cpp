@@ -1,0 +1,144 @@
+#include "MocapTestUtil"
+#include "ReferenceMocap"
+
+#include <osgActor/ActorNode>
+#include <osgActor/core/ClipPlayer>
+#include <osgActor/io/ActorDocument>
+#include <osgActor/io/ActorWriter>
+#include <osgActor/io/ClipSection>
+#include <osgActor/mocap/BvhReader>
+
+#include <osg/FrameStamp>
+#include <osgUtil/UpdateVisitor>
+
+#include <osgDB/ReadFile>
+#include <osgDB/Registry>
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+/** Reads through osgDB's registry (plugin lookup by the last extension, .actor), as osgviewer does. */
+osgDB::ReaderWriter::ReadResult readThroughOsgDB(const std::string& file, const std::string& optionString = "")
+{
+    osg::ref_ptr<osgDB::Options> options = new osgDB::Options(optionString);
+    return osgDB::Registry::instance()->readNode(file, options.get());
+}
+
+osg::Vec3d zUp(const glm::dvec3& p) { return osg::Vec3d(p.x, -p.z, p.y); }
+
+} // namespace
+
+TEST(MocapPseudoLoader, ReportsMissingAndBrokenFiles)
+{
+    EXPECT_EQ(readThroughOsgDB("/nonexistent/walk.bvh.actor").status(), osgDB::ReaderWriter::ReadResult::FILE_NOT_FOUND);
+
+    const std::string broken = std::string(OSGACTOR_TEST_BINARY_DIR) + "/pseudo_broken.bvh";
+    std::ofstream(broken) << "HIERARCHY\nROOT hips\n{\n  OFFSET 0 0 0\n  CHANNELS 1 Xrotation\n}\nMOTION\nFrames: 1\n"
+                             "Frame Time: 0.1\n1 2\n";
+    osgDB::ReaderWriter::ReadResult result = readThroughOsgDB(broken + ".actor");
+    EXPECT_FALSE(result.validNode());
+    EXPECT_NE(result.message().find("pseudo_broken.bvh:10: frame 0 has 2 values"), std::string::npos) << result.message();
+
+    osgDB::ReaderWriter::ReadResult badOption = readThroughOsgDB(sharedMocap("bvh/tpose.bvh.actor"), "scale=big");
+    EXPECT_FALSE(badOption.validNode());
+    EXPECT_NE(badOption.message().find("scale needs a positive number"), std::string::npos) << badOption.message();
+
+    osgDB::ReaderWriter::ReadResult noAmc = readThroughOsgDB(sharedMocap("asfamc/11.asf.actor"), "amc=nothing.amc");
+    EXPECT_FALSE(noAmc.validNode());
+    EXPECT_NE(noAmc.message().find("cannot find the AMC file 'nothing.amc'"), std::string::npos) << noAmc.message();
+}
+
+TEST(MocapPseudoLoader, LoadsABvhFileAsAPlayingActor)
+{
+    osgDB::ReaderWriter::ReadResult result = readThroughOsgDB(sharedMocap("bvh/12_03.bvh.actor"));
+    ASSERT_TRUE(result.validNode()) << result.message();
+    ActorNode* actor = dynamic_cast<ActorNode*>(result.getNode());
+    ASSERT_NE(actor, nullptr);
+    EXPECT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("mocap")));
+    // Posed at frame 0 at once, in OSG's Z-up frame.
+    const reference::Bvh bvh = reference::readBvh(sharedMocap("bvh/12_03.bvh"));
+    const std::vector<glm::dvec3> expected = reference::bvhPositions(bvh, 0);
+    const double size = extent(expected);
+    for (std::size_t j = 0; j < bvh.joints.size(); ++j)
+    {
+        if (bvh.joints[j].endSite) continue;
+        const int joint = actor->getJointIndex(bvh.joints[j].name);
+        ASSERT_GE(joint, 0);
+        EXPECT_LT((actor->getJointWorldPosition(static_cast<unsigned>(joint)) - zUp(expected[j])).length(), 1e-6 * size);
+    }
+}
+
+TEST(MocapPseudoLoader, LoadsAnAsfWithItsAmcNamedOrFound)
+{
+    osgDB::ReaderWriter::ReadResult found = readThroughOsgDB(sharedMocap("asfamc/charleston.asf.actor"));
+    ASSERT_TRUE(found.validNode()) << found.message();
+    osgDB::ReaderWriter::ReadResult named =
+        readThroughOsgDB(sharedMocap("asfamc/11.asf.actor"), "amc=11_01.amc fps=60 rootMotion=inplace");
+    ASSERT_TRUE(named.validNode()) << named.message();
+    ActorNode* actor = dynamic_cast<ActorNode*>(named.getNode());
+    ASSERT_NE(actor, nullptr);
+    auto player = std::dynamic_pointer_cast<ClipPlayer>(actor->findController("mocap"));
+    ASSERT_TRUE(player);
+    EXPECT_DOUBLE_EQ(player->getClip()->getFrameRate(), 60.0);
+    EXPECT_EQ(player->getRootMotion(), RootMotion::InPlace);
+}
+
+TEST(ActorFileClips, AnActorFileCarriesAndPlaysItsMotion)
+{
+    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
+    ASSERT_TRUE(imported) << imported.error;
+    ActorDocument document = makeDocument(*imported.definition);
+    document.name = "walker";
+    document.sections.push_back(clipToSection(*imported.clip, PlayMode::Loop));
+    const std::string path = std::string(OSGACTOR_TEST_BINARY_DIR) + "/walker.actor";
+    {
+        std::ofstream out(path);
+        writeActor(out, document);
+    }
+    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
+    ASSERT_TRUE(read.validNode()) << read.message();
+    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(read.getNode());
+    ASSERT_TRUE(actor.valid());
+    ASSERT_TRUE(actor->getClipLibrary());
+    EXPECT_TRUE(actor->getClipLibrary()->getClip("12_03"));
+    ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("12_03")));
+
+    // Played from the frame stamp: frame n of the update is clip frame 2n of this 120 Hz file.
+    const reference::Bvh bvh = reference::readBvh(sharedMocap("bvh/12_03.bvh"));
+    const double size = extent(reference::bvhPositions(bvh, 0));
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    for (unsigned n : {0u, 5u})
+    {
+        osg::ref_ptr<osgUtil::UpdateVisitor> visitor = new osgUtil::UpdateVisitor;
+        osg::ref_ptr<osg::FrameStamp> stamp = new osg::FrameStamp;
+        stamp->setFrameNumber(n);
+        stamp->setSimulationTime(n / 60.0);
+        visitor->setFrameStamp(stamp.get());
+        root->accept(*visitor);
+        const std::vector<glm::dvec3> expected = reference::bvhPositions(bvh, 2 * n);
+        for (std::size_t j = 0; j < bvh.joints.size(); ++j)
+        {
+            if (bvh.joints[j].endSite) continue;
+            const unsigned joint = static_cast<unsigned>(actor->getJointIndex(bvh.joints[j].name));
+            // The file keeps 12 significant digits.
+            EXPECT_LT((actor->getJointWorldPosition(joint) - zUp(expected[j])).length(), 1e-6 * size) << bvh.joints[j].name;
+        }
+    }
+}
+
+TEST(ActorFileClips, ABrokenClipSectionFailsTheRead)
+{
+    const std::string path = std::string(OSGACTOR_TEST_BINARY_DIR) + "/broken_clip.actor";
+    std::ofstream(path) << "osgactor 1\nactor a {\n    joint b {\n        dof rx\n    }\n    clip wave {\n"
+                           "        key 0 b.rx nan\n    }\n}\n";
+    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
+    EXPECT_FALSE(read.validNode());
+    EXPECT_NE(read.message().find("broken_clip.actor:7: "), std::string::npos) << read.message();
+}
