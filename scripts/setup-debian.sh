@@ -8,6 +8,7 @@ packages=(
     libopenscenegraph-dev openscenegraph   # OSG 3.6 headers, libraries, osgDB plugins, osgviewer/osgconv
     libglm-dev                             # the core's math
     libosmesa6-dev                         # offscreen rendering
+    fonts-dejavu-core                      # the viewer panel's font
     libgtest-dev libgmock-dev googletest   # unit tests
     libbenchmark-dev                       # benchmarks
     assimp-testmodels                      # real BVH files used by the tests

@@ -1,0 +1,25 @@
+/* Shared by the applications: where the camera stands, and how to frame a scene automatically. */
+#ifndef OSGACTORAPPS_CAMERAVIEW_H
+#define OSGACTORAPPS_CAMERAVIEW_H 1
+
+#include <osg/BoundingSphere>
+#include <osg/Vec3d>
+
+namespace osgActorApps {
+
+/** A look-at camera in world space (model units). */
+struct CameraView
+{
+    osg::Vec3d eye{0.0, -10.0, 0.0};
+    osg::Vec3d center{0.0, 0.0, 0.0};
+    osg::Vec3d up{0.0, 0.0, 1.0};
+};
+
+/** A view from the front-right and a little above (Z up, as in OSG), far enough back that the whole bounding
+  * sphere fits a perspective camera of the given vertical field of view (degrees) and aspect ratio (width /
+  * height). An invalid or empty bound gives the default view. */
+CameraView frameBoundingSphere(const osg::BoundingSphere& bound, double fovyDegrees, double aspect);
+
+} // namespace osgActorApps
+
+#endif

@@ -1,0 +1,104 @@
+#include "OffscreenRenderer.h"
+
+#include <osg/GL>
+
+namespace osgActorRender {
+
+std::unique_ptr<OffscreenRenderer> OffscreenRenderer::create(int width, int height, std::string& error)
+{
+    std::unique_ptr<OsMesaContext> context = OsMesaContext::create(width, height, error);
+    if (!context) return nullptr;
+    return std::unique_ptr<OffscreenRenderer>(new OffscreenRenderer(std::move(context)));
+}
+
+OffscreenRenderer::OffscreenRenderer(std::unique_ptr<OsMesaContext> context)
+    : _context(std::move(context)), _viewer(new osgViewer::Viewer), _fovyDegrees(30.0)
+{
+    // The context is current on this thread only: any other threading model would draw from another thread.
+    _viewer->setThreadingModel(osgViewer::ViewerBase::SingleThreaded);
+    _viewer->setUpViewerAsEmbeddedInWindow(0, 0, _context->getWidth(), _context->getHeight());
+    _viewer->setKeyEventSetsDone(0);
+    _viewer->realize();
+    setFieldOfView(_fovyDegrees);
+    setCameraView(_view);
+}
+
+OffscreenRenderer::~OffscreenRenderer()
+{
+    // The viewer goes first, while its context is current, so that it can release its GL objects there.
+    _context->makeCurrent();
+    _viewer = nullptr;
+}
+
+void OffscreenRenderer::setScene(osg::Node* scene) { _viewer->setSceneData(scene); }
+
+void OffscreenRenderer::setBackground(const osg::Vec4& colour) { _viewer->getCamera()->setClearColor(colour); }
+
+void OffscreenRenderer::setFieldOfView(double fovyDegrees)
+{
+    _fovyDegrees = fovyDegrees;
+    const double aspect = double(_context->getWidth()) / double(_context->getHeight());
+    // Near and far are recomputed from the scene's bound every frame (OSG's default); only the field of view and
+    // the aspect ratio of this matrix matter.
+    _viewer->getCamera()->setProjectionMatrixAsPerspective(fovyDegrees, aspect, 1.0, 10000.0);
+}
+
+void OffscreenRenderer::setCameraView(const CameraView& view)
+{
+    _view = view;
+    _viewer->getCamera()->setViewMatrixAsLookAt(view.eye, view.center, view.up);
+}
+
+CameraView OffscreenRenderer::frameScene() const
+{
+    const osg::Node* scene = _viewer->getSceneData();
+    if (scene == nullptr) return CameraView();
+    const double aspect = double(_context->getWidth()) / double(_context->getHeight());
+    return frameBoundingSphere(scene->getBound(), _fovyDegrees, aspect);
+}
+
+void OffscreenRenderer::update(double simulationTime)
+{
+    _viewer->advance(simulationTime);
+    _viewer->eventTraversal();
+    _viewer->updateTraversal();
+}
+
+osg::ref_ptr<osg::Image> OffscreenRenderer::draw()
+{
+    // Another renderer in this process may have made its own context current since the last frame.
+    _context->makeCurrent();
+    _viewer->renderingTraversals();
+    glFinish(); // the buffer is complete only once the GL has executed every command
+
+    const int width = _context->getWidth();
+    const int height = _context->getHeight();
+    osg::ref_ptr<osg::Image> image = new osg::Image;
+    image->allocateImage(width, height, 1, GL_RGB, GL_UNSIGNED_BYTE);
+    const unsigned char* rgba = _context->getPixels();
+    unsigned char* rgb = image->data();
+    const size_t numPixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+    for (size_t i = 0; i < numPixels; ++i)
+    {
+        rgb[3 * i + 0] = rgba[4 * i + 0];
+        rgb[3 * i + 1] = rgba[4 * i + 1];
+        rgb[3 * i + 2] = rgba[4 * i + 2];
+    }
+    return image;
+}
+
+osg::ref_ptr<osg::Image> OffscreenRenderer::renderFrame(double simulationTime)
+{
+    update(simulationTime);
+    return draw();
+}
+
+osg::Vec3d OffscreenRenderer::projectToWindow(const osg::Vec3d& world) const
+{
+    const osg::Camera* camera = _viewer->getCamera();
+    const osg::Matrixd worldToWindow =
+        camera->getViewMatrix() * camera->getProjectionMatrix() * camera->getViewport()->computeWindowMatrix();
+    return world * worldToWindow;
+}
+
+} // namespace osgActorRender

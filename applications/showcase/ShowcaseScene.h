@@ -1,0 +1,41 @@
+/* osgactorshowcase: builds the showcase scene (data/showcase.osgt). */
+#ifndef OSGACTORSHOWCASE_SHOWCASESCENE_H
+#define OSGACTORSHOWCASE_SHOWCASESCENE_H 1
+
+#include <osg/AnimationPath>
+#include <osg/Group>
+
+#include <functional>
+#include <string>
+
+namespace osgActorShowcase {
+
+/** Where the showcase's actors come from, as file names the scene's ProxyNodes load (relative to the scene file's
+  * folder, or anywhere on osgDB's data path). */
+struct ShowcaseSources
+{
+    std::string humanoid = "humanoid.actor";
+    std::string insect = "insect.actor";
+    /** The motion-capture dancer, a CMU Charleston (../shared/mocap, ASF + AMC) through osgdb_actor's mocap
+      * pseudo-loader, which turns its Y up to Z up; empty: no dancer. */
+    std::string dancer = "../../shared/mocap/asfamc/charleston.asf.actor";
+    /** From the file's units to metres: CMU skeletons are in units of 1/0.45 inch, 0.0254 / 0.45 m. */
+    double dancerScale = 0.0254 / 0.45;
+    /** Turn the dancer from Y up to Z up here (for a loader that does not). */
+    bool dancerYUp = false;
+};
+
+/** A path along a closed curve (parameter 0..1 once round) at a constant speed (model units per second), looping,
+  * turned so that an actor facing -Y faces along the path. Control points every sampleSeconds. */
+osg::ref_ptr<osg::AnimationPath> makeLoopPath(const std::function<osg::Vec3d(double)>& curve, double speed,
+                                              double sampleSeconds = 0.1);
+
+/** The showcase: a checkered floor with obstacles under a sun; the humanoid walking an ellipse round the dancer
+  * (PathWalker), the motion-capture dancer, and the six-legged insect wandering a figure of eight between rocks
+  * with a tripod gait (TripodGait). The actors are ProxyNodes, so the file stays small and always shows the
+  * current actor files of data/. */
+osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources);
+
+} // namespace osgActorShowcase
+
+#endif
