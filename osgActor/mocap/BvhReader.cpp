@@ -7,12 +7,19 @@
 #include <glm/ext/scalar_constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <unordered_set>
 
 namespace osgActor {
 
 namespace {
+
+/** A clip counts its frames in an unsigned int. */
+constexpr unsigned long kMaxFrames = 4294967295ul;
+/** Frames' worth of memory reserved up front from the header's count (the vector grows past it if the data does). */
+constexpr unsigned long kMaxReservedFrames = 10000ul;
 
 /** A BVH joint as read from the hierarchy, in file order (parents first). */
 struct BvhJoint
@@ -161,7 +168,9 @@ bool BvhParser::parseMotionHeader(unsigned long& numFrames, double& frameTime)
     if (!expect("Frames:")) return false;
     double frames = 0.0;
     if (!readNumber(frames, "the frame count")) return false;
-    if (frames < 0 || frames != static_cast<unsigned long>(frames)) return fail("the frame count must be a whole number");
+    // Range first: converting a double beyond unsigned long is undefined (found by fuzzing, docs/robustness.md).
+    if (!(frames >= 0 && frames <= kMaxFrames) || frames != std::floor(frames))
+        return fail("the frame count must be a whole number from 0 to " + std::to_string(kMaxFrames));
     numFrames = static_cast<unsigned long>(frames);
     if (!expect("Frame") || !expect("Time:") || !readNumber(frameTime, "the frame time")) return false;
     if (!(frameTime > 0.0)) return fail("the frame time must be positive");
@@ -233,7 +242,8 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
     }
     const unsigned numChannels = def.getNumDofs();
     std::vector<double> values;
-    values.reserve(numFrames * numChannels);
+    // The header's count is a hint, not a promise: a lying one must not allocate gigabytes before any frame is read.
+    values.reserve(std::min(numFrames, kMaxReservedFrames) * numChannels);
     unsigned long frame = 0;
     unsigned long extraLines = 0;
     while (_text.nextLine())
