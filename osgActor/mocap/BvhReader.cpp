@@ -20,6 +20,8 @@ namespace {
 constexpr unsigned long kMaxFrames = 4294967295ul;
 /** Frames' worth of memory reserved up front from the header's count (the vector grows past it if the data does). */
 constexpr unsigned long kMaxReservedFrames = 10000ul;
+/** Deepest joint nesting read (real skeletons: a few dozen; the .actor syntax allows 200 too). */
+constexpr unsigned kMaxDepth = 200;
 
 /** A BVH joint as read from the hierarchy, in file order (parents first). */
 struct BvhJoint
@@ -51,7 +53,7 @@ private:
     }
     bool expect(std::string_view keyword);
     bool readNumber(double& value, const char* what);
-    bool parseJoint(int parent, bool endSite);
+    bool parseJoint(int parent, bool endSite, unsigned depth);
     bool parseChannels(BvhJoint& joint);
     bool parseMotionHeader(unsigned long& numFrames, double& frameTime);
     bool buildDefinition(MocapImport& result);
@@ -108,8 +110,10 @@ bool BvhParser::parseChannels(BvhJoint& joint)
     return true;
 }
 
-bool BvhParser::parseJoint(int parent, bool endSite)
+bool BvhParser::parseJoint(int parent, bool endSite, unsigned depth)
 {
+    // Joints nest by recursion: a bound keeps a hostile file from overflowing the stack (found by fuzzing).
+    if (depth > kMaxDepth) return fail("joints are nested more than " + std::to_string(kMaxDepth) + " deep");
     BvhJoint joint;
     joint.parent = parent;
     joint.endSite = endSite;
@@ -146,11 +150,11 @@ bool BvhParser::parseJoint(int parent, bool endSite)
         }
         else if (sameWord(token, "JOINT") && !endSite)
         {
-            if (!parseJoint(static_cast<int>(index), false)) return false;
+            if (!parseJoint(static_cast<int>(index), false, depth + 1)) return false;
         }
         else if (sameWord(token, "End") && !endSite)
         {
-            if (!parseJoint(static_cast<int>(index), true)) return false;
+            if (!parseJoint(static_cast<int>(index), true, depth + 1)) return false;
         }
         else if (token == "}")
         {
@@ -299,7 +303,7 @@ MocapImport BvhParser::run()
     bool ok = expect("HIERARCHY");
     while (ok && _text.nextToken(token) && !sameWord(token, "MOTION"))
     {
-        if (sameWord(token, "ROOT")) ok = parseJoint(-1, false);
+        if (sameWord(token, "ROOT")) ok = parseJoint(-1, false, 0);
         else ok = fail("expected ROOT or MOTION, found '" + std::string(token) + "'");
     }
     if (ok && _joints.empty()) ok = fail("the file has no ROOT joint");
