@@ -1,4 +1,4 @@
-// libFuzzer target: the actor parser on arbitrary bytes (fuzz/ParserContract says what it must do).
+// libFuzzer target: the .actor reader on arbitrary bytes, and the writer on what it reads (fuzz/ParserContract).
 #include "FuzzMain"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
