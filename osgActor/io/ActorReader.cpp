@@ -142,7 +142,7 @@ private:
     {
         double version = 0.0;
         if (!numbers(header, 1, &version)) return false;
-        // Range before the whole-number test: converting 1e300 to int is undefined (found by fuzzing).
+        // Range before the whole-number test: converting 1e300 to int is undefined (docs/robustness.md).
         if (!(version >= 1) || version != std::floor(version))
             return fail(header.line, "the format version must be a whole number from 1");
         if (version > ActorDocument::kFormatVersion)

@@ -112,7 +112,7 @@ bool BvhParser::parseChannels(BvhJoint& joint)
 
 bool BvhParser::parseJoint(int parent, bool endSite, unsigned depth)
 {
-    // Joints nest by recursion: a bound keeps a hostile file from overflowing the stack (found by fuzzing).
+    // Joints nest by recursion: a bound keeps a hostile file from overflowing the stack (docs/robustness.md).
     if (depth > kMaxDepth) return fail("joints are nested more than " + std::to_string(kMaxDepth) + " deep");
     BvhJoint joint;
     joint.parent = parent;
@@ -172,7 +172,7 @@ bool BvhParser::parseMotionHeader(unsigned long& numFrames, double& frameTime)
     if (!expect("Frames:")) return false;
     double frames = 0.0;
     if (!readNumber(frames, "the frame count")) return false;
-    // Range first: converting a double beyond unsigned long is undefined (found by fuzzing, docs/robustness.md).
+    // Range first: converting a double beyond unsigned long is undefined (docs/robustness.md).
     if (!(frames >= 0 && frames <= kMaxFrames) || frames != std::floor(frames))
         return fail("the frame count must be a whole number from 0 to " + std::to_string(kMaxFrames));
     numFrames = static_cast<unsigned long>(frames);
