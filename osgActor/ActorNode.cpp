@@ -15,8 +15,14 @@ namespace {
 
 constexpr unsigned kNoFrame = std::numeric_limits<unsigned>::max();
 
-bool isFinite(const osg::Vec3d& v) { return v.valid(); }
-bool isFinite(const osg::Quat& q) { return q.asVec4().valid() && q.length2() > 0.0; }
+// Not Vec3d::valid(): that only rejects NaN, and an infinite translation makes the actor matrix NaN (found by
+// tests/robustness/test_error_handling.cpp).
+bool isFinite(const osg::Vec3d& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
+bool isFinite(const osg::Quat& q)
+{
+    return std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()) && std::isfinite(q.w()) &&
+           q.length2() > 0.0 && std::isfinite(q.length2());
+}
 
 /** A CopyOp that always copies skeleton nodes (they carry one instance's matrices) and defers everything else to
   * the user's CopyOp, so an actor's copy is an independent instance that shares geometry by default. */

@@ -13,7 +13,7 @@ packages=(
     libbenchmark-dev                       # benchmarks
     assimp-testmodels                      # real BVH files used by the tests
     xvfb xauth                             # windowed smoke tests without a display
-    clang                                  # fuzzers and sanitizer builds
+    clang libclang-rt-14-dev               # fuzzers (libFuzzer) and sanitizer builds
     gnuplot-nox                            # the benchmark's plot
 )
 

@@ -1,9 +1,41 @@
 #!/usr/bin/env bash
-# The README's test command: installs what is missing, builds, and runs the whole test suite.
+# The README's test command: installs what is missing, builds, and runs the whole test suite; then the robustness
+# steps (docs/robustness.md): the long soak test, the ThreadSanitizer runs (and, with OSGACTOR_ASAN=1, the whole
+# suite under AddressSanitizer + UBSan) and the bounded fuzz runs (OSGACTOR_FUZZ_SECONDS per parser). Each step says
+# how long it took. OSGACTOR_QUICK=1 stops after the quick suite. Extra arguments go to the quick suite's ctest.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${OSGACTOR_BUILD_DIR:-$root/build}"
-"$root/scripts/setup-debian.sh"
-"$root/scripts/build.sh"
-cd "$build"
-ctest --output-on-failure -j "${OSGACTOR_JOBS:-$(nproc)}" -LE long "$@"
+jobs="${OSGACTOR_JOBS:-$(nproc)}"
+
+timings=()
+# step <name> <command...>: runs the command and keeps its duration for the summary.
+step() {
+    local name="$1" start=$SECONDS
+    shift
+    echo "== test.sh: $name"
+    "$@"
+    timings+=("$name: $((SECONDS - start)) s")
+}
+summary() {
+    echo "== test.sh: timings"
+    printf '   %s\n' "${timings[@]}"
+}
+trap summary EXIT
+
+step setup "$root/scripts/setup-debian.sh"
+step build "$root/scripts/build.sh"
+step tests bash -c 'cd "$1" && shift && ctest --output-on-failure -j "$@"' _ "$build" "$jobs" -LE long "$@"
+if [ "${OSGACTOR_QUICK:-0}" = 1 ]; then
+    echo "== test.sh: OSGACTOR_QUICK=1: no soak, sanitizer or fuzz runs"
+    exit 0
+fi
+step soak bash -c 'cd "$1" && ctest --output-on-failure -L long' _ "$build"
+# ThreadSanitizer always; the AddressSanitizer build of the whole suite with OSGACTOR_ASAN=1 (docs/robustness.md:
+# a second full build, which would take this command past CI's 30 minutes on 2 cores).
+sanitizers=(tsan)
+[ "${OSGACTOR_ASAN:-0}" = 1 ] && sanitizers+=(asan)
+step sanitizers "$root/scripts/test-sanitizers.sh" "${sanitizers[@]}"
+# 45 s per parser keeps the whole command well inside CI's 30 minutes on 2 cores (docs/robustness.md, timings).
+export OSGACTOR_FUZZ_SECONDS="${OSGACTOR_FUZZ_SECONDS:-45}"
+step fuzz "$root/scripts/fuzz.sh"

@@ -159,7 +159,8 @@ private:
     {
         double version = 0.0;
         if (!numbers(header, 1, &version)) return false;
-        if (version != static_cast<int>(version) || version < 1)
+        // Range before the whole-number test: converting 1e300 to int is undefined (docs/robustness.md).
+        if (!(version >= 1) || version != std::floor(version))
             return fail(header.line, "the format version must be a whole number from 1");
         if (version > ActorDocument::kFormatVersion)
             return fail(header.line, "format version " + header.arguments.front().text +

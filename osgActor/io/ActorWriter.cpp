@@ -161,6 +161,9 @@ SyntaxStatement ikChainStatement(const IkChainSpec& spec)
 }
 
 /** Writes joints nested in their parents. */
+/** Joints nested in each other's blocks at most. */
+constexpr unsigned kMaxNesting = 100;
+
 class JointTreeWriter
 {
 public:
@@ -176,17 +179,17 @@ public:
 
     void write(std::vector<SyntaxStatement>& out)
     {
-        // Roots first, then joints whose parent is unknown, then whatever a cycle left unwritten.
+        // Roots first, then joints whose parent is unknown, then whatever a cycle or the nesting bound left unwritten.
         for (std::size_t j = 0; j < _document.joints.size(); ++j)
-            if (_document.joints[j].spec.parent.empty()) writeJoint(j, false, out);
+            if (_document.joints[j].spec.parent.empty()) writeJoint(j, false, out, 0);
         for (std::size_t j = 0; j < _document.joints.size(); ++j)
-            if (!_written[j] && !_byName.count(_document.joints[j].spec.parent)) writeJoint(j, true, out);
+            if (!_written[j] && !_byName.count(_document.joints[j].spec.parent)) writeJoint(j, true, out, 0);
         for (std::size_t j = 0; j < _document.joints.size(); ++j)
-            if (!_written[j]) writeJoint(j, true, out);
+            if (!_written[j]) writeJoint(j, true, out, 0);
     }
 
 private:
-    void writeJoint(std::size_t j, bool withParent, std::vector<SyntaxStatement>& out)
+    void writeJoint(std::size_t j, bool withParent, std::vector<SyntaxStatement>& out, unsigned depth)
     {
         _written[j] = true;
         const JointDocument& joint = _document.joints[j];
@@ -203,9 +206,12 @@ private:
         if (joint.hidden) s.children.push_back(statement("hidden"));
         for (const GeometryDescription& g : joint.geometry) s.children.push_back(geometryStatement(g));
         const auto children = _children.find(j);
-        if (children != _children.end())
+        // Below kMaxNesting, children are written at the actor's level with a 'parent' statement instead: the reader
+        // refuses blocks nested 200 deep, and a chain of thousands of joints (a 'parent' chain in a .actor file, an
+        // ASF hierarchy) would overflow the stack here.
+        if (children != _children.end() && depth + 1 < kMaxNesting)
             for (std::size_t child : children->second)
-                if (!_written[child]) writeJoint(child, false, s.children);
+                if (!_written[child]) writeJoint(child, false, s.children, depth + 1);
         s.hasBlock = !s.children.empty();
         out.push_back(std::move(s));
     }

@@ -7,12 +7,21 @@
 #include <glm/ext/scalar_constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
 #include <unordered_set>
 
 namespace osgActor {
 
 namespace {
+
+/** A clip counts its frames in an unsigned int. */
+constexpr unsigned long kMaxFrames = 4294967295ul;
+/** Frames' worth of memory reserved up front from the header's count (the vector grows past it if the data does). */
+constexpr unsigned long kMaxReservedFrames = 10000ul;
+/** Deepest joint nesting read (real skeletons: a few dozen; the .actor syntax allows 200 too). */
+constexpr unsigned kMaxDepth = 200;
 
 /** A BVH joint as read from the hierarchy, in file order (parents first). */
 struct BvhJoint
@@ -44,7 +53,7 @@ private:
     }
     bool expect(std::string_view keyword);
     bool readNumber(double& value, const char* what);
-    bool parseJoint(int parent, bool endSite);
+    bool parseJoint(int parent, bool endSite, unsigned depth);
     bool parseChannels(BvhJoint& joint);
     bool parseMotionHeader(unsigned long& numFrames, double& frameTime);
     bool buildDefinition(MocapImport& result);
@@ -101,8 +110,10 @@ bool BvhParser::parseChannels(BvhJoint& joint)
     return true;
 }
 
-bool BvhParser::parseJoint(int parent, bool endSite)
+bool BvhParser::parseJoint(int parent, bool endSite, unsigned depth)
 {
+    // Joints nest by recursion: a bound keeps a hostile file from overflowing the stack (docs/robustness.md).
+    if (depth > kMaxDepth) return fail("joints are nested more than " + std::to_string(kMaxDepth) + " deep");
     BvhJoint joint;
     joint.parent = parent;
     joint.endSite = endSite;
@@ -139,11 +150,11 @@ bool BvhParser::parseJoint(int parent, bool endSite)
         }
         else if (sameWord(token, "JOINT") && !endSite)
         {
-            if (!parseJoint(static_cast<int>(index), false)) return false;
+            if (!parseJoint(static_cast<int>(index), false, depth + 1)) return false;
         }
         else if (sameWord(token, "End") && !endSite)
         {
-            if (!parseJoint(static_cast<int>(index), true)) return false;
+            if (!parseJoint(static_cast<int>(index), true, depth + 1)) return false;
         }
         else if (token == "}")
         {
@@ -161,7 +172,9 @@ bool BvhParser::parseMotionHeader(unsigned long& numFrames, double& frameTime)
     if (!expect("Frames:")) return false;
     double frames = 0.0;
     if (!readNumber(frames, "the frame count")) return false;
-    if (frames < 0 || frames != static_cast<unsigned long>(frames)) return fail("the frame count must be a whole number");
+    // Range first: converting a double beyond unsigned long is undefined (docs/robustness.md).
+    if (!(frames >= 0 && frames <= kMaxFrames) || frames != std::floor(frames))
+        return fail("the frame count must be a whole number from 0 to " + std::to_string(kMaxFrames));
     numFrames = static_cast<unsigned long>(frames);
     if (!expect("Frame") || !expect("Time:") || !readNumber(frameTime, "the frame time")) return false;
     if (!(frameTime > 0.0)) return fail("the frame time must be positive");
@@ -240,7 +253,8 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
     }
     const unsigned numChannels = def.getNumDofs();
     std::vector<double> values;
-    values.reserve(numFrames * numChannels);
+    // The header's count is a hint, not a promise: a lying one must not allocate gigabytes before any frame is read.
+    values.reserve(std::min(numFrames, kMaxReservedFrames) * numChannels);
     unsigned long frame = 0;
     unsigned long extraLines = 0;
     while (_text.nextLine())
@@ -296,7 +310,7 @@ MocapImport BvhParser::run()
     bool ok = expect("HIERARCHY");
     while (ok && _text.nextToken(token) && !sameWord(token, "MOTION"))
     {
-        if (sameWord(token, "ROOT")) ok = parseJoint(-1, false);
+        if (sameWord(token, "ROOT")) ok = parseJoint(-1, false, 0);
         else ok = fail("expected ROOT or MOTION, found '" + std::string(token) + "'");
     }
     if (ok && _joints.empty()) ok = fail("the file has no ROOT joint");

@@ -129,7 +129,8 @@ TEST_P(OsgFormats, TheUpdateCallbackAndSkeletonNodesHaveTheirOwnWrappers)
     // Each object alone, so that what comes back cannot be a default the ActorNode constructor made.
     const std::string extension = GetParam();
     const std::string callbackPath = outFile("callback." + extension);
-    ASSERT_TRUE(osgDB::writeObjectFile(*new ActorUpdateCallback, callbackPath));
+    osg::ref_ptr<ActorUpdateCallback> written = new ActorUpdateCallback;
+    ASSERT_TRUE(osgDB::writeObjectFile(*written, callbackPath));
     osg::ref_ptr<osg::Object> callback = osgDB::readRefObjectFile(callbackPath);
     EXPECT_NE(dynamic_cast<ActorUpdateCallback*>(callback.get()), nullptr) << extension;
 

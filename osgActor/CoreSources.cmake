@@ -1,0 +1,87 @@
+# The OSG-free part of libosgActor (DESIGN.md section 3): core (GLM only), the .actor format (io/) and the
+# motion-capture parsers (mocap/). Paths are relative to this folder. Included by osgActor/CMakeLists.txt and by
+# fuzz/CMakeLists.txt, which builds the parsers alone with libFuzzer.
+
+set(OSGACTOR_CORE_HEADERS
+    core/ActorDefinition
+    core/ActorDefinitionBuilder
+    core/ActorPose
+    core/Clip
+    core/ClipBuilder
+    core/ClipLibrary
+    core/ClipPlayer
+    core/Controller
+    core/Dof
+    core/ForwardKinematicsJob
+    core/SinCos
+    core/Trajectory
+    core/WorkerPool)
+set(OSGACTOR_CORE_IK_HEADERS
+    core/ik/CcdIkJob
+    core/ik/DlsIkJob
+    core/ik/IkChain
+    core/ik/IkController
+    core/ik/IkGoal
+    core/ik/IkJob
+    core/ik/IkKinematics
+    core/ik/IkSolve
+    core/ik/TwoBoneIkJob)
+set(OSGACTOR_CORE_SOURCES
+    core/ActorDefinition.cpp
+    core/ActorDefinitionBuilder.cpp
+    core/ActorPose.cpp
+    core/Clip.cpp
+    core/ClipBuilder.cpp
+    core/ClipLibrary.cpp
+    core/ClipPlayer.cpp
+    core/Controller.cpp
+    core/Dof.cpp
+    core/ForwardKinematicsJob.cpp
+    core/SinCos.cpp
+    core/Trajectory.cpp
+    core/WorkerPool.cpp
+    core/ik/CcdIkJob.cpp
+    core/ik/DlsIkJob.cpp
+    core/ik/IkChain.cpp
+    core/ik/IkController.cpp
+    core/ik/IkJob.cpp
+    core/ik/IkKinematics.cpp
+    core/ik/IkSolve.cpp
+    core/ik/TwoBoneIkJob.cpp)
+
+# The .actor file format: document model, lexer, syntax, reader, writer. Plain C++ on GLM like the core (no OSG, no
+# osgDB), so it is compiled with it.
+set(OSGACTOR_IO_HEADERS
+    io/ActorDocument
+    io/ActorLexer
+    io/ActorNumbers
+    io/ActorReader
+    io/ActorSyntax
+    io/ActorWriter)
+set(OSGACTOR_IO_SOURCES
+    io/ActorDocument.cpp
+    io/ActorLexer.cpp
+    io/ActorNumbers.cpp
+    io/ActorReader.cpp
+    io/ActorSyntax.cpp
+    io/ActorWriter.cpp)
+
+# Motion-capture parsers: plain C++ on std::istream, GLM only like the core (built into the same object library).
+set(OSGACTOR_MOCAP_HEADERS
+    mocap/AmcReader
+    mocap/AsfReader
+    mocap/BvhReader
+    mocap/BvhWriter
+    mocap/MocapImport
+    mocap/PositionsCsv
+    mocap/TextLines
+    mocap/TrajectoryCsv)
+set(OSGACTOR_MOCAP_SOURCES
+    mocap/AmcReader.cpp
+    mocap/AsfReader.cpp
+    mocap/BvhReader.cpp
+    mocap/BvhWriter.cpp
+    mocap/MocapImport.cpp
+    mocap/PositionsCsv.cpp
+    mocap/TextLines.cpp
+    mocap/TrajectoryCsv.cpp)

@@ -1,0 +1,49 @@
+/* Skeletons deeper than the .actor syntax nests (200 blocks): a chain of joints linked by 'parent' statements reads,
+ * writes (nested 100 deep, the rest at the actor's level with 'parent'), and reads back the same, without
+ * recursing once per joint. */
+#include <osgActor/io/ActorReader>
+#include <osgActor/io/ActorWriter>
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+using namespace osgActor;
+
+namespace {
+
+/** "joint j0", then "joint jK { parent j(K-1) }": one chain, written flat. */
+std::string flatChain(int length)
+{
+    std::string text = "osgactor 1\nactor chain {\n joint j0\n";
+    for (int j = 1; j < length; ++j)
+        text += " joint j" + std::to_string(j) + " { parent j" + std::to_string(j - 1) + " }\n";
+    return text + "}\n";
+}
+
+ActorReadResult readText(const std::string& text)
+{
+    std::istringstream in(text);
+    return readActor(in, "chain.actor");
+}
+
+} // namespace
+
+TEST(DeepSkeletons, AChainOfThousandsOfJointsWritesAndReadsBack)
+{
+    const ActorReadResult first = readText(flatChain(20000));
+    ASSERT_TRUE(first) << first.error;
+    std::ostringstream written;
+    writeActor(written, first.document);
+    const ActorReadResult second = readText(written.str());
+    ASSERT_TRUE(second) << second.error;
+    ASSERT_EQ(second.definition->getNumJoints(), first.definition->getNumJoints());
+    for (unsigned j = 0; j < first.definition->getNumJoints(); ++j)
+    {
+        ASSERT_EQ(second.definition->getJointName(j), first.definition->getJointName(j));
+        ASSERT_EQ(second.definition->getParent(j), first.definition->getParent(j)) << j;
+    }
+    std::ostringstream again;
+    writeActor(again, second.document);
+    EXPECT_EQ(again.str(), written.str());
+}
