@@ -34,9 +34,11 @@ void ActorGroup::updateActors(const osg::NodeVisitor* nv)
     const double time = stamp ? stamp->getSimulationTime() : ActorNode::kNoTime;
 
     if (!_pool) _pool = std::make_shared<WorkerPool>(_numThreads);
-    _pool->parallelFor(static_cast<unsigned>(_claimed.size()),
-                       [this, time](unsigned i) { _claimed[i]->computeFrame(time); });
-    for (ActorNode* actor : _claimed) actor->writeSceneGraph();
+    _pool->parallelFor(static_cast<unsigned>(_claimed.size()), [this, time](unsigned i) {
+        _claimed[i]->computeFrame(time);
+        _claimed[i]->writeJointMatrices();
+    });
+    for (ActorNode* actor : _claimed) actor->writeActorMatrix();
 }
 
 void ActorGroupUpdateCallback::operator()(osg::Node* node, osg::NodeVisitor* nv)

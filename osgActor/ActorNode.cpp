@@ -61,7 +61,7 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
 
 ActorNode::ActorNode()
     : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _preTransformDirty(true),
-      _postTransformDirty(true), _actorMatrixWritten(false), _blocked(false), _numUpdatesRun(0),
+      _postTransformDirty(true), _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false), _numUpdatesRun(0),
       _lastFrameNumber(kNoFrame)
 {
     setDataVariance(osg::Object::DYNAMIC);
@@ -80,7 +80,8 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
       _postTranslation(actor._postTranslation), _postRotation(actor._postRotation),
       _preTransformMatrix(actor._preTransformMatrix), _postTransformMatrix(actor._postTransformMatrix),
       _actorMatrix(actor._actorMatrix), _preTransformDirty(actor._preTransformDirty),
-      _postTransformDirty(actor._postTransformDirty), _actorMatrixWritten(actor._actorMatrixWritten),
+      _postTransformDirty(actor._postTransformDirty), _boundsToPropagate(false),
+      _actorMatrixWritten(actor._actorMatrixWritten),
       _blocked(actor._blocked), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
 {
     for (const ControllerPtr& controller : actor._controllers)
@@ -446,14 +447,36 @@ void ActorNode::computeFrame(double time)
 
 void ActorNode::writeSceneGraph()
 {
+    writeJointMatrices();
+    writeActorMatrix();
+}
+
+void ActorNode::writeJointMatrices()
+{
+    const ActorDefinition* definition = getDefinition().get();
+    _pose.consumeChangedLocals([this, definition](unsigned joint, const glm::dmat4& local) {
+        if (joint >= _skeletonNodes.size()) return;
+        // Dirty the joint's bound and its ancestors' up to the first one already dirty (whose ancestors are too).
+        bool climb = _skeletonNodes[joint]->setMatrixWithinActor(toOsg(local));
+        for (int parent = definition->getParent(joint); climb && parent >= 0; parent = definition->getParent(parent))
+            climb = _skeletonNodes[static_cast<unsigned>(parent)]->markBoundDirtyWithinActor();
+        _boundsToPropagate = true;
+    });
+}
+
+void ActorNode::writeActorMatrix()
+{
     if (!_actorMatrixWritten)
     {
-        setMatrix(getActorMatrix());
+        setMatrix(getActorMatrix()); // dirties this node's bound and its parents'
         _actorMatrixWritten = true;
+        _boundsToPropagate = false;
     }
-    _pose.consumeChangedLocals([this](unsigned joint, const glm::dmat4& local) {
-        if (joint < _skeletonNodes.size()) _skeletonNodes[joint]->setMatrix(toOsg(local));
-    });
+    if (_boundsToPropagate)
+    {
+        dirtyBound();
+        _boundsToPropagate = false;
+    }
 }
 
 } // namespace osgActor

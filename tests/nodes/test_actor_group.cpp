@@ -91,3 +91,29 @@ TEST(ActorGroup, LeavesBlockedActorsAndOtherChildrenAlone)
     EXPECT_EQ(blocked->getNumUpdatesRun(), 0u);
     EXPECT_TRUE(blocked->getSkeletonNode(0u)->getMatrix().isIdentity());
 }
+
+TEST(ActorGroup, BoundsFollowJointsMovedOnWorkerThreads)
+{
+    // Joint matrices are written on worker threads, which dirty only the actor's own nodes; the group's bound must
+    // still see the move once the update thread has dirtied each actor.
+    osg::ref_ptr<ActorGroup> group = new ActorGroup;
+    group->setNumThreads(2);
+    std::vector<ActorNode*> actors;
+    for (int a = 0; a < 8; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+        actor->getSkeletonNode("tip")->addChild(makeBox(osg::Vec3(), 0.1f).get());
+        group->addChild(actor.get());
+        actors.push_back(actor.get());
+    }
+    runUpdate(*group, 1);
+    const osg::Vec3 raisedTip(0.0f, 2.5f, 0.0f);
+    EXPECT_FALSE(group->getBound().contains(raisedTip)) << "every arm lies along +X";
+    actors.back()->setDof("base.rz", osg::PI_2);
+    runUpdate(*group, 2);
+    EXPECT_TRUE(group->getBound().contains(raisedTip)) << "the last arm now points along +Y";
+    // And back: a second move of the same joint, after the bounds were computed again.
+    actors.back()->setDof("base.rz", 0.0);
+    runUpdate(*group, 3);
+    EXPECT_FALSE(group->getBound().contains(raisedTip));
+}
