@@ -163,54 +163,25 @@ static bool writeDofs(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
     return true;
 }
 
-// Pre- and post-transforms (model units, unit quaternions), always written.
-static bool checkPreTranslation(const osgActor::ActorNode&) { return true; }
-static bool readPreTranslation(osgDB::InputStream& is, osgActor::ActorNode& actor)
-{
-    actor.setPreTranslation(readExactVec3d(is));
-    return true;
-}
-static bool writePreTranslation(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
-{
-    writeExact(os, actor.getPreTranslation());
-    return true;
-}
+// Pre- and post-transforms (model units, unit quaternions), always written, exactly. One macro makes the check,
+// read and write functions ADD_USER_SERIALIZER(NAME) expects for a field with setNAME/getNAME.
+#define OSGACTOR_EXACT_TRANSFORM_FIELD(NAME, READ_EXACT)                                                           \
+    static bool check##NAME(const osgActor::ActorNode&) { return true; }                                          \
+    static bool read##NAME(osgDB::InputStream& is, osgActor::ActorNode& actor)                                    \
+    {                                                                                                              \
+        actor.set##NAME(READ_EXACT(is));                                                                           \
+        return true;                                                                                               \
+    }                                                                                                              \
+    static bool write##NAME(osgDB::OutputStream& os, const osgActor::ActorNode& actor)                            \
+    {                                                                                                              \
+        writeExact(os, actor.get##NAME());                                                                         \
+        return true;                                                                                               \
+    }
 
-static bool checkPreRotation(const osgActor::ActorNode&) { return true; }
-static bool readPreRotation(osgDB::InputStream& is, osgActor::ActorNode& actor)
-{
-    actor.setPreRotation(readExactQuat(is));
-    return true;
-}
-static bool writePreRotation(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
-{
-    writeExact(os, actor.getPreRotation());
-    return true;
-}
-
-static bool checkPostTranslation(const osgActor::ActorNode&) { return true; }
-static bool readPostTranslation(osgDB::InputStream& is, osgActor::ActorNode& actor)
-{
-    actor.setPostTranslation(readExactVec3d(is));
-    return true;
-}
-static bool writePostTranslation(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
-{
-    writeExact(os, actor.getPostTranslation());
-    return true;
-}
-
-static bool checkPostRotation(const osgActor::ActorNode&) { return true; }
-static bool readPostRotation(osgDB::InputStream& is, osgActor::ActorNode& actor)
-{
-    actor.setPostRotation(readExactQuat(is));
-    return true;
-}
-static bool writePostRotation(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
-{
-    writeExact(os, actor.getPostRotation());
-    return true;
-}
+OSGACTOR_EXACT_TRANSFORM_FIELD(PreTranslation, readExactVec3d)
+OSGACTOR_EXACT_TRANSFORM_FIELD(PreRotation, readExactQuat)
+OSGACTOR_EXACT_TRANSFORM_FIELD(PostTranslation, readExactVec3d)
+OSGACTOR_EXACT_TRANSFORM_FIELD(PostRotation, readExactQuat)
 
 // The block flag. An actor is posed before it is blocked, so a blocked actor read back shows its frozen pose.
 static bool checkBlocked(const osgActor::ActorNode& actor) { return actor.getBlocked(); }
