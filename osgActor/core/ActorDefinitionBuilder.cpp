@@ -123,6 +123,8 @@ JointKinematics makeKinematics(const JointSpec& joint, unsigned firstDof, DofMas
         ++k.numRotations;
     }
     for (unsigned t = 0; t < 3; ++t) k.translationDof[t] = dofIndex[3 + t];
+    k.hasTranslation = (mask & kTranslationDofs) != 0;
+    k.rotationSequence = rotationSequenceOf(k.numRotations, k.rotationAxis);
     return k;
 }
 

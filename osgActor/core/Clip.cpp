@@ -22,24 +22,31 @@ inline double shortestDelta(double delta)
 inline double nearAngle(double reference, double value) { return reference + shortestDelta(value - reference); }
 
 /** Interpolates between a (t = 0) and b (t = 1) with neighbours before (of a) and after (of b). */
-inline double interpolate(const ClipChannel& channel, double before, double a, double b, double after, double t)
+inline double interpolate(Clip::Kernel kernel, double before, double a, double b, double after, double t)
+{
+    switch (kernel)
+    {
+    case Clip::Kernel::Step: return a;
+    case Clip::Kernel::Linear: return a + t * (b - a);
+    case Clip::Kernel::LinearAngular: return a + t * shortestDelta(b - a);
+    case Clip::Kernel::Cubic: return catmullRom(before, a, b, after, t);
+    case Clip::Kernel::CubicAngular:
+        // Unwrap the neighbours around a so that a 179 -> -179 degree step is 2 degrees, not 358.
+        b = nearAngle(a, b);
+        return catmullRom(nearAngle(a, before), a, b, nearAngle(b, after), t);
+    }
+    return a;
+}
+
+Clip::Kernel kernelOf(const ClipChannel& channel)
 {
     switch (channel.interpolation)
     {
-    case Interpolation::Step: return a;
-    case Interpolation::Linear:
-        return channel.angular ? a + t * shortestDelta(b - a) : a + t * (b - a);
-    case Interpolation::Cubic:
-        if (channel.angular)
-        {
-            // Unwrap the neighbours around a so that a 179 -> -179 degree step is 2 degrees, not 358.
-            b = nearAngle(a, b);
-            before = nearAngle(a, before);
-            after = nearAngle(b, after);
-        }
-        return catmullRom(before, a, b, after, t);
+    case Interpolation::Step: return Clip::Kernel::Step;
+    case Interpolation::Linear: return channel.angular ? Clip::Kernel::LinearAngular : Clip::Kernel::Linear;
+    case Interpolation::Cubic: return channel.angular ? Clip::Kernel::CubicAngular : Clip::Kernel::Cubic;
     }
-    return a;
+    return Clip::Kernel::Linear;
 }
 
 } // namespace
@@ -59,22 +66,42 @@ int Clip::findChannel(const std::string& target) const
     return -1;
 }
 
+void Clip::setChannels(const std::vector<ClipChannel>& channels)
+{
+    _channels = channels;
+    _kernels.clear();
+    for (const ClipChannel& channel : _channels) _kernels.push_back(kernelOf(channel));
+}
+
 void Clip::initCursor(ClipCursor& cursor) const { cursor.keys.assign(_uniform ? 0 : _channels.size(), 0u); }
+
+template <class SampleOne>
+void Clip::sampleEach(const std::uint32_t* channels, unsigned count, double* values, SampleOne sampleOne) const
+{
+    if (channels)
+        for (unsigned i = 0; i < count; ++i) values[i] = sampleOne(channels[i]);
+    else
+        for (unsigned c = 0; c < count; ++c) values[c] = sampleOne(c);
+}
 
 void Clip::sample(double time, ClipCursor& cursor, double* values) const
 {
-    time = std::isfinite(time) ? std::min(std::max(time, 0.0), _duration) : 0.0;
-    if (_uniform)
-    {
-        sampleUniform(time, values);
-        return;
-    }
-    for (unsigned c = 0; c < _channels.size(); ++c) values[c] = sampleKeyed(c, time, cursor.keys[c]);
+    sample(time, cursor, nullptr, getNumChannels(), values);
 }
 
-void Clip::sampleUniform(double time, double* values) const
+void Clip::sample(double time, ClipCursor& cursor, const std::uint32_t* channels, unsigned count,
+                  double* values) const
 {
-    const unsigned numChannels = getNumChannels();
+    time = std::isfinite(time) ? std::min(std::max(time, 0.0), _duration) : 0.0;
+    if (_uniform)
+        sampleUniform(time, channels, count, values);
+    else
+        sampleEach(channels, count, values,
+                   [&](unsigned c) { return sampleKeyed(c, time, cursor.keys[c]); });
+}
+
+void Clip::sampleUniform(double time, const std::uint32_t* channels, unsigned count, double* values) const
+{
     const unsigned last = _numFrames - 1;
     double position = time * _frameRate; // in frames
     double whole = std::floor(position);
@@ -86,16 +113,23 @@ void Clip::sampleUniform(double time, double* values) const
         t = 0.0;
     }
     const unsigned i = std::min(static_cast<unsigned>(whole), last);
+    const double* a = getFrame(i);
     if (i == last || t == 0.0)
     {
-        std::copy(getFrame(i), getFrame(i) + numChannels, values);
+        sampleEach(channels, count, values, [a](unsigned c) { return a[c]; });
         return;
     }
     const double* before = getFrame(i > 0 ? i - 1 : 0);
-    const double* a = getFrame(i);
     const double* b = getFrame(i + 1);
     const double* after = getFrame(std::min(i + 2, last));
-    for (unsigned c = 0; c < numChannels; ++c) values[c] = interpolate(_channels[c], before[c], a[c], b[c], after[c], t);
+    const Kernel* kernels = _kernels.data();
+    sampleEach(channels, count, values, [=](unsigned c) {
+        // Motion capture is all angular-linear (and linear for the root's travel): those inline, the rest call.
+        const Kernel kernel = kernels[c];
+        if (kernel == Kernel::LinearAngular) return a[c] + t * shortestDelta(b[c] - a[c]);
+        if (kernel == Kernel::Linear) return a[c] + t * (b[c] - a[c]);
+        return interpolate(kernel, before[c], a[c], b[c], after[c], t);
+    });
 }
 
 double Clip::sampleKeyed(unsigned channel, double time, std::uint32_t& cursorKey) const
@@ -113,7 +147,7 @@ double Clip::sampleKeyed(unsigned channel, double time, std::uint32_t& cursorKey
     const double t = (time - times[k]) / (times[k + 1] - times[k]);
     const double before = keyValues[k > 0 ? k - 1 : 0];
     const double after = keyValues[std::min(k + 2, numKeys - 1)];
-    return interpolate(_channels[channel], before, keyValues[k], keyValues[k + 1], after, t);
+    return interpolate(_kernels[channel], before, keyValues[k], keyValues[k + 1], after, t);
 }
 
 } // namespace osgActor

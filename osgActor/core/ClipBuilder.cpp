@@ -64,7 +64,7 @@ ClipBuildResult ClipBuilder::build() const
 
     std::shared_ptr<Clip> clip(new Clip);
     clip->_name = _name;
-    clip->_channels = _channels;
+    clip->setChannels(_channels);
     const std::size_t numChannels = _channels.size();
     if (_uniform)
     {

@@ -128,13 +128,46 @@ bool ClipPlayer::bind(const ActorDefinition& definition)
     _sample.assign(numChannels, 0.0);
     _swaySample.assign(numChannels, 0.0);
     _scratchDofs = definition.getDefaultDofs();
+    bindSelection(definition);
     bindRootMotion(definition);
     return true;
+}
+
+void ClipPlayer::bindSelection(const ActorDefinition& definition)
+{
+    _drivenChannels.clear();
+    _drivenDofs.clear();
+    _drivenAtFullWeight = true;
+    const DofSelection& selection = getSelection();
+    for (unsigned c = 0; c < _channelDof.size(); ++c)
+    {
+        if (_channelDof[c] < 0) continue;
+        const unsigned dof = static_cast<unsigned>(_channelDof[c]);
+        const double weight = selection.weight(dof);
+        if (!(weight > 0.0) || dof >= definition.getNumDofs()) continue;
+        _drivenChannels.push_back(c);
+        _drivenDofs.push_back(dof);
+        _drivenAtFullWeight = _drivenAtFullWeight && weight >= 1.0;
+    }
+    _drivenValues.assign(_drivenChannels.size(), 0.0);
+    _boundSelectionVersion = getSelectionVersion();
+}
+
+void ClipPlayer::writeDrivenDofs(ActorPose& pose) const
+{
+    const unsigned count = static_cast<unsigned>(_drivenDofs.size());
+    if (_drivenAtFullWeight && getWeight() * _fade >= 1.0)
+    {
+        pose.setDofs(_drivenDofs.data(), _drivenValues.data(), count);
+        return;
+    }
+    for (unsigned i = 0; i < count; ++i) writeDof(pose, _drivenDofs[i], _drivenValues[i], _fade);
 }
 
 void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
 {
     _rootJoint = -1;
+    _rootJointChannels.clear();
     if (_rootMotion == RootMotion::InSkeleton) return;
     if (!_rootJointName.empty()) _rootJoint = definition.findJoint(_rootJointName);
     else
@@ -142,6 +175,9 @@ void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
             if (definition.getDofMask(j) & kTranslationDofs) _rootJoint = static_cast<int>(j);
     if (_rootJoint < 0) return;
     const unsigned root = static_cast<unsigned>(_rootJoint);
+    for (unsigned c = 0; c < _channelDof.size(); ++c)
+        if (_channelDof[c] >= 0 && definition.getDofJoint(static_cast<unsigned>(_channelDof[c])) == root)
+            _rootJointChannels.push_back(c);
     for (unsigned axis = 0; axis < 3; ++axis)
     {
         const int dof = definition.getDofIndex(root, static_cast<Dof>(3 + axis));
@@ -151,8 +187,7 @@ void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
     // The heading is measured on the root-local axis that lies flattest at clip time 0 (so its ground projection
     // is well defined), relative to its direction then.
     _clip->sample(0.0, _cursor, _sample.data());
-    for (unsigned c = 0; c < _sample.size(); ++c)
-        if (_channelDof[c] >= 0) _scratchDofs[static_cast<unsigned>(_channelDof[c])] = _sample[c];
+    for (std::uint32_t c : _rootJointChannels) _scratchDofs[static_cast<unsigned>(_channelDof[c])] = _sample[c];
     const glm::dmat3 rotation0(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data()));
     double flattest = 2.0;
     for (unsigned axis = 0; axis < 3; ++axis)
@@ -185,8 +220,7 @@ void ClipPlayer::rootTravelFromSample(const ActorDefinition& definition, glm::dv
         if (_rootChannel[axis] >= 0) p[axis] = _sample[static_cast<unsigned>(_rootChannel[axis])];
     // The root's translation DOFs act before its rotation, in its offset frame: L = offset * T(p) * R.
     displacement = definition.getOffsetRotation(root) * p;
-    for (unsigned c = 0; c < _sample.size(); ++c)
-        if (_channelDof[c] >= 0) _scratchDofs[static_cast<unsigned>(_channelDof[c])] = _sample[c];
+    for (std::uint32_t c : _rootJointChannels) _scratchDofs[static_cast<unsigned>(_channelDof[c])] = _sample[c];
     const glm::dvec3 forward =
         glm::dmat3(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data())) * _forwardAxis;
     heading = std::atan2(forward.y, forward.x) - _heading0;
@@ -272,6 +306,7 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
         bind(*definition);
         _boundTo = definition;
     }
+    if (_boundSelectionVersion != getSelectionVersion()) bindSelection(*definition);
     if (_playing) _playTime += context.deltaTime * _speed;
     double fadeTime = context.deltaTime;
     if (_fadeDelay > 0.0)
@@ -291,9 +326,16 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
     }
     if (_fade <= 0.0) return;
     const double clipTime = clipTimeAt(_playTime);
-    _clip->sample(clipTime, _cursor, _sample.data());
-    for (unsigned c = 0; c < _sample.size(); ++c)
-        if (_channelDof[c] >= 0) writeDof(target.pose, static_cast<unsigned>(_channelDof[c]), _sample[c], _fade);
+    if (_rootJoint >= 0)
+    {
+        // Root motion reads the root's channels from a whole sample; the driven ones are picked from it.
+        _clip->sample(clipTime, _cursor, _sample.data());
+        for (unsigned i = 0; i < _drivenChannels.size(); ++i) _drivenValues[i] = _sample[_drivenChannels[i]];
+    }
+    else
+        _clip->sample(clipTime, _cursor, _drivenChannels.data(), static_cast<unsigned>(_drivenChannels.size()),
+                      _drivenValues.data());
+    writeDrivenDofs(target.pose);
     if (_rootJoint >= 0) applyRootMotion(*definition, clipTime, target);
 }
 

@@ -56,26 +56,6 @@ OSGACTOR_INLINE void postRotateAxis(Rotation3& m, double s, double c)
     }
 }
 
-OSGACTOR_INLINE void setRotation(Rotation3& m, unsigned axis, double s, double c)
-{
-    switch (axis)
-    {
-    case 0: setAxisRotation<0>(m, s, c); break;
-    case 1: setAxisRotation<1>(m, s, c); break;
-    default: setAxisRotation<2>(m, s, c); break;
-    }
-}
-
-OSGACTOR_INLINE void postRotate(Rotation3& m, unsigned axis, double s, double c)
-{
-    switch (axis)
-    {
-    case 0: postRotateAxis<0>(m, s, c); break;
-    case 1: postRotateAxis<1>(m, s, c); break;
-    default: postRotateAxis<2>(m, s, c); break;
-    }
-}
-
 /** out = a * b for affine matrices stored as dmat4 (16 doubles, column-major); out may not alias a or b. Written
   * as the full product, four columns of four rows, because that is what vectorizes (b's bottom row 0 0 0 1 keeps
   * out's bottom row exact). */
@@ -88,24 +68,46 @@ OSGACTOR_INLINE void multiplyAffineInto(const double* __restrict a, const double
                                  a[12 + row] * b[col * 4 + 3];
 }
 
+/** The axes of a rotation sequence (see rotationSequenceOf), decoded at compile time. */
+template <unsigned Sequence>
+struct SequenceAxes
+{
+    static constexpr unsigned count = Sequence == 0 ? 0 : Sequence < 4 ? 1 : Sequence < 13 ? 2 : 3;
+    static constexpr unsigned code = count == 1 ? Sequence - 1 : count == 2 ? Sequence - 4 : Sequence - 13;
+    static constexpr unsigned first = count == 1 ? code : count == 2 ? code / 3 : code / 9;
+    static constexpr unsigned second = count == 2 ? code % 3 : (code / 3) % 3;
+    static constexpr unsigned third = code % 3;
+};
+
+/** m = R_a1 * R_a2 * R_a3 for a sequence known at compile time: every index is a constant, and the identity's
+  * zeros and ones fold away (this file is built with -ffinite-math-only -fno-signed-zeros, which lets 0 * x fold;
+  * FK sees finite values only, since the pose refuses NaN and infinity and definitions are validated). */
+template <unsigned Sequence>
+OSGACTOR_INLINE void composeRotation(Rotation3& m, const double* sines, const double* cosines)
+{
+    using Axes = SequenceAxes<Sequence>;
+    if constexpr (Axes::count == 0)
+        setAxisRotation<0>(m, 0.0, 1.0);
+    else
+    {
+        setAxisRotation<Axes::first>(m, sines[0], cosines[0]);
+        if constexpr (Axes::count >= 2) postRotateAxis<Axes::second>(m, sines[1], cosines[1]);
+        if constexpr (Axes::count >= 3) postRotateAxis<Axes::third>(m, sines[2], cosines[2]);
+    }
+}
+
 /** Writes skl_m of one joint (see computeJointMatrix) from the sines and cosines of its active rotations, in
-  * product order. */
+  * product order; Sequence is the joint's rotation sequence. */
+template <unsigned Sequence>
 OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* dofs, const double* sines,
                                       const double* cosines, double* __restrict out)
 {
-    // rotation = R_a1 * R_a2 * R_a3 over the active axes.
     Rotation3 rotation;
-    if (k.numRotations == 0)
-        setAxisRotation<0>(rotation, 0.0, 1.0);
-    else
-    {
-        setRotation(rotation, k.rotationAxis[0], sines[0], cosines[0]);
-        for (unsigned r = 1; r < k.numRotations; ++r) postRotate(rotation, k.rotationAxis[r], sines[r], cosines[r]);
-    }
+    composeRotation<Sequence>(rotation, sines, cosines);
 
     // The translation DOFs, slid along the rotated axes (the paper) or in the offset frame (mocap).
     double slide[3] = {0.0, 0.0, 0.0};
-    if (k.translationDof[0] >= 0 || k.translationDof[1] >= 0 || k.translationDof[2] >= 0)
+    if (k.hasTranslation)
     {
         double t[3];
         for (unsigned axis = 0; axis < 3; ++axis) t[axis] = k.translationDof[axis] >= 0 ? dofs[k.translationDof[axis]] : 0.0;
@@ -139,37 +141,70 @@ OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* do
     multiplyAffineInto(offset, articulation, out);
 }
 
-/** Step 2 of the job: one pass over the joints, parents first. Returns how many local matrices it rebuilt. */
+/** buildJointMatrix for the joint's own rotation sequence: one jump to code specialised for it. */
+OSGACTOR_INLINE void buildJointMatrixDispatched(const JointKinematics& k, const double* dofs, const double* sines,
+                                                const double* cosines, double* __restrict out)
+{
+    switch (k.rotationSequence)
+    {
+#define OSGACTOR_SEQUENCE(S)                                                                                           \
+    case S: buildJointMatrix<S>(k, dofs, sines, cosines, out); return;
+#define OSGACTOR_SEQUENCES_FROM(S)                                                                                     \
+    OSGACTOR_SEQUENCE(S) OSGACTOR_SEQUENCE(S + 1) OSGACTOR_SEQUENCE(S + 2) OSGACTOR_SEQUENCE(S + 3)                   \
+    OSGACTOR_SEQUENCE(S + 4) OSGACTOR_SEQUENCE(S + 5) OSGACTOR_SEQUENCE(S + 6) OSGACTOR_SEQUENCE(S + 7)
+        OSGACTOR_SEQUENCES_FROM(0)
+        OSGACTOR_SEQUENCES_FROM(8)
+        OSGACTOR_SEQUENCES_FROM(16)
+        OSGACTOR_SEQUENCES_FROM(24)
+        OSGACTOR_SEQUENCES_FROM(32)
+#undef OSGACTOR_SEQUENCES_FROM
+#undef OSGACTOR_SEQUENCE
+    }
+    static_assert(kNumRotationSequences == 40, "one case per rotation sequence above");
+}
+
+/** Step 2 of the job: one pass over the joints, parents first. Returns how many local matrices it rebuilt. Every
+  * buffer is read into a local first: the flags are bytes, which may alias anything, so fields of the job would be
+  * reloaded after each flag store. */
 OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, const double* sines, const double* cosines)
 {
     const unsigned numJoints = job.definition->getNumJoints();
-    const JointKinematics* kinematics = job.definition->getAllKinematics().data();
-    const int* parents = job.definition->getParents().data();
+    const JointKinematics* const kinematics = job.definition->getAllKinematics().data();
+    const int* const parents = job.definition->getParents().data();
+    const double* const dofs = job.dofs;
+    std::uint8_t* const jointDirty = job.jointDirty;
+    std::uint8_t* const localChanged = job.localChanged;
+    std::uint8_t* const modelStale = job.modelStale;
+    std::uint8_t* const modelChanged = job.modelChanged;
+    glm::dmat4* const local = job.local;
+    glm::dmat4* const model = job.model;
+    const bool rebuildLocal = job.rebuildLocal;
+    const bool computeModel = job.computeModel;
     unsigned numRecomputed = 0;
     unsigned nextAngle = 0;
     for (unsigned j = 0; j < numJoints; ++j)
     {
-        if (job.rebuildLocal && job.jointDirty[j])
+        if (rebuildLocal && jointDirty[j])
         {
             const JointKinematics& k = kinematics[j];
-            buildJointMatrix(k, job.dofs, sines + nextAngle, cosines + nextAngle, &job.local[j][0][0]);
+            buildJointMatrixDispatched(k, dofs, sines + nextAngle, cosines + nextAngle, &local[j][0][0]);
             nextAngle += k.numRotations;
-            job.jointDirty[j] = 0;
-            job.localChanged[j] = 1;
-            job.modelStale[j] = 1;
+            jointDirty[j] = 0;
+            localChanged[j] = 1;
+            modelStale[j] = 1;
             ++numRecomputed;
         }
-        if (!job.computeModel) continue;
+        if (!computeModel) continue;
         const int parent = parents[j];
         // Parents come first, so modelChanged[parent] is already final for this run.
-        const bool moved = job.modelStale[j] || (parent >= 0 && job.modelChanged[parent]);
-        job.modelChanged[j] = moved ? 1 : 0;
+        const bool moved = modelStale[j] || (parent >= 0 && modelChanged[parent]);
+        modelChanged[j] = moved ? 1 : 0;
         if (!moved) continue;
-        job.modelStale[j] = 0;
+        modelStale[j] = 0;
         if (parent >= 0)
-            multiplyAffineInto(&job.model[parent][0][0], &job.local[j][0][0], &job.model[j][0][0]);
+            multiplyAffineInto(&model[parent][0][0], &local[j][0][0], &model[j][0][0]);
         else
-            job.model[j] = job.local[j];
+            model[j] = local[j];
     }
     return numRecomputed;
 }
@@ -192,7 +227,7 @@ glm::dmat4 computeJointMatrix(const JointKinematics& k, const double* dofs)
         cosines[r] = std::cos(dofs[k.rotationDof[r]]);
     }
     glm::dmat4 result;
-    buildJointMatrix(k, dofs, sines, cosines, &result[0][0]);
+    buildJointMatrixDispatched(k, dofs, sines, cosines, &result[0][0]);
     return result;
 }
 

@@ -213,6 +213,12 @@ TEST(SinCos, MatchesTheScalarFunctionsToAFewUlp)
     angles.push_back(0.0);
     angles.push_back(-0.0);
     angles.push_back(1e-300);
+    // Either side of the quadrant boundaries, where the range reduction switches between sine and cosine.
+    for (int k = -8; k <= 8; ++k)
+        for (double nudge : {-1e-9, 0.0, 1e-9}) angles.push_back(k * 1.5707963267948966 + nudge);
+    // Beyond the fast path's range (1e6): the library's functions.
+    angles.push_back(2.5e6);
+    angles.push_back(-1e9);
     std::vector<double> sines(angles.size()), cosines(angles.size());
     sinCos(angles.data(), sines.data(), cosines.data(), static_cast<unsigned>(angles.size()));
     for (unsigned i = 0; i < angles.size(); ++i)
