@@ -25,6 +25,7 @@ set(OSGACTOR_CORE_IK_HEADERS
     core/ik/IkJob
     core/ik/IkKinematics
     core/ik/IkSolve
+    core/ik/SweepAcceleration
     core/ik/TwoBoneIkJob)
 set(OSGACTOR_CORE_SOURCES
     core/ActorDefinition.cpp
@@ -47,6 +48,7 @@ set(OSGACTOR_CORE_SOURCES
     core/ik/IkJob.cpp
     core/ik/IkKinematics.cpp
     core/ik/IkSolve.cpp
+    core/ik/SweepAcceleration.cpp
     core/ik/TwoBoneIkJob.cpp)
 
 # The .actor file format: document model, lexer, syntax, reader, writer. Plain C++ on GLM like the core (no OSG, no

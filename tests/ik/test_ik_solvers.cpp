@@ -272,15 +272,15 @@ TEST(CcdIk, ReachesRandomTargetsOnASevenJointChain)
     EXPECT_GE(report.rate(), 0.99);
 }
 
-// CCD turns one DOF at a time, so on a limb, where the hip and the knee must move together to change the reach, it
-// has a long slow tail (the two-bone solver is the one for limbs): it gets the 1000 sweeps it needs.
-TEST(CcdIk, ReachesMostRandomTargetsOnALeg)
+// CCD turns one DOF at a time, so on a limb, where the hip and the knee must move together to change the reach, its
+// plain sweeps have a long slow tail; the sweep acceleration (Anderson mixing, pattern moves) takes it in.
+TEST(CcdIk, ReachesRandomTargetsOnALeg)
 {
     const ActorDefinitionPtr leg = makeLegActor();
     IkChainSpec spec = chainSpec("leg", "hip", "ankle", IkSolverType::Ccd);
-    spec.maxIterations = 1000;
+    spec.maxIterations = 200;
     const RandomTargetReport report = solveRandomTargets("ccd leg (3 joints)", leg, makeChain(*leg, spec), false, false);
-    EXPECT_GE(report.rate(), 0.98);
+    EXPECT_GE(report.rate(), 0.99);
 }
 
 TEST(DlsIk, ReachesRandomTargetsOnASevenJointChain)
@@ -307,15 +307,17 @@ TEST(DlsIk, MeetsRandomOrientationGoalsOnASevenDofArm)
     EXPECT_GE(report.rate(), 0.99);
 }
 
-// CCD balances orientation against position one DOF at a time: it closes in on both but, unlike DLS, often not
-// to 1e-4 within its sweeps (a known gap, reported here on 200 targets); it must never end worse than it started.
-TEST(CcdIk, ApproachesRandomOrientationGoalsOnASevenDofArm)
+// CCD balances orientation against position one DOF at a time. Every goal here is reachable (the effector frame of
+// a pose within the limits), but the limits leave local minima that a pose of the arm can fall into from the rest
+// pose and that several restarts fall back into, so CCD, like DLS, needs its restarts and some targets more sweeps
+// than the chain's 300. It must never end worse than it started.
+TEST(CcdIk, MeetsRandomOrientationGoalsOnASevenDofArm)
 {
     const ActorDefinitionPtr arm = makeArmActor();
     const RandomTargetReport report = solveRandomTargets("ccd arm (7 DOFs), orientation", arm,
-                                                         armChain(arm, IkSolverType::Ccd), true, false, 20021, 200);
+                                                         armChain(arm, IkSolverType::Ccd), true, false);
     EXPECT_EQ(report.worse, 0u);
-    EXPECT_GE(report.rate(), 0.4) << "a regression guard: 43.5% when written";
+    EXPECT_GE(report.rate(), 0.97) << "a regression guard: 99.0% when written (43.5% of 200 before the sweep acceleration)";
 }
 
 TEST(IkSolvers, NeverEndWorseThanTheyStart)

@@ -14,6 +14,10 @@ void IkWorkspace::resize(const IkChain& chain)
     jacobianOrientation.assign(numDofs, glm::dvec3(0.0));
     savedDofs.assign(numDofs, 0.0);
     bestDofs.assign(numDofs, 0.0);
+    trialDofs.assign(numDofs, 0.0);
+    sweepStarts.assign(kSweepHistory * numDofs, 0.0);
+    sweepEnds.assign(kSweepHistory * numDofs, 0.0);
+    mixingColumns.assign((kSweepHistory - 1) * numDofs, 0.0);
     locked.assign(numDofs, 0);
     frozen.assign(numDofs, 0);
 }
@@ -23,7 +27,10 @@ bool IkWorkspace::fits(const IkChain& chain) const
     const std::size_t numDofs = chain.getNumDofs();
     return jointModel.size() == chain.getNumJoints() && axis.size() == numDofs && pivot.size() == numDofs &&
            jacobianPosition.size() == numDofs && jacobianOrientation.size() == numDofs &&
-           savedDofs.size() == numDofs && bestDofs.size() == numDofs && locked.size() == numDofs && frozen.size() == numDofs;
+           savedDofs.size() == numDofs && bestDofs.size() == numDofs && trialDofs.size() == numDofs &&
+           sweepStarts.size() == kSweepHistory * numDofs && sweepEnds.size() == kSweepHistory * numDofs &&
+           mixingColumns.size() == (kSweepHistory - 1) * numDofs &&
+           locked.size() == numDofs && frozen.size() == numDofs;
 }
 
 bool IkJob::validateInputs() const
