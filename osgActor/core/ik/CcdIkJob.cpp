@@ -1,4 +1,5 @@
 #include <osgActor/core/ik/CcdIkJob>
+#include <osgActor/core/ik/Arctangent>
 #include <osgActor/core/ik/IkKinematics>
 #include <osgActor/core/ik/SweepAcceleration>
 
@@ -52,7 +53,7 @@ double bestAngle(const glm::dvec3& a, const glm::dvec3& pivot, const glm::dvec3&
         }
     }
     if (cosTerm * cosTerm + sinTerm * sinTerm < 1e-30) return 0.0;
-    return std::atan2(sinTerm, cosTerm);
+    return arctangent2(sinTerm, cosTerm);
 }
 
 } // namespace
