@@ -17,6 +17,7 @@ set(OSGACTOR_CORE_HEADERS
     core/Trajectory
     core/WorkerPool)
 set(OSGACTOR_CORE_IK_HEADERS
+    core/ik/Arctangent
     core/ik/CcdIkJob
     core/ik/DlsIkJob
     core/ik/IkChain
@@ -25,6 +26,8 @@ set(OSGACTOR_CORE_IK_HEADERS
     core/ik/IkJob
     core/ik/IkKinematics
     core/ik/IkSolve
+    core/ik/SweepAcceleration
+    core/ik/TwoBoneClosedForm
     core/ik/TwoBoneIkJob)
 set(OSGACTOR_CORE_SOURCES
     core/ActorDefinition.cpp
@@ -47,6 +50,8 @@ set(OSGACTOR_CORE_SOURCES
     core/ik/IkJob.cpp
     core/ik/IkKinematics.cpp
     core/ik/IkSolve.cpp
+    core/ik/SweepAcceleration.cpp
+    core/ik/TwoBoneClosedForm.cpp
     core/ik/TwoBoneIkJob.cpp)
 
 # The .actor file format: document model, lexer, syntax, reader, writer. Plain C++ on GLM like the core (no OSG, no

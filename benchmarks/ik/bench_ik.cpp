@@ -153,6 +153,13 @@ void BM_Dls_7DofArm_Orientation(benchmark::State& state)
                                            false));
 }
 
+void BM_Ccd_7DofArm_Orientation(benchmark::State& state)
+{
+    IkChainSpec arm = spec("shoulder", "wrist", IkSolverType::Ccd, glm::dvec3(0.08, 0, 0));
+    arm.maxIterations = 300; // as the tests give it
+    runSolves<CcdIkJob>(state, makeProblem(test::makeArmActor(), arm, true, false));
+}
+
 BENCHMARK(BM_TwoBone_3Joints)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TwoBone_3Joints_GivenModels)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_TwoBone_3Joints_Orientation)->Unit(benchmark::kMicrosecond);
@@ -164,6 +171,7 @@ BENCHMARK(BM_Dls_3Joints)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dls_7Joints)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dls_7Joints_GivenModels)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_Dls_7DofArm_Orientation)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_Ccd_7DofArm_Orientation)->Unit(benchmark::kMicrosecond);
 
 } // namespace
 

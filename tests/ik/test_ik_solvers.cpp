@@ -264,6 +264,48 @@ TEST(TwoBoneIk, ReachesRandomTargetsWithOrientationAndEffectorOffset)
     EXPECT_GE(report.rate(), 0.99);
 }
 
+// The closed form works in the limb's own frames; this limb uses every layout option it must get right: offsets with
+// rotations, Euler orders other than XYZ, slides after and before rotation (held: weight 0), a three-rotation middle
+// joint whose hinge is its middle slot (the other two held), an effector offset.
+TEST(TwoBoneIk, ReachesRandomTargetsOnAnyJointLayout)
+{
+    ActorDefinitionBuilder b("layouts");
+    b.addJoint("base").offset(0.1, 0.9, -0.2).rotation(0.7, 1, 0.3, -0.2).dofs(kRotationDofs);
+    b.addJoint("shoulder", "base").offset(0.2, 0.1, 0.05).rotation(-0.4, 0.2, 1, 0).dofs(kRotationDofs | Dof::TX)
+        .eulerOrder(EulerOrder::YZX).limits(Dof::RX, -2.0, 2.0).limits(Dof::RY, -1.2, 1.2).limits(Dof::RZ, -1.5, 2.0)
+        .limits(Dof::TX, -0.05, 0.05);
+    b.addJoint("elbow", "shoulder").offset(0.35, 0.02, -0.03).rotation(0.3, 0, 0, 1).dofs(kRotationDofs | Dof::TZ)
+        .eulerOrder(EulerOrder::ZYX).translationMode(TranslationMode::BeforeRotation).limits(Dof::RX, -0.3, 0.3)
+        .limits(Dof::RY, 0.0, 2.6).limits(Dof::RZ, -0.3, 0.3).limits(Dof::TZ, -0.04, 0.04);
+    b.addJoint("wrist", "elbow").offset(0.3, -0.01, 0.02).rotation(-0.2, 1, 0, 0).dofs(kRotationDofs | Dof::TY)
+        .eulerOrder(EulerOrder::XZY).limits(Dof::RX, -1.5, 1.5).limits(Dof::RY, -0.6, 0.6).limits(Dof::RZ, -1.2, 1.2)
+        .limits(Dof::TY, -0.03, 0.03);
+    const BuildResult built = b.build();
+    ASSERT_TRUE(built) << built.error;
+    IkChainSpec spec = chainSpec("arm", "shoulder", "wrist", IkSolverType::TwoBone, glm::dvec3(0.06, 0.02, -0.01));
+    spec.dofWeights = {{"shoulder.tx", 0.0}, {"elbow.rx", 0.0}, {"elbow.rz", 0.0}, {"elbow.tz", 0.0},
+                       {"wrist.ty", 0.0}};
+    const IkChainPtr chain = makeChain(*built.definition, spec);
+    ASSERT_TRUE(chain->isTwoBoneLayout());
+    EXPECT_GE(solveRandomTargets("twobone, every layout, pole + orientation", built.definition, chain, true, true).rate(),
+              0.99);
+    // Without an orientation goal the effector's rotations are held (they only carry the offset), so here they are
+    // held where each target has them.
+    spec.dofWeights.insert(spec.dofWeights.end(), {{"wrist.rx", 0.0}, {"wrist.ry", 0.0}, {"wrist.rz", 0.0}});
+    const IkChainPtr heldWrist = makeChain(*built.definition, spec);
+    EXPECT_GE(solveRandomTargets("twobone, every layout, pole", built.definition, heldWrist, false, true).rate(), 0.99);
+}
+
+// Without a pole the limb turns by the shortest arc, keeping its bend plane, so a goal may need a root rotation past
+// the limits; the general rounds (damped least squares from the analytic start) then finish.
+TEST(TwoBoneIk, ReachesRandomTargetsWithoutAPole)
+{
+    const ActorDefinitionPtr leg = makeLegActor();
+    const RandomTargetReport report =
+        solveRandomTargets("twobone leg, no pole", leg, legChain(leg, IkSolverType::TwoBone), false, false);
+    EXPECT_GE(report.rate(), 0.99);
+}
+
 TEST(CcdIk, ReachesRandomTargetsOnASevenJointChain)
 {
     const ActorDefinitionPtr snake = makeSnakeActor();
@@ -272,15 +314,15 @@ TEST(CcdIk, ReachesRandomTargetsOnASevenJointChain)
     EXPECT_GE(report.rate(), 0.99);
 }
 
-// CCD turns one DOF at a time, so on a limb, where the hip and the knee must move together to change the reach, it
-// has a long slow tail (the two-bone solver is the one for limbs): it gets the 1000 sweeps it needs.
-TEST(CcdIk, ReachesMostRandomTargetsOnALeg)
+// CCD turns one DOF at a time, so on a limb, where the hip and the knee must move together to change the reach, its
+// plain sweeps have a long slow tail; the sweep acceleration (Anderson mixing, pattern moves) takes it in.
+TEST(CcdIk, ReachesRandomTargetsOnALeg)
 {
     const ActorDefinitionPtr leg = makeLegActor();
     IkChainSpec spec = chainSpec("leg", "hip", "ankle", IkSolverType::Ccd);
-    spec.maxIterations = 1000;
+    spec.maxIterations = 200;
     const RandomTargetReport report = solveRandomTargets("ccd leg (3 joints)", leg, makeChain(*leg, spec), false, false);
-    EXPECT_GE(report.rate(), 0.98);
+    EXPECT_GE(report.rate(), 0.99);
 }
 
 TEST(DlsIk, ReachesRandomTargetsOnASevenJointChain)
@@ -307,15 +349,17 @@ TEST(DlsIk, MeetsRandomOrientationGoalsOnASevenDofArm)
     EXPECT_GE(report.rate(), 0.99);
 }
 
-// CCD balances orientation against position one DOF at a time: it closes in on both but, unlike DLS, often not
-// to 1e-4 within its sweeps (a known gap, reported here on 200 targets); it must never end worse than it started.
-TEST(CcdIk, ApproachesRandomOrientationGoalsOnASevenDofArm)
+// CCD balances orientation against position one DOF at a time. Every goal here is reachable (the effector frame of
+// a pose within the limits), but the limits leave local minima that a pose of the arm can fall into from the rest
+// pose and that several restarts fall back into, so CCD, like DLS, needs its restarts and some targets more sweeps
+// than the chain's 300. It must never end worse than it started.
+TEST(CcdIk, MeetsRandomOrientationGoalsOnASevenDofArm)
 {
     const ActorDefinitionPtr arm = makeArmActor();
     const RandomTargetReport report = solveRandomTargets("ccd arm (7 DOFs), orientation", arm,
-                                                         armChain(arm, IkSolverType::Ccd), true, false, 20021, 200);
+                                                         armChain(arm, IkSolverType::Ccd), true, false);
     EXPECT_EQ(report.worse, 0u);
-    EXPECT_GE(report.rate(), 0.4) << "a regression guard: 43.5% when written";
+    EXPECT_GE(report.rate(), 0.97) << "a regression guard: 99.0% when written (43.5% of 200 before the sweep acceleration)";
 }
 
 TEST(IkSolvers, NeverEndWorseThanTheyStart)

@@ -1,5 +1,7 @@
 #include <osgActor/core/ik/CcdIkJob>
+#include <osgActor/core/ik/Arctangent>
 #include <osgActor/core/ik/IkKinematics>
+#include <osgActor/core/ik/SweepAcceleration>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -12,11 +14,16 @@ namespace osgActor {
 
 namespace {
 
-// A sweep that lowers the cost by less than this fraction is slow; this many in a row are a stall, answered by a
-// restart from a kicked pose (kickDofs), at most kMaxKicks times per solve.
+// A sweep (with its acceleration) that lowers the cost by less than this fraction is slow; this many in a row are a
+// stall, answered by a restart from a kicked pose (kickDofs), at most kMaxKicks times per solve. The acceleration
+// leaves few slow sweeps short of a local minimum, so three are enough to tell one.
 constexpr double kSlowProgress = 1e-3;
-constexpr unsigned kMaxSlowSweeps = 10;
+constexpr unsigned kMaxSlowSweeps = 3;
 constexpr unsigned kMaxKicks = 64;
+// A sweep that leaves more than this fraction of the cost converges slowly: the solver tries SweepAcceleration's
+// proposals, Anderson mixing first, then up to this many pattern moves (strides 1, 2, 4, ... times the sweep's).
+constexpr double kAccelerateAbove = 0.1;
+constexpr unsigned kMaxPatternTrials = 10;
 
 /** The angle about unit axis a (through pivot) that maximizes positionWeight * (goal - pivot) . R (effector - pivot)
   * + orientationWeight * sum_i goalAxis_i . R effectorAxis_i, i.e. that best turns the effector onto the goal. */
@@ -46,7 +53,7 @@ double bestAngle(const glm::dvec3& a, const glm::dvec3& pivot, const glm::dvec3&
         }
     }
     if (cosTerm * cosTerm + sinTerm * sinTerm < 1e-30) return 0.0;
-    return std::atan2(sinTerm, cosTerm);
+    return arctangent2(sinTerm, cosTerm);
 }
 
 } // namespace
@@ -92,28 +99,83 @@ bool CcdIkJob::run()
     if (!validate()) return false;
     const IkChain& c = *chain;
     IkWorkspace& ws = *workspace;
+    const unsigned n = c.getNumDofs();
     const glm::dmat3 goalRotation =
         goal->hasOrientation ? glm::mat3_cast(glm::normalize(goal->orientation)) : glm::dmat3(1.0);
-    // Radians weigh like arcs on a circle of the chain's length.
-    const double orientationWeight = goal->hasOrientation ? c.getLength() * c.getLength() : 0.0;
+    // The cost weighs radians like arcs on a circle of the chain's length. A sweep maximises the position dot product
+    // (-|error|^2 / 2 about the goal) plus its orientation weight times the sum of the frame axes' dot products
+    // (-angle^2 about the goal), so half the cost's weight makes each turn minimise the cost itself.
+    const double lengthSquared = c.getLength() * c.getLength();
+    const double costOrientationWeight = goal->hasOrientation ? lengthSquared : 0.0;
+    const double sweepOrientationWeight = 0.5 * costOrientationWeight;
+    auto cost = [&](const IkError& e) {
+        return glm::dot(e.position, e.position) + costOrientationWeight * e.angle * e.angle;
+    };
+    auto gather = [&](double* values) {
+        for (unsigned d = 0; d < n; ++d) values[d] = dofs[c.getDof(d).dof];
+    };
+    // Sets the chain's DOFs (chain DOF order) within their limits, frozen ones kept, and brings the pose up to date.
+    auto setPose = [&](const double* values) {
+        for (unsigned d = 0; d < n; ++d)
+        {
+            const IkChainDof& chainDof = c.getDof(d);
+            if (!ws.frozen[d]) dofs[chainDof.dof] = std::min(std::max(values[d], chainDof.min), chainDof.max);
+        }
+        computeChainPose(*definition, c, rootParentModel, dofs, ws);
+    };
 
-    auto cost = [&](const IkError& e) { return glm::dot(e.position, e.position) + orientationWeight * e.angle * e.angle; };
     startChainPose(*this);
     IkError error = measureIkError(*goal, goalRotation, ws);
     double currentCost = cost(error);
     // The best pose before the last restart, should a kick lead nowhere better.
     IkError earlierBestError;
     double earlierBestCost = std::numeric_limits<double>::infinity();
+    SweepHistory history;
     unsigned kicks = 0, slowSweeps = 0, sweeps = 0;
     while (!withinTolerance(c, *goal, error) && sweeps < c.getMaxIterations())
     {
         ++sweeps;
+        gather(ws.savedDofs.data());
         computeDofAxes(*definition, c, dofs, ws);
-        runCcdSweep(c, *goal, goalRotation, 1.0, orientationWeight, true, 0, c.getNumDofs(), dofs, ws);
+        runCcdSweep(c, *goal, goalRotation, 1.0, sweepOrientationWeight, true, 0, n, dofs, ws);
         // The sweep tracked the effector exactly; recompute anyway so rounding cannot pile up over sweeps.
         computeChainPose(*definition, c, rootParentModel, dofs, ws);
         error = measureIkError(*goal, goalRotation, ws);
-        const double sweepCost = cost(error);
+        double sweepCost = cost(error);
+        gather(ws.trialDofs.data());
+        history.record(c, ws.savedDofs.data(), ws.trialDofs.data(), ws);
+
+        if (sweepCost > kAccelerateAbove * currentCost && !withinTolerance(c, *goal, error))
+        {
+            // Converging slowly: try the proposals of SweepAcceleration, keeping one only where it lowers the cost.
+            const double* start = &ws.sweepStarts[(history.count - 1) * n];
+            const double* end = &ws.sweepEnds[(history.count - 1) * n];
+            auto tryPose = [&]() {
+                setPose(ws.trialDofs.data());
+                const IkError trial = measureIkError(*goal, goalRotation, ws);
+                const double trialCost = cost(trial);
+                if (!(trialCost < sweepCost)) return false;
+                error = trial;
+                sweepCost = trialCost;
+                return true;
+            };
+            bool improved = proposeAndersonMix(c, ws, history, ws.trialDofs.data()) && tryPose();
+            if (!improved)
+            {
+                // Further along the sweep's own direction, doubling the stride while it helps.
+                double factor = 1.0, bestFactor = 0.0;
+                for (unsigned trial = 0; trial < kMaxPatternTrials; ++trial, factor *= 2.0)
+                {
+                    proposePatternMove(c, start, end, factor, ws.trialDofs.data());
+                    if (!tryPose()) break;
+                    bestFactor = factor;
+                }
+                improved = bestFactor > 0.0;
+                if (improved && bestFactor != factor) proposePatternMove(c, start, end, bestFactor, ws.trialDofs.data());
+                if (!improved || bestFactor != factor) setPose(improved ? ws.trialDofs.data() : end);
+            }
+        }
+
         slowSweeps = sweepCost > currentCost * (1.0 - kSlowProgress) ? slowSweeps + 1 : 0;
         currentCost = sweepCost;
         if (slowSweeps < kMaxSlowSweeps || kicks == kMaxKicks || withinTolerance(c, *goal, error)) continue;
@@ -122,17 +184,18 @@ bool CcdIkJob::run()
         {
             earlierBestCost = currentCost;
             earlierBestError = error;
-            for (unsigned d = 0; d < c.getNumDofs(); ++d) ws.bestDofs[d] = dofs[c.getDof(d).dof];
+            gather(ws.bestDofs.data());
         }
         kickDofs(c, ws, kicks++, dofs);
         computeChainPose(*definition, c, rootParentModel, dofs, ws);
         error = measureIkError(*goal, goalRotation, ws);
         currentCost = cost(error);
         slowSweeps = 0;
+        history.clear();
     }
     if (earlierBestCost < currentCost)
     {
-        for (unsigned d = 0; d < c.getNumDofs(); ++d) dofs[c.getDof(d).dof] = ws.bestDofs[d];
+        for (unsigned d = 0; d < n; ++d) dofs[c.getDof(d).dof] = ws.bestDofs[d];
         error = earlierBestError;
     }
     setIkResult(c, *goal, error, sweeps, result);

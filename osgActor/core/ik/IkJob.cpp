@@ -1,6 +1,7 @@
 #include <osgActor/core/ik/IkJob>
 
-#include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace osgActor {
 
@@ -14,6 +15,10 @@ void IkWorkspace::resize(const IkChain& chain)
     jacobianOrientation.assign(numDofs, glm::dvec3(0.0));
     savedDofs.assign(numDofs, 0.0);
     bestDofs.assign(numDofs, 0.0);
+    trialDofs.assign(numDofs, 0.0);
+    sweepStarts.assign(kSweepHistory * numDofs, 0.0);
+    sweepEnds.assign(kSweepHistory * numDofs, 0.0);
+    mixingColumns.assign((kSweepHistory - 1) * numDofs, 0.0);
     locked.assign(numDofs, 0);
     frozen.assign(numDofs, 0);
 }
@@ -23,7 +28,10 @@ bool IkWorkspace::fits(const IkChain& chain) const
     const std::size_t numDofs = chain.getNumDofs();
     return jointModel.size() == chain.getNumJoints() && axis.size() == numDofs && pivot.size() == numDofs &&
            jacobianPosition.size() == numDofs && jacobianOrientation.size() == numDofs &&
-           savedDofs.size() == numDofs && bestDofs.size() == numDofs && locked.size() == numDofs && frozen.size() == numDofs;
+           savedDofs.size() == numDofs && bestDofs.size() == numDofs && trialDofs.size() == numDofs &&
+           sweepStarts.size() == kSweepHistory * numDofs && sweepEnds.size() == kSweepHistory * numDofs &&
+           mixingColumns.size() == (kSweepHistory - 1) * numDofs &&
+           locked.size() == numDofs && frozen.size() == numDofs;
 }
 
 bool IkJob::validateInputs() const
@@ -31,12 +39,18 @@ bool IkJob::validateInputs() const
     if (!definition || !chain || !goal || !dofs || !workspace) return false;
     if (!chain->fitsLayout(definition->getNumJoints(), definition->getNumDofs())) return false;
     if (!workspace->fits(*chain) || !goal->isValid()) return false;
-    for (unsigned c = 0; c < 4; ++c)
-        for (unsigned r = 0; r < 4; ++r)
-            if (!std::isfinite(rootParentModel[c][r])) return false;
-    for (const IkChainDof& d : chain->getDofs())
-        if (!std::isfinite(dofs[d.dof])) return false;
-    return true;
+    // A double is NaN or infinite when its 11 exponent bits are all set, i.e. when they plus one carry into bit 11:
+    // integer arithmetic ORed over every value, which needs no branch per value and vectorises.
+    auto nonFinite = [](double value) {
+        std::uint64_t bits;
+        std::memcpy(&bits, &value, sizeof bits);
+        return (((bits >> 52) & 0x7ffu) + 1u) >> 11;
+    };
+    std::uint64_t any = 0;
+    const double* matrix = &rootParentModel[0][0];
+    for (unsigned i = 0; i < 16; ++i) any |= nonFinite(matrix[i]);
+    for (const IkChainDof& d : chain->getDofs()) any |= nonFinite(dofs[d.dof]);
+    return any == 0;
 }
 
 } // namespace osgActor

@@ -1,8 +1,10 @@
 #include <osgActor/core/ik/IkKinematics>
+#include <osgActor/core/ik/Arctangent>
 #include <osgActor/core/ForwardKinematicsJob>
 
 #include <glm/ext/scalar_constants.hpp>
 #include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
 
 #include <algorithm>
@@ -98,10 +100,7 @@ glm::dvec3 rotationPivot(const JointKinematics& k, const glm::dmat4& jointModel,
     glm::dvec3 pivot(jointModel[3]);
     if (k.translationMode == TranslationMode::BeforeRotation) return pivot;
     // jointModel = parent * offset * R * T(t): its origin is the pivot moved by (its rotation part) * t.
-    glm::dvec3 t(0.0);
-    for (unsigned axis = 0; axis < 3; ++axis)
-        if (k.translationDof[axis] >= 0) t[axis] = dofs[k.translationDof[axis]];
-    return pivot - glm::dmat3(jointModel) * t;
+    return pivot - glm::dmat3(jointModel) * jointSlide(k, dofs);
 }
 
 IkError measureIkError(const IkGoal& goal, const glm::dmat3& goalRotation, const IkWorkspace& workspace)
@@ -200,14 +199,19 @@ glm::dvec3 rotationVector(const glm::dmat3& r)
     return w * (angle / sine);
 }
 
-glm::dvec3 rotateAboutAxis(const glm::dvec3& v, unsigned axis, double c, double s)
+glm::dmat3 shortestArc(const glm::dvec3& from, const glm::dvec3& to)
 {
-    switch (axis)
+    const glm::dvec3 f = glm::normalize(from), t = glm::normalize(to);
+    glm::dvec3 axis = glm::cross(f, t);
+    const double sine = glm::length(axis);
+    const double cosine = glm::dot(f, t);
+    if (sine < 1e-12)
     {
-    case 0: return glm::dvec3(v.x, c * v.y - s * v.z, s * v.y + c * v.z);
-    case 1: return glm::dvec3(c * v.x + s * v.z, v.y, -s * v.x + c * v.z);
-    default: return glm::dvec3(c * v.x - s * v.y, s * v.x + c * v.y, v.z);
+        if (cosine > 0.0) return glm::dmat3(1.0);
+        // Half a turn about any axis perpendicular to f.
+        axis = glm::cross(f, std::abs(f.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0));
     }
+    return glm::mat3_cast(glm::angleAxis(std::atan2(sine, cosine), glm::normalize(axis)));
 }
 
 glm::dvec3 rotateAbout(const glm::dvec3& v, const glm::dvec3& a, double angle)
@@ -232,17 +236,17 @@ void decomposeEuler(const glm::dmat3& r, const std::uint8_t axes[3], double firs
     const double parity = j == (i + 1) % 3 ? 1.0 : -1.0;
     auto m = [&r](unsigned row, unsigned column) { return r[column][row]; };
     const double cosMiddle = std::sqrt(m(i, i) * m(i, i) + m(i, j) * m(i, j));
-    first[1] = std::atan2(parity * m(i, k), cosMiddle);
+    first[1] = arctangent2(parity * m(i, k), cosMiddle);
     if (cosMiddle > 1e-12)
     {
-        first[0] = std::atan2(-parity * m(j, k), m(k, k));
-        first[2] = std::atan2(-parity * m(i, j), m(i, i));
+        first[0] = arctangent2(-parity * m(j, k), m(k, k));
+        first[2] = arctangent2(-parity * m(i, j), m(i, i));
     }
     else
     {
         // Gimbal lock: only a0 +- a2 is defined; put it all in a2.
         first[0] = 0.0;
-        first[2] = std::atan2(parity * m(j, i), m(j, j));
+        first[2] = arctangent2(parity * m(j, i), m(j, j));
     }
     const double pi = glm::pi<double>();
     second[0] = first[0] + pi;
@@ -252,12 +256,19 @@ void decomposeEuler(const glm::dmat3& r, const std::uint8_t axes[3], double firs
 
 double fitAngleToLimits(double angle, double min, double max, double reference)
 {
-    const double pi = glm::pi<double>();
-    // The common case: the angle itself is within limits and the turn nearest the reference.
-    if (angle >= min && angle <= max && std::abs(angle - reference) <= pi) return angle;
-    const double twoPi = 2.0 * pi;
-    const double nearest = angle + twoPi * std::round((reference - angle) / twoPi);
-    double best = 0.0;
+    bool clamped;
+    return fitAngleToLimits(angle, min, max, reference, clamped);
+}
+
+bool turnWithinLimitsByWholeTurns(double angle, double min, double max, double reference, double& turned)
+{
+    const double twoPi = 2.0 * glm::pi<double>();
+    // Whole turns from angle to the reference, rounded (inline where |turns| < 2^52, as it always is in practice).
+    const double turns = (reference - angle) * (1.0 / twoPi);
+    const double roundedTurns = std::abs(turns) < 4503599627370496.0
+                                    ? static_cast<double>(static_cast<std::int64_t>(turns + (turns < 0.0 ? -0.5 : 0.5)))
+                                    : std::round(turns);
+    const double nearest = angle + twoPi * roundedTurns;
     double bestDistance = std::numeric_limits<double>::infinity();
     for (int k = -2; k <= 2; ++k)
     {
@@ -266,15 +277,75 @@ double fitAngleToLimits(double angle, double min, double max, double reference)
         const double distance = std::abs(candidate - reference);
         if (distance < bestDistance)
         {
-            best = candidate;
+            turned = candidate;
             bestDistance = distance;
         }
     }
-    if (bestDistance < std::numeric_limits<double>::infinity()) return best;
+    return bestDistance < std::numeric_limits<double>::infinity();
+}
+
+double fitAngleToLimits(double angle, double min, double max, double reference, bool& clamped)
+{
+    double turned = angle;
+    clamped = !turnWithinLimits(angle, min, max, reference, turned);
+    if (!clamped) return turned;
     // No turn of the angle lies within the limits: the limit it is closest to, going round the circle.
+    const double twoPi = 2.0 * glm::pi<double>();
     const double toMin = std::abs(std::remainder(angle - min, twoPi));
     const double toMax = std::abs(std::remainder(angle - max, twoPi));
     return toMin <= toMax ? min : max;
+}
+
+glm::dmat3 composeEuler(const JointKinematics& k, const double angles[3])
+{
+    glm::dmat3 m(1.0);
+    for (unsigned r = 0; r < 3; ++r)
+    {
+        // m * R_axis: only the two columns other than the axis mix.
+        const unsigned i = (k.rotationAxis[r] + 1u) % 3u, j = (k.rotationAxis[r] + 2u) % 3u;
+        const double c = std::cos(angles[r]), s = std::sin(angles[r]);
+        const glm::dvec3 ci = m[i], cj = m[j];
+        m[i] = c * ci + s * cj;
+        m[j] = -s * ci + c * cj;
+    }
+    return m;
+}
+
+bool fitJointRotation(const ActorDefinition& definition, const JointKinematics& k, const glm::dmat3& target,
+                      const double* dofs, double angles[3])
+{
+    double solutions[2][3];
+    decomposeEuler(target, k.rotationAxis, solutions[0], solutions[1]);
+    double fitted[2][3];
+    // Fits one solution to the limits; true when no angle had to be clamped (only turned by whole turns).
+    auto fit = [&](unsigned s) {
+        bool exact = true;
+        for (unsigned r = 0; r < 3; ++r)
+        {
+            const unsigned dof = k.rotationDof[r];
+            bool clamped;
+            fitted[s][r] = fitAngleToLimits(solutions[s][r], definition.getDofMin(dof), definition.getDofMax(dof),
+                                            dofs[dof], clamped);
+            exact = exact && !clamped;
+        }
+        return exact;
+    };
+    unsigned chosen = 0;
+    bool exact = fit(0);
+    if (!exact)
+    {
+        exact = fit(1);
+        if (exact) chosen = 1;
+        else
+        {
+            auto norm2 = [](const glm::dmat3& m) {
+                return glm::dot(m[0], m[0]) + glm::dot(m[1], m[1]) + glm::dot(m[2], m[2]);
+            };
+            chosen = norm2(composeEuler(k, fitted[1]) - target) < norm2(composeEuler(k, fitted[0]) - target) ? 1 : 0;
+        }
+    }
+    for (unsigned r = 0; r < 3; ++r) angles[r] = fitted[chosen][r];
+    return exact;
 }
 
 } // namespace osgActor

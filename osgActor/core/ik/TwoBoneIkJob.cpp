@@ -2,6 +2,7 @@
 #include <osgActor/core/ik/CcdIkJob>
 #include <osgActor/core/ik/DlsIkJob>
 #include <osgActor/core/ik/IkKinematics>
+#include <osgActor/core/ik/TwoBoneClosedForm>
 
 #include <glm/ext/scalar_constants.hpp>
 #include <glm/geometric.hpp>
@@ -15,77 +16,15 @@ namespace osgActor {
 
 namespace {
 
-/** R_a1(angles[0]) * R_a2(angles[1]) * R_a3(angles[2]) for a joint's three rotation axes in product order. */
-glm::dmat3 composeRotation(const JointKinematics& k, const double angles[3])
-{
-    glm::dmat3 m(1.0);
-    for (unsigned r = 0; r < 3; ++r)
-    {
-        // m * R_axis: only the two columns other than the axis mix.
-        const unsigned i = (k.rotationAxis[r] + 1u) % 3u, j = (k.rotationAxis[r] + 2u) % 3u;
-        const double c = std::cos(angles[r]), s = std::sin(angles[r]);
-        const glm::dvec3 ci = m[i], cj = m[j];
-        m[i] = c * ci + s * cj;
-        m[j] = -s * ci + c * cj;
-    }
-    return m;
-}
-
 /** Sets a joint's three rotation DOFs so its articulation rotation (local space) is as close to target as the
-  * limits allow: the Euler decomposition that needs no clamping, else the one closer once clamped. Returns false
-  * when it had to clamp. */
+  * limits allow (fitJointRotation). Returns false when it had to clamp. */
 bool setJointRotation(const ActorDefinition& definition, const JointKinematics& k, const glm::dmat3& target,
                       double* dofs)
 {
-    double solutions[2][3];
-    decomposeEuler(target, k.rotationAxis, solutions[0], solutions[1]);
-    const double twoPi = 2.0 * glm::pi<double>();
-    double fitted[2][3];
-    // Fits one solution to the limits; true when no angle had to be clamped (only turned by whole turns).
-    auto fit = [&](unsigned s) {
-        bool exact = true;
-        for (unsigned r = 0; r < 3; ++r)
-        {
-            const unsigned dof = k.rotationDof[r];
-            fitted[s][r] = fitAngleToLimits(solutions[s][r], definition.getDofMin(dof), definition.getDofMax(dof),
-                                            dofs[dof]);
-            const double turns = (fitted[s][r] - solutions[s][r]) / twoPi;
-            exact = exact && std::abs(turns - std::round(turns)) < 1e-12;
-        }
-        return exact;
-    };
-    unsigned chosen = 0;
-    bool exact = fit(0);
-    if (!exact)
-    {
-        exact = fit(1);
-        if (exact) chosen = 1;
-        else
-        {
-            auto norm2 = [](const glm::dmat3& m) {
-                return glm::dot(m[0], m[0]) + glm::dot(m[1], m[1]) + glm::dot(m[2], m[2]);
-            };
-            chosen = norm2(composeRotation(k, fitted[1]) - target) < norm2(composeRotation(k, fitted[0]) - target) ? 1 : 0;
-        }
-    }
-    for (unsigned r = 0; r < 3; ++r) dofs[k.rotationDof[r]] = fitted[chosen][r];
+    double angles[3];
+    const bool exact = fitJointRotation(definition, k, target, dofs, angles);
+    for (unsigned r = 0; r < 3; ++r) dofs[k.rotationDof[r]] = angles[r];
     return exact;
-}
-
-/** The rotation (model space) turning direction from onto direction to by the shortest arc. */
-glm::dmat3 shortestArc(const glm::dvec3& from, const glm::dvec3& to)
-{
-    const glm::dvec3 f = glm::normalize(from), t = glm::normalize(to);
-    glm::dvec3 axis = glm::cross(f, t);
-    const double sine = glm::length(axis);
-    const double cosine = glm::dot(f, t);
-    if (sine < 1e-12)
-    {
-        if (cosine > 0.0) return glm::dmat3(1.0);
-        // Half a turn about any axis perpendicular to f.
-        axis = glm::cross(f, std::abs(f.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0));
-    }
-    return glm::mat3_cast(glm::angleAxis(std::atan2(sine, cosine), glm::normalize(axis)));
 }
 
 /** The rotation (model space) turning the orthonormal frame (x along from, y toward fromSide) onto the frame (x along
@@ -115,6 +54,8 @@ bool TwoBoneIkJob::run()
 {
     result = IkResult();
     if (!validate()) return false;
+    // The common case in closed form, without forward kinematics; the rounds below take the rest.
+    if (solveTwoBoneClosedForm(*this)) return true;
     const IkChain& c = *chain;
     IkWorkspace& ws = *workspace;
     const ActorDefinition& def = *definition;
@@ -139,14 +80,18 @@ bool TwoBoneIkJob::run()
     const bool analyticOrientation = effectorKinematics.numRotations == 3 && freeRotations(effectorFirst, numDofs) == 3;
     const glm::dmat3 goalRotation =
         goal->hasOrientation ? glm::mat3_cast(glm::normalize(goal->orientation)) : glm::dmat3(1.0);
-    // When the effector's frame can take the goal's orientation outright, its offset will point along
-    // goalRotation * offset, so the limb aims the effector joint's origin there and the offset follows exactly.
-    // Otherwise the limb aims the effector point itself.
-    const bool offsetFollowsGoal = orient && analyticOrientation;
-    const glm::dvec3 trackedOffset = offsetFollowsGoal ? glm::dvec3(0.0) : c.getEffectorOffset();
-    const glm::dvec3 target = offsetFollowsGoal ? goal->position - goalRotation * c.getEffectorOffset() : goal->position;
-
     startChainPose(*this);
+    // When the effector's frame can take the goal's orientation outright, the effector point will lie at
+    // goalRotation * beyondPivot from the effector's pivot, so the limb aims the pivot there and the point follows
+    // exactly. Otherwise the limb aims the effector point itself.
+    const bool offsetFollowsGoal = orient && analyticOrientation;
+    // The effector point from the effector's pivot, in its rotation frame (a slide after rotation turns with it).
+    const glm::dvec3 beyondPivot =
+        (effectorKinematics.translationMode == TranslationMode::AfterRotation ? jointSlide(effectorKinematics, dofs)
+                                                                               : glm::dvec3(0.0)) +
+        c.getEffectorOffset();
+    const glm::dvec3 target = offsetFollowsGoal ? goal->position - goalRotation * beyondPivot : goal->position;
+
     IkError error = measureIkError(*goal, goalRotation, ws);
     double previousCost = cost(error, length);
     unsigned rounds = 0;
@@ -156,7 +101,8 @@ bool TwoBoneIkJob::run()
         computeJointDofAxes(def, c, 1, dofs, ws); // the bend's axis and pivot
         const glm::dvec3 rootPivot = rotationPivot(rootKinematics, ws.jointModel[0], dofs);
         const glm::dvec3 toGoal = target - rootPivot;
-        glm::dvec3 tracked(ws.jointModel[2] * glm::dvec4(trackedOffset, 1.0));
+        glm::dvec3 tracked = offsetFollowsGoal ? rotationPivot(effectorKinematics, ws.jointModel[2], dofs)
+                                               : glm::dvec3(ws.jointModel[2] * glm::dvec4(c.getEffectorOffset(), 1.0));
 
         // 1. Bend: |pivot + R(turn) q - rootPivot| = |toGoal|, i.e. A cos(turn) + B sin(turn) = C.
         const glm::dvec3 bendAxis = ws.axis[bend];
