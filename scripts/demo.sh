@@ -8,7 +8,7 @@ build="${OSGACTOR_BUILD_DIR:-$root/build}"
 "$root/scripts/setup-debian.sh"
 "$root/scripts/build.sh"
 
-# osgDB finds the osgActor plugins (build/lib/osgPlugins-<ver>/) and the showcase's drivers (build/lib) here.
+# osgDB finds the osgActor plugins (build/lib/osgPlugins-<ver>/) and the showcase's rigs (build/lib) here.
 export OSG_LIBRARY_PATH="$build/lib${OSG_LIBRARY_PATH:+:$OSG_LIBRARY_PATH}"
 scene="$root/data/showcase.osgt"
 

@@ -12,7 +12,7 @@ std::unique_ptr<OffscreenRenderer> OffscreenRenderer::create(int width, int heig
 }
 
 OffscreenRenderer::OffscreenRenderer(std::unique_ptr<OsMesaContext> context)
-    : _context(std::move(context)), _viewer(new osgViewer::Viewer), _fovyDegrees(30.0)
+    : _context(std::move(context)), _viewer(new osgViewer::Viewer), _fovyDegrees(30.0), _nextStep(0)
 {
     // The context is current on this thread only: any other threading model would draw from another thread.
     _viewer->setThreadingModel(osgViewer::ViewerBase::SingleThreaded);
@@ -62,6 +62,19 @@ void OffscreenRenderer::update(double simulationTime)
     _viewer->advance(simulationTime);
     _viewer->eventTraversal();
     _viewer->updateTraversal();
+}
+
+void OffscreenRenderer::stepTo(double simulationTime, double fps)
+{
+    // Frame times are computed as k / fps, exactly as a frame range names them, so that a time given as a number
+    // of frames meets its step exactly instead of running it twice.
+    while (double(_nextStep) / fps < simulationTime)
+    {
+        update(double(_nextStep) / fps);
+        ++_nextStep;
+    }
+    update(simulationTime);
+    if (double(_nextStep) / fps == simulationTime) ++_nextStep;
 }
 
 osg::ref_ptr<osg::Image> OffscreenRenderer::draw()

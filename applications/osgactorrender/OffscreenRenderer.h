@@ -26,7 +26,7 @@ using osgActorApps::frameBoundingSphere;
   *     auto renderer = OffscreenRenderer::create(640, 480, error);
   *     if (!renderer) { OSG_WARN << error << std::endl; return 1; }
   *     renderer->setScene(scene);
-  *     renderer->update(0.0);                                  // pose the scene at t = 0
+  *     renderer->stepTo(2.0, 30.0);                            // pose the scene at t = 2 s, stepping at 30 Hz
   *     renderer->setCameraView(renderer->frameScene());         // auto-frame what is there now
   *     osg::ref_ptr<osg::Image> image = renderer->draw();
   */
@@ -55,6 +55,13 @@ public:
 
     /** Advances the frame stamp to simulationTime (seconds) and runs the event and update traversals. */
     void update(double simulationTime);
+    /** Brings the scene to simulationTime as a viewer running at fps frames per second from time 0 would: runs
+      * update() at every frame time k / fps (k = 0, 1, 2, ...) before simulationTime that no earlier stepTo() ran,
+      * then at simulationTime itself. Callbacks that advance by the frame's delta time (clip and trajectory
+      * players, IK solved from the previous frame's pose, osg::AnimationPathCallback) then show at time t what
+      * frame t * fps of a run from frame 0 shows, whichever frames were drawn before. Players do not go back: a
+      * time before the last one stepped to is updated directly. fps > 0. */
+    void stepTo(double simulationTime, double fps);
     /** Culls and draws the current state, waits for the GL to finish and returns the pixels (RGB). */
     osg::ref_ptr<osg::Image> draw();
     /** update() then draw(). */
@@ -76,6 +83,7 @@ private:
     osg::ref_ptr<osgViewer::Viewer> _viewer;
     CameraView _view;
     double _fovyDegrees;
+    unsigned long long _nextStep; // the next frame k (at time k / fps) that stepTo() has not run yet
 };
 
 } // namespace osgActorRender

@@ -21,9 +21,12 @@ void describeRenderOptions(osg::ArgumentParser& arguments)
     usage->addCommandLineOption("--eye <x> <y> <z>", "Camera position (default: framed from the scene's bound).");
     usage->addCommandLineOption("--center <x> <y> <z>", "Point looked at (default: the scene's bound centre).");
     usage->addCommandLineOption("--up <x> <y> <z>", "Camera up direction (default 0 0 1).");
-    usage->addCommandLineOption("--time <seconds>", "Render one frame at this simulation time (default 0).");
+    usage->addCommandLineOption("--time <seconds>", "Render one frame at this simulation time (default 0), after "
+                                                    "updating the scene at every frame time before it (see --fps).");
     usage->addCommandLineOption("--frames <first> <last>", "Render frames first..last, frame n at time n / fps.");
-    usage->addCommandLineOption("--fps <rate>", "Frames per second of simulation time for --frames (default 30).");
+    usage->addCommandLineOption("--fps <rate>", "Frame rate (default 30): the scene is updated at times 0, 1 / fps, "
+                                                "2 / fps, ... up to the first frame rendered, so that players driven "
+                                                "by the frame's delta time show what a viewer would.");
     usage->addCommandLineOption("-o or --output <pattern>",
                                 "Output PNG file pattern, %04d is the frame number (default frame_%04d.png).");
     usage->addCommandLineOption("--no-frames", "Write no frame images (with --contact-sheet: the sheet only).");
@@ -38,6 +41,8 @@ namespace {
 
 // OSMesa's largest viewport (SWRAST_MAX_WIDTH/HEIGHT in Mesa); larger buffers would only waste memory.
 const int kMaxImageSize = 16384;
+// The most update steps from time 0 to the last frame (about 9 hours of simulation at 30 frames per second).
+const double kMaxSteps = 1e6;
 
 bool readVec3(osg::ArgumentParser& arguments, const std::string& option, osg::Vec3d& value)
 {
@@ -91,6 +96,9 @@ bool parseRenderOptions(osg::ArgumentParser& arguments, RenderOptions& options, 
     else if (hasFrames && (first < 0 || last < first)) error = "--frames needs 0 <= first <= last";
     else if (!(options.fps > 0.0) || !std::isfinite(options.fps)) error = "--fps must be a positive rate";
     else if (!std::isfinite(options.time)) error = "--time must be a finite number of seconds";
+    else if (options.time * options.fps > kMaxSteps || (hasFrames && last > kMaxSteps))
+        error = "the scene is updated at every frame from time 0: more than " + std::to_string(int(kMaxSteps)) +
+                " frames (--time x --fps, or --frames) is too many";
     else if (columns < 0) error = "--sheet-columns cannot be negative";
     else if (options.sheetTileWidth < 1) error = "--sheet-tile-width must be at least 1 pixel";
     else if (options.view.up.length2() == 0.0) error = "--up cannot be the zero vector";

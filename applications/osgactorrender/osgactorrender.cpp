@@ -88,7 +88,8 @@ int main(int argc, char** argv)
     for (unsigned i = 0; i < numFrames; ++i)
     {
         const auto start = std::chrono::steady_clock::now();
-        renderer->update(options.frameTime(i));
+        // Every delta-driven callback sees the frames from 0 up to this one at the frame rate (--time too).
+        renderer->stepTo(options.frameTime(i), options.fps);
         if (i == 0) renderer->setCameraView(chooseCameraView(options, *renderer)); // framed once, then fixed
         const osg::ref_ptr<osg::Image> image = renderer->draw();
         renderSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

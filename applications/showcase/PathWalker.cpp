@@ -1,27 +1,48 @@
 #include "PathWalker.h"
 #include "WalkCycle.h"
 
+#include <osgActor/core/ClipPlayer>
+
+#include <osg/Notify>
+
 namespace osgActorShowcase {
+
+const char* const PathWalker::kPathControllerName = "walk path";
+const char* const PathWalker::kWalkControllerName = "walk cycle";
 
 PathWalker::PathWalker() : _cycleDuration(1.1) {}
 
 PathWalker::PathWalker(const PathWalker& walker, const osg::CopyOp& copyop)
-    : osg::Object(walker, copyop), osg::Callback(walker, copyop), ActorDriver(walker, copyop), _path(walker._path), _cycleDuration(walker._cycleDuration)
+    : osg::Object(walker, copyop), osg::Callback(walker, copyop), ControllerRig(walker, copyop), _path(walker._path),
+      _cycleDuration(walker._cycleDuration)
 {
 }
 
-void PathWalker::drive(osgActor::ActorNode& actor, double time)
+bool PathWalker::rig(osgActor::ActorNode& actor) const
 {
-    if (_path.valid() && !_path->empty())
+    if (!_path || !actor.getDefinition())
     {
-        osg::AnimationPath::ControlPoint point;
-        if (_path->getInterpolatedControlPoint(time, point))
-        {
-            actor.setPreTranslation(point.getPosition());
-            actor.setPreRotation(point.getRotation());
-        }
+        OSG_WARN << "osgActorShowcase::PathWalker: " << (_path ? "an actor without a definition" : "no path to walk")
+                 << ", nothing to drive" << std::endl;
+        return false;
     }
-    if (_cycleDuration > 0.0) applyWalkCycle(actor, time / _cycleDuration);
+    auto path = std::make_shared<osgActor::TrajectoryPlayer>(_path);
+    path->setName(kPathControllerName);
+    path->setPlayMode(osgActor::PlayMode::Loop);
+    actor.addController(path);
+
+    // An actor without legs still follows the path.
+    const osgActor::ClipBuildResult walk = makeWalkCycleClip(*actor.getDefinition(), _cycleDuration);
+    if (!walk)
+    {
+        OSG_WARN << "osgActorShowcase::PathWalker: " << walk.error << std::endl;
+        return true;
+    }
+    auto cycle = std::make_shared<osgActor::ClipPlayer>(walk.clip);
+    cycle->setName(kWalkControllerName);
+    cycle->setPlayMode(osgActor::PlayMode::Loop);
+    actor.addController(cycle);
+    return true;
 }
 
 } // namespace osgActorShowcase

@@ -2,17 +2,18 @@
 #ifndef OSGACTORSHOWCASE_PATHWALKER_H
 #define OSGACTORSHOWCASE_PATHWALKER_H 1
 
-#include "ActorDriver.h"
+#include "ControllerRig.h"
 
-#include <osg/AnimationPath>
+#include <osgActor/core/Trajectory>
 
 namespace osgActorShowcase {
 
-/** Walks the actors of its group along a path: the path (an osg::AnimationPath, so that it is stored with the
-  * scene) places each actor's reference point (pre-transform: position, and the rotation that turns the actor's
-  * forward direction, -Y, along the path), and the walk cycle (applyWalkCycle) moves the legs, one full cycle per
-  * cycle duration. Make the path at the walking speed the cycle suits: stride length = speed x cycle duration. */
-class OSGACTORSHOWCASE_EXPORT PathWalker : public ActorDriver
+/** Walks the actors of its group along a stored path (an osgActor::Trajectory, stored with the scene): each actor
+  * gets a TrajectoryPlayer that loops the path on its reference point (the pre-transform: position, and the heading
+  * that turns the actor's forward direction, -Y, along the path), and a ClipPlayer that loops the walk cycle
+  * (makeWalkCycleClip()), one full cycle per cycle duration. Make the path at the walking speed the cycle suits:
+  * stride length = speed x cycle duration. */
+class OSGACTORSHOWCASE_EXPORT PathWalker : public ControllerRig
 {
 public:
     PathWalker();
@@ -20,18 +21,24 @@ public:
 
     META_Object(osgActorShowcase, PathWalker);
 
-    void setPath(osg::AnimationPath* path) { _path = path; }
-    const osg::AnimationPath* getPath() const { return _path.get(); }
+    void setPath(osgActor::TrajectoryPtr path) { _path = std::move(path); }
+    const osgActor::TrajectoryPtr& getPath() const { return _path; }
     /** Seconds per walk cycle (two steps), > 0. */
     void setCycleDuration(double seconds) { _cycleDuration = seconds; }
     double getCycleDuration() const { return _cycleDuration; }
 
-    void drive(osgActor::ActorNode& actor, double time) override;
+    /** The controllers' names: the path's player (which marks a rigged actor) and the walk's. */
+    static const char* const kPathControllerName;
+    static const char* const kWalkControllerName;
+
+    const char* getRigControllerName() const override { return kPathControllerName; }
+    /** Adds the path's TrajectoryPlayer and, for an actor with the walk's joints, the walk cycle's ClipPlayer. */
+    bool rig(osgActor::ActorNode& actor) const override;
 
 protected:
     ~PathWalker() override = default;
 
-    osg::ref_ptr<osg::AnimationPath> _path;
+    osgActor::TrajectoryPtr _path;
     double _cycleDuration;
 };
 

@@ -1,4 +1,5 @@
 #include "ShowcaseScene.h"
+#include "LoopTrajectory.h"
 #include "PathWalker.h"
 #include "TripodGait.h"
 
@@ -7,11 +8,12 @@
 #include <osg/LightSource>
 #include <osg/Material>
 #include <osg/MatrixTransform>
+#include <osg/Notify>
 #include <osg/ProxyNode>
 #include <osg/ShapeDrawable>
 
 #include <cmath>
-#include <vector>
+#include <functional>
 
 namespace osgActorShowcase {
 
@@ -117,6 +119,15 @@ osg::ref_ptr<osg::Group> makeObstacles()
     return obstacles;
 }
 
+/** A stored loop round a curve; the curves here are the scene's own, so a refusal is a bug worth a loud warning. */
+osgActor::TrajectoryPtr makeStoredLoop(const std::string& name, const std::function<osg::Vec3d(double)>& curve,
+                                       double speed)
+{
+    const osgActor::TrajectoryBuildResult built = makeLoopTrajectory(name, curve, speed);
+    if (!built) OSG_WARN << "osgactorshowcase: " << built.error << std::endl;
+    return built.trajectory;
+}
+
 osg::ref_ptr<osg::Group> makeWalkingHumanoid(const std::string& file)
 {
     osg::ref_ptr<osg::Group> group = new osg::Group;
@@ -125,7 +136,8 @@ osg::ref_ptr<osg::Group> makeWalkingHumanoid(const std::string& file)
     const double a = 3.0;
     const double b = 2.0;
     // Anticlockwise round the dancer, at 1.1 m/s: a stride of about 1.2 m per 1.1 s cycle.
-    walker->setPath(makeLoopPath(
+    walker->setPath(makeStoredLoop(
+        "humanoid round the dancer",
         [&](double s) {
             return kDancerSpot + osg::Vec3d(a * std::cos(2.0 * osg::PI * s), b * std::sin(2.0 * osg::PI * s), 0.0);
         },
@@ -145,7 +157,8 @@ osg::ref_ptr<osg::Group> makeWanderingInsect(const std::string& file)
     group->getOrCreateStateSet()->setMode(GL_RESCALE_NORMAL, osg::StateAttribute::ON);
     osg::ref_ptr<TripodGait> gait = new TripodGait;
     // A figure of eight round the two rocks, at 0.35 m/s (in the world).
-    gait->setPath(makeLoopPath(
+    gait->setPath(makeStoredLoop(
+        "insect among the rocks",
         [](double s) {
             const double t = 2.0 * osg::PI * s;
             const osg::Vec3d world = kInsectArea + osg::Vec3d(2.6 * std::sin(t), 1.4 * std::sin(2.0 * t), 0.0);
@@ -172,40 +185,6 @@ osg::ref_ptr<osg::Node> makeDancer(const ShowcaseSources& sources)
 }
 
 } // namespace
-
-osg::ref_ptr<osg::AnimationPath> makeLoopPath(const std::function<osg::Vec3d(double)>& curve, double speed,
-                                              double sampleSeconds)
-{
-    // Arc length along a fine sampling of the curve, then control points at equal steps of length.
-    const int kSamples = 4000;
-    std::vector<osg::Vec3d> points(kSamples + 1);
-    std::vector<double> lengths(kSamples + 1, 0.0);
-    for (int i = 0; i <= kSamples; ++i)
-    {
-        points[i] = curve(double(i) / kSamples);
-        if (i > 0) lengths[i] = lengths[i - 1] + (points[i] - points[i - 1]).length();
-    }
-    const double total = lengths.back();
-    const double duration = total / speed;
-
-    osg::ref_ptr<osg::AnimationPath> path = new osg::AnimationPath;
-    path->setLoopMode(osg::AnimationPath::LOOP);
-    const int numKeys = std::max(2, int(std::ceil(duration / sampleSeconds)));
-    int i = 0;
-    for (int k = 0; k <= numKeys; ++k)
-    {
-        const double wanted = total * k / numKeys;
-        while (i < kSamples - 1 && lengths[i + 1] < wanted) ++i;
-        const double f = (wanted - lengths[i]) / std::max(1e-12, lengths[i + 1] - lengths[i]);
-        const osg::Vec3d position = points[i] * (1.0 - f) + points[i + 1] * f;
-        const osg::Vec3d direction = points[i + 1] - points[i];
-        // An actor faces -Y: Rz(heading + 90 degrees) turns -Y to the direction of travel.
-        const double heading = std::atan2(direction.y(), direction.x()) + osg::PI_2;
-        path->insert(duration * k / numKeys,
-                     osg::AnimationPath::ControlPoint(position, osg::Quat(heading, osg::Vec3d(0, 0, 1))));
-    }
-    return path;
-}
 
 osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources)
 {

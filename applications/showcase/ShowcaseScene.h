@@ -2,10 +2,8 @@
 #ifndef OSGACTORSHOWCASE_SHOWCASESCENE_H
 #define OSGACTORSHOWCASE_SHOWCASESCENE_H 1
 
-#include <osg/AnimationPath>
 #include <osg/Group>
 
-#include <functional>
 #include <string>
 
 namespace osgActorShowcase {
@@ -25,15 +23,10 @@ struct ShowcaseSources
     bool dancerYUp = false;
 };
 
-/** A path along a closed curve (parameter 0..1 once round) at a constant speed (model units per second), looping,
-  * turned so that an actor facing -Y faces along the path. Control points every sampleSeconds. */
-osg::ref_ptr<osg::AnimationPath> makeLoopPath(const std::function<osg::Vec3d(double)>& curve, double speed,
-                                              double sampleSeconds = 0.1);
-
-/** The showcase: a checkered floor with obstacles under a sun; the humanoid walking an ellipse round the dancer
-  * (PathWalker), the motion-capture dancer, and the six-legged insect wandering a figure of eight between rocks
-  * with a tripod gait (TripodGait). The actors are ProxyNodes, so the file stays small and always shows the
-  * current actor files of data/. */
+/** The showcase: a checkered floor with obstacles under a sun; the humanoid walking a stored ellipse round the
+  * dancer (PathWalker), the motion-capture dancer, and the six-legged insect wandering a stored figure of eight
+  * between rocks with a tripod gait planted by leg IK (TripodGait). The actors are ProxyNodes, so the file stays
+  * small and always shows the current actor files of data/; the rigs give them their controllers once loaded. */
 osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources);
 
 } // namespace osgActorShowcase

@@ -77,12 +77,13 @@ void TrajectoryPlayer::seek(double time)
     _started = true;
 }
 
-double TrajectoryPlayer::pathTime() const
+double TrajectoryPlayer::pathTimeAt(double playTime) const
 {
+    if (!_trajectory) return playTime;
     const double start = _trajectory->getStartTime();
     const double length = _trajectory->getEndTime() - start;
-    if (!(length > 0.0) || _mode == PlayMode::Once) return _playTime;
-    const double u = _playTime - start;
+    if (!(length > 0.0) || _mode == PlayMode::Once) return playTime;
+    const double u = playTime - start;
     if (_mode == PlayMode::Loop) return start + u - length * std::floor(u / length);
     const double v = u - 2.0 * length * std::floor(u / (2.0 * length));
     return start + (v <= length ? v : 2.0 * length - v);
@@ -98,7 +99,7 @@ void TrajectoryPlayer::update(const ControllerContext& context, ControllerTarget
     }
     else if (_playing)
         _playTime += context.deltaTime * _speed;
-    const TrajectoryKey key = _trajectory->sample(pathTime(), _cursor);
+    const TrajectoryKey key = _trajectory->sample(pathTimeAt(_playTime), _cursor);
     // The pre-transform is the reference point: written whole (a trajectory has no per-DOF weights).
     target.transforms.preTranslation = key.position;
     target.transforms.preRotation = glm::angleAxis(key.heading, glm::dvec3(0.0, 0.0, 1.0));

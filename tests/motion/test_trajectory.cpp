@@ -106,3 +106,23 @@ TEST(TrajectoryPlayer, DrivesThePreTransformAlongThePath)
     t = play(player, 0.0);
     EXPECT_TRUE(vectorsNear(t.preTranslation, glm::dvec3(1, 0, 0), 1e-12)) << "Loop starts again";
 }
+
+TEST(TrajectoryPlayer, PathTimeAtFollowsThePlayMode)
+{
+    const TrajectoryPtr path = readTrajectoryCsvFile(dataFile("cockroach.csv")).trajectory; // keys at 0, 1, 2 s
+    ASSERT_TRUE(path);
+    TrajectoryPlayer player(path);
+    EXPECT_DOUBLE_EQ(player.pathTimeAt(5.0), 5.0) << "Once: the path clamps the time itself";
+    player.setPlayMode(PlayMode::Loop);
+    EXPECT_DOUBLE_EQ(player.pathTimeAt(5.0), 1.0);
+    EXPECT_DOUBLE_EQ(player.pathTimeAt(-0.5), 1.5) << "before the start: the end of the previous loop";
+    player.setPlayMode(PlayMode::PingPong);
+    EXPECT_DOUBLE_EQ(player.pathTimeAt(3.0), 1.0) << "on the way back";
+    EXPECT_DOUBLE_EQ(player.pathTimeAt(4.5), 0.5) << "out again";
+
+    // What update() writes is the path sampled at pathTimeAt(play time).
+    player.seek(3.5);
+    const ActorTransforms t = play(player, 0.0);
+    std::size_t cursor = 0;
+    EXPECT_TRUE(vectorsNear(t.preTranslation, path->sample(player.pathTimeAt(3.5), cursor).position, 1e-12));
+}

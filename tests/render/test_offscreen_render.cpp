@@ -3,6 +3,8 @@
 #include "OffscreenRenderer.h"
 #include "TestFigure.h"
 
+#include <osgActor/core/ClipBuilder>
+#include <osgActor/core/ClipPlayer>
 #include <osgActor/core/Controller>
 
 #include <osg/Group>
@@ -94,6 +96,21 @@ public:
     }
     std::shared_ptr<Controller> cloneController() const override { return std::make_shared<WaveController>(*this); }
 };
+
+/** A player of a clip that bends the left elbow linearly from 0 to -2 rad over 1 s: it advances by the frame's
+  * delta time, so only a run through the frames before t shows the pose of t (-2 t rad). */
+std::shared_ptr<ClipPlayer> makeElbowClipPlayer()
+{
+    ClipBuilder builder("bend");
+    const unsigned elbow = builder.addChannel("l_elbow.rx");
+    builder.addKey(elbow, 0.0, 0.0);
+    builder.addKey(elbow, 1.0, -2.0);
+    const ClipBuildResult built = builder.build();
+    EXPECT_TRUE(built) << built.error;
+    auto player = std::make_shared<ClipPlayer>(built.clip);
+    player->setPlayMode(PlayMode::Once);
+    return player;
+}
 
 } // namespace
 
@@ -213,4 +230,49 @@ TEST_F(OffscreenRender, ControllersAnimateWithTheFrameStampsSimulationTime)
     // Going back to t = 0 gives the first image again.
     const ImageDifference back = compareImages(*atStart, *renderer->renderFrame(0.0), 0);
     EXPECT_EQ(back.numDiffering, 0u);
+}
+
+TEST_F(OffscreenRender, SteppingToATimeShowsWhatTheFramesFromZeroShow)
+{
+    // The frame at t = 0.5 s of a clip player stepped there at 20 frames per second ...
+    figure->addController(makeElbowClipPlayer());
+    renderer->stepTo(0.5, 20.0);
+    double elbow = 0.0;
+    ASSERT_TRUE(figure->getDof("l_elbow.rx", elbow));
+    EXPECT_NEAR(elbow, -1.0, 1e-9) << "half way through the clip, not its first frame";
+    const osg::ref_ptr<osg::Image> stepped = renderer->draw();
+
+    // ... looks like the figure posed by hand at -1 rad ...
+    osg::ref_ptr<ActorNode> posed = makeTestFigure();
+    posed->setDof("l_elbow.rx", -1.0);
+    osg::ref_ptr<osg::Group> posedScene = new osg::Group;
+    posedScene->addChild(posed.get());
+    renderer->setScene(posedScene.get());
+    const osg::ref_ptr<osg::Image> byHand = renderer->renderFrame(0.0);
+    const ImageDifference fromHand = compareImages(*stepped, *byHand, 0);
+    ASSERT_TRUE(fromHand.comparable);
+    EXPECT_EQ(fromHand.numDiffering, 0u);
+    posed->setDof("l_elbow.rx", 0.0);
+    EXPECT_GT(compareImages(*stepped, *renderer->renderFrame(0.0), 0).numDiffering, 200u)
+        << "the elbow's bend shows: the first frame of the clip looks different";
+
+    // ... and like frame 10 of frames 0..10 at 20 frames per second, drawn one after the other by a new renderer.
+    std::string error;
+    std::unique_ptr<OffscreenRenderer> sequence = OffscreenRenderer::create(kWidth, kHeight, error);
+    ASSERT_TRUE(sequence) << error;
+    sequence->setBackground(kBackground);
+    sequence->setCameraView(figureCamera());
+    osg::ref_ptr<ActorNode> played = makeTestFigure();
+    played->addController(makeElbowClipPlayer());
+    osg::ref_ptr<osg::Group> playedScene = new osg::Group;
+    playedScene->addChild(played.get());
+    sequence->setScene(playedScene.get());
+    osg::ref_ptr<osg::Image> frame;
+    for (unsigned i = 0; i <= 10; ++i)
+    {
+        sequence->stepTo(i / 20.0, 20.0);
+        frame = sequence->draw();
+    }
+    EXPECT_EQ(compareImages(*stepped, *frame, 0).numDiffering, 0u);
+    EXPECT_EQ(played->getDof(unsigned(played->getDofIndex("l_elbow.rx"))), elbow) << "the same frames, the same pose";
 }

@@ -1,62 +1,41 @@
-// The showcase's drivers: the insect's leg inverse kinematics, the tripod gait's planted feet, the walker's path.
-#include "InsectLeg.h"
+// The showcase's rigs: the insect's feet planted by the library's leg IK on a stored path (TripodGait), the
+// humanoid's stored path and walk clip (PathWalker), their paths and their osgDB wrappers.
+#include "LoopTrajectory.h"
 #include "PathWalker.h"
 #include "ShowcaseScene.h"
 #include "TripodGait.h"
+#include "TripodGaitController.h"
+#include "WalkCycle.h"
 
 #include <osgActor/ActorNode>
+#include <osgActor/GlmOsg>
 #include <osgActor/core/ActorDefinitionBuilder>
 
 #include <osg/FrameStamp>
 #include <osg/Group>
+#include <osg/MatrixTransform>
 #include <osgDB/ReadFile>
+#include <osgDB/Registry>
 #include <osgUtil/UpdateVisitor>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 using namespace osgActor;
 using namespace osgActorShowcase;
 
 namespace {
 
-const double kReach = 0.57;
+// Needs OSG_LIBRARY_PATH on the build's lib (set by ctest): osgdb_actor, the serializers, libosgActorShowcase.
+std::string dataFile(const std::string& name) { return std::string(OSGACTOR_TEST_DATA_DIR) + "/" + name; }
 
-/** The insect of data/insect.actor, legs only (same offsets, DOFs, defaults and limits), built in code. */
-ActorDefinitionPtr makeInsectDefinition()
+osg::ref_ptr<ActorNode> readActor(const std::string& name)
 {
-    ActorDefinitionBuilder b("cockroach");
-    b.addJoint("thorax").offset(0, 0, 0.25).dofs(kRotationDofs | Dof::TX | Dof::TY | Dof::TZ);
-    const struct { const char* name; double y; double swing; double swingMin; double swingMax; } legs[] = {
-        {"front", -0.12, -30.0, -70.0, 10.0}, {"middle", 0.0, 0.0, -40.0, 40.0}, {"hind", 0.12, 30.0, -10.0, 70.0}};
-    for (const auto& leg : legs)
-        for (double side : {1.0, -1.0})
-        {
-            const std::string name = std::string(side > 0 ? "l_" : "r_") + leg.name;
-            const double swing = side * leg.swing;
-            b.addJoint(name + "_coxa", "thorax").offset(side * 0.08, leg.y, -0.02).dofs(Dof::RZ | Dof::RY)
-                .limits(Dof::RZ, osg::DegreesToRadians(side > 0 ? leg.swingMin : -leg.swingMax),
-                        osg::DegreesToRadians(side > 0 ? leg.swingMax : -leg.swingMin))
-                .defaultValue(Dof::RZ, osg::DegreesToRadians(swing))
-                .limits(Dof::RY, osg::DegreesToRadians(-30.0), osg::DegreesToRadians(30.0));
-            b.addJoint(name + "_femur", name + "_coxa").offset(side * 0.08, 0, 0).dofs(dofBit(Dof::RY))
-                .limits(Dof::RY, osg::DegreesToRadians(side > 0 ? -80.0 : 0.0), osg::DegreesToRadians(side > 0 ? 0.0 : 80.0))
-                .defaultValue(Dof::RY, osg::DegreesToRadians(side * -40.0));
-            b.addJoint(name + "_tibia", name + "_femur").offset(side * 0.2, 0, 0).dofs(dofBit(Dof::RY))
-                .limits(Dof::RY, osg::DegreesToRadians(side > 0 ? 0.0 : -150.0), osg::DegreesToRadians(side > 0 ? 150.0 : 0.0))
-                .defaultValue(Dof::RY, osg::DegreesToRadians(side * 80.0));
-        }
-    const BuildResult result = b.build();
-    EXPECT_TRUE(result) << result.error;
-    return result.definition;
-}
-
-/** The tip of a leg's foot in world space, by the nodekit's own forward kinematics. */
-osg::Vec3d footWorld(const ActorNode& actor, const InsectLeg& leg)
-{
-    const osg::Matrixd tibia = actor.getJointWorldMatrix(unsigned(actor.getJointIndex(leg.name + "_tibia")));
-    return osg::Vec3d(leg.side * leg.tibiaLength, 0.0, 0.0) * tibia;
+    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(osgDB::readRefNodeFile(dataFile(name)).get());
+    EXPECT_TRUE(actor.valid()) << "cannot read " << dataFile(name) << " as an actor";
+    return actor;
 }
 
 void runUpdate(osg::Node& root, double time, unsigned frame)
@@ -70,137 +49,232 @@ void runUpdate(osg::Node& root, double time, unsigned frame)
     root.accept(*visitor);
 }
 
-osg::ref_ptr<osg::AnimationPath> straightPath(double speed)
+/** A straight path along +X at speed (model units per second), 100 s long, the insect's head (-Y) turned to +X. */
+TrajectoryPtr straightPath(double speed)
 {
-    osg::ref_ptr<osg::AnimationPath> path = new osg::AnimationPath;
-    path->setLoopMode(osg::AnimationPath::NO_LOOPING);
-    // Heading +X: the insect's head (-Y) turned by +90 degrees about Z.
-    for (int i = 0; i <= 100; ++i)
-        path->insert(i * 0.1, osg::AnimationPath::ControlPoint(osg::Vec3d(speed * i * 0.1, 0, 0),
-                                                               osg::Quat(osg::PI_2, osg::Vec3d(0, 0, 1))));
-    return path;
+    std::vector<TrajectoryKey> keys(2);
+    keys[1].time = 100.0;
+    keys[1].position = glm::dvec3(speed * 100.0, 0.0, 0.0);
+    keys[0].heading = keys[1].heading = osg::PI_2;
+    return TrajectoryBuilder::build("straight", keys).trajectory;
+}
+
+std::shared_ptr<TripodGaitController> findGait(const ActorNode& actor)
+{
+    return std::dynamic_pointer_cast<TripodGaitController>(actor.findController(TripodGaitController::kControllerName));
+}
+
+/** The tip of a leg's foot in world space, by the nodekit's own forward kinematics of the actor's pose. */
+osg::Vec3d footWorld(const ActorNode& actor, const IkChain& leg)
+{
+    return toOsg(leg.getEffectorOffset()) * actor.getJointWorldMatrix(leg.getEffectorJoint());
+}
+
+/** What happened to one leg's foot over a run, in world space. */
+struct LegTrack
+{
+    unsigned stancesSeen = 0;       // stances watched from touch-down to lift-off
+    double worstStanceSlip = 0.0;   // the largest distance from where a foot touched down, during its stance
+    double lowestStance = 1e9;      // the lowest and highest foot heights during stances
+    double highestStance = -1e9;
+    double lowestSwingPeak = 1e9;   // the lowest of the swings' highest points
+    std::vector<osg::Vec3d> touchDowns; // where each watched stance began
+};
+
+/** Runs the scene's update at fps from time 0 to seconds and watches the actor's feet, stance by stance (the
+  * gait's own stance phases; positions from the nodekit's FK). A stance under way at time 0 is not counted. */
+std::vector<LegTrack> trackFeet(osg::Node& scene, const ActorNode& actor, double seconds, double fps)
+{
+    std::vector<LegTrack> tracks(TripodGaitController::kNumLegs);
+    std::vector<bool> wasInStance(TripodGaitController::kNumLegs, true);
+    std::vector<bool> watching(TripodGaitController::kNumLegs, false);
+    std::vector<double> swingPeak(TripodGaitController::kNumLegs, -1e9);
+    std::vector<osg::Vec3d> touchDown(TripodGaitController::kNumLegs);
+    const unsigned frames = unsigned(seconds * fps);
+    for (unsigned frame = 0; frame <= frames; ++frame)
+    {
+        runUpdate(scene, frame / fps, frame + 1);
+        const std::shared_ptr<TripodGaitController> gait = findGait(actor);
+        if (!gait) continue;
+        const double time = gait->getBodyPlayer().getPlayTime();
+        for (unsigned leg = 0; leg < TripodGaitController::kNumLegs; ++leg)
+        {
+            LegTrack& track = tracks[leg];
+            const osg::Vec3d foot = footWorld(actor, *gait->getLegController(leg).getChain());
+            const bool inStance = gait->isInStance(leg, time);
+            if (inStance && !wasInStance[leg])
+            {
+                if (watching[leg]) track.lowestSwingPeak = std::min(track.lowestSwingPeak, swingPeak[leg]);
+                watching[leg] = true; // a stance seen from its start
+                touchDown[leg] = foot;
+                track.touchDowns.push_back(foot);
+            }
+            if (!inStance && wasInStance[leg] && watching[leg]) ++track.stancesSeen;
+            if (inStance && watching[leg])
+            {
+                track.worstStanceSlip = std::max(track.worstStanceSlip, (foot - touchDown[leg]).length());
+                track.lowestStance = std::min(track.lowestStance, foot.z());
+                track.highestStance = std::max(track.highestStance, foot.z());
+            }
+            if (!inStance) swingPeak[leg] = inStance != wasInStance[leg] ? foot.z() : std::max(swingPeak[leg], foot.z());
+            wasInStance[leg] = inStance;
+        }
+    }
+    return tracks;
 }
 
 } // namespace
 
-TEST(InsectLeg, RefusesADefinitionWithoutTheLeg)
+TEST(LoopTrajectory, RefusesWhatCannotBeWalked)
 {
-    ActorDefinitionBuilder b("stick");
-    b.addJoint("thorax");
-    InsectLeg leg;
-    EXPECT_FALSE(leg.bind(*b.build().definition, "l_front", kReach));
+    const auto circle = [](double s) { return osg::Vec3d(std::cos(2.0 * osg::PI * s), std::sin(2.0 * osg::PI * s), 0); };
+    EXPECT_NE(makeLoopTrajectory("p", circle, 0.0).error.find("speed"), std::string::npos);
+    EXPECT_NE(makeLoopTrajectory("p", circle, 1.0, -0.1).error.find("time between keys"), std::string::npos);
+    EXPECT_NE(makeLoopTrajectory("p", [](double) { return osg::Vec3d(1, 2, 3); }, 1.0).error.find("no length"),
+              std::string::npos);
 }
 
-TEST(InsectLeg, SolvedAnglesPutTheFootOnTheTarget)
+TEST(LoopTrajectory, LoopsAtConstantSpeedFacingTheWayOfTravel)
 {
-    const ActorDefinitionPtr definition = makeInsectDefinition();
-    for (const char* name : TripodGait::kLegNames)
-    {
-        InsectLeg leg;
-        ASSERT_TRUE(leg.bind(*definition, name, kReach)) << name;
-        const osg::Vec3d rest = leg.footPosition(definition->getDofDefault(unsigned(leg.coxaSwingDof)),
-                                                 definition->getDofDefault(unsigned(leg.femurDof)),
-                                                 definition->getDofDefault(unsigned(leg.tibiaDof)));
-        EXPECT_NEAR(rest.z(), -0.25, 0.02) << name << ": the rest pose stands on the floor";
-        for (const osg::Vec3d& shift : {osg::Vec3d(0, 0, 0), osg::Vec3d(0, 0.1, 0), osg::Vec3d(0, -0.1, 0.08),
-                                        osg::Vec3d(leg.side * 0.05, 0.05, 0)})
-        {
-            double swing = 0, femur = 0, tibia = 0;
-            leg.solve(rest + shift, swing, femur, tibia);
-            EXPECT_LT((leg.footPosition(swing, femur, tibia) - (rest + shift)).length(), 1e-9) << name;
-            EXPECT_GT(leg.side * tibia, 0.0) << name << ": the knee bends downwards";
-        }
-    }
-}
-
-TEST(InsectLeg, SolutionAgreesWithTheNodekitsForwardKinematics)
-{
-    osg::ref_ptr<ActorNode> actor = new ActorNode(makeInsectDefinition());
-    for (const char* name : TripodGait::kLegNames)
-    {
-        InsectLeg leg;
-        ASSERT_TRUE(leg.bind(*actor->getDefinition(), name, kReach));
-        // A target near the rest foot, so that no angle reaches a limit (thorax frame).
-        const ActorDefinition& definition = *actor->getDefinition();
-        const osg::Vec3d target = leg.footPosition(definition.getDofDefault(unsigned(leg.coxaSwingDof)),
-                                                   definition.getDofDefault(unsigned(leg.femurDof)),
-                                                   definition.getDofDefault(unsigned(leg.tibiaDof))) +
-                                  osg::Vec3d(0.03, -0.06, 0.05);
-        double swing = 0, femur = 0, tibia = 0;
-        leg.solve(target, swing, femur, tibia);
-        actor->setDof(unsigned(leg.coxaSwingDof), swing);
-        actor->setDof(unsigned(leg.femurDof), femur);
-        actor->setDof(unsigned(leg.tibiaDof), tibia);
-        const osg::Vec3d expected = target * actor->getJointWorldMatrix(unsigned(actor->getJointIndex("thorax")));
-        EXPECT_LT((footWorld(*actor, leg) - expected).length(), 1e-9) << name;
-    }
-}
-
-TEST(TripodGait, FeetOnTheGroundStayPlantedWhileTheBodyMoves)
-{
-    osg::ref_ptr<ActorNode> actor = new ActorNode(makeInsectDefinition());
-    osg::ref_ptr<osg::Group> group = new osg::Group;
-    group->addChild(actor.get());
-    osg::ref_ptr<TripodGait> gait = new TripodGait;
-    gait->setPath(straightPath(0.3));
-    gait->setCycleDuration(0.8);
-    group->setUpdateCallback(gait.get());
-
-    InsectLeg front;
-    ASSERT_TRUE(front.bind(*actor->getDefinition(), "l_front", kReach)); // tripod A: stance for u in [k, k + 0.5)
-    // Stance of step 1: times 0.8 .. 1.2 s. The body moves 0.12 m; the foot must not.
-    std::vector<osg::Vec3d> feet;
-    std::vector<osg::Vec3d> bodies;
-    unsigned frame = 1;
-    for (double t = 0.82; t < 1.18; t += 0.06)
-    {
-        runUpdate(*group, t, frame++);
-        feet.push_back(footWorld(*actor, front));
-        bodies.push_back(actor->getPreTranslation());
-    }
-    EXPECT_NEAR((bodies.back() - bodies.front()).length(), 0.3 * 0.3, 1e-6);
-    for (const osg::Vec3d& foot : feet)
-    {
-        EXPECT_LT((foot - feet.front()).length(), 1e-6) << "the planted foot slid";
-        EXPECT_NEAR(foot.z(), feet.front().z(), 1e-9);
-    }
-    // In the swing that follows (1.2 .. 1.6 s) the foot leaves the ground and lands ahead.
-    runUpdate(*group, 1.4, frame++);
-    EXPECT_GT(footWorld(*actor, front).z(), feet.front().z() + 0.05);
-    runUpdate(*group, 1.62, frame++);
-    const osg::Vec3d landed = footWorld(*actor, front);
-    EXPECT_NEAR(landed.z(), feet.front().z(), 1e-6);
-    EXPECT_NEAR(landed.x() - feet.front().x(), 0.3 * 0.8, 1e-6) << "one step is the distance of one cycle";
-}
-
-TEST(TripodGait, AnyFrameCanBeComputedAlone)
-{
-    osg::ref_ptr<ActorNode> first = new ActorNode(makeInsectDefinition());
-    osg::ref_ptr<ActorNode> second = new ActorNode(makeInsectDefinition());
-    osg::ref_ptr<TripodGait> gait = new TripodGait;
-    gait->setPath(straightPath(0.3));
-    for (int i = 0; i <= 20; ++i) gait->drive(*first, 0.1 * i);
-    gait->drive(*second, 2.0);
-    for (unsigned i = 0; i < first->getNumDofs(); ++i) EXPECT_DOUBLE_EQ(first->getDof(i), second->getDof(i)) << i;
-}
-
-TEST(ShowcasePaths, LoopAtConstantSpeedFacingTheWayOfTravel)
-{
-    const osg::ref_ptr<osg::AnimationPath> path =
-        makeLoopPath([](double s) { return osg::Vec3d(2.0 * std::cos(2.0 * osg::PI * s), 2.0 * std::sin(2.0 * osg::PI * s), 0.0); }, 0.5);
-    EXPECT_NEAR(path->getPeriod(), 2.0 * osg::PI * 2.0 / 0.5, 1e-3);
-    osg::AnimationPath::ControlPoint a, b;
-    ASSERT_TRUE(path->getInterpolatedControlPoint(3.0, a));
-    ASSERT_TRUE(path->getInterpolatedControlPoint(3.2, b));
-    EXPECT_NEAR((b.getPosition() - a.getPosition()).length(), 0.1, 1e-3);
-    // An actor facing -Y, turned by the path, faces the direction of travel.
-    const osg::Vec3d facing = a.getRotation() * osg::Vec3d(0, -1, 0);
-    osg::Vec3d travel = b.getPosition() - a.getPosition();
+    const TrajectoryBuildResult built = makeLoopTrajectory(
+        "circle", [](double s) { return osg::Vec3d(2.0 * std::cos(2.0 * osg::PI * s), 2.0 * std::sin(2.0 * osg::PI * s), 0.0); },
+        0.5);
+    ASSERT_TRUE(built) << built.error;
+    const Trajectory& path = *built.trajectory;
+    EXPECT_EQ(path.getStartTime(), 0.0);
+    EXPECT_NEAR(path.getEndTime(), 2.0 * osg::PI * 2.0 / 0.5, 1e-3) << "once round a circle of radius 2 at 0.5/s";
+    EXPECT_LT(glm::length(path.getKeys().back().position - path.getKeys().front().position), 1e-9) << "closed";
+    std::size_t cursor = 0;
+    const TrajectoryKey a = path.sample(3.0, cursor);
+    const TrajectoryKey b = path.sample(3.2, cursor);
+    EXPECT_NEAR(glm::length(b.position - a.position), 0.1, 1e-3);
+    // An actor facing -Y, turned by the heading about +Z, faces the direction of travel.
+    const osg::Vec3d facing = osg::Quat(a.heading, osg::Vec3d(0, 0, 1)) * osg::Vec3d(0, -1, 0);
+    osg::Vec3d travel = toOsg(b.position - a.position);
     travel.normalize();
     EXPECT_GT(facing * travel, 0.99);
 }
 
-TEST(ShowcaseScene, HasItsPartsAndDriversEvenWithoutADancer)
+TEST(WalkCycle, RefusesAnActorWithoutLegs)
+{
+    ActorDefinitionBuilder b("stick");
+    b.addJoint("thorax").dofs(dofBit(Dof::RZ));
+    const ClipBuildResult walk = makeWalkCycleClip(*b.build().definition, 1.1);
+    EXPECT_FALSE(walk);
+    EXPECT_NE(walk.error.find("'stick' has none of the DOFs"), std::string::npos) << walk.error;
+}
+
+TEST(WalkCycle, ClipHoldsOneSeamlessCycleOfTheActorsDofs)
+{
+    ActorDefinitionBuilder b("legs");
+    b.addJoint("HumanoidRoot").dofs(dofBit(Dof::TZ));
+    b.addJoint("l_hip", "HumanoidRoot").dofs(dofBit(Dof::RX));
+    b.addJoint("l_knee", "l_hip").offset(0, 0, -0.45).dofs(dofBit(Dof::RX));
+    const ClipBuildResult walk = makeWalkCycleClip(*b.build().definition, 1.1, 40);
+    ASSERT_TRUE(walk) << walk.error;
+    const Clip& clip = *walk.clip;
+    EXPECT_EQ(clip.getNumChannels(), 3u) << "only the DOFs the actor has";
+    EXPECT_NEAR(clip.getDuration(), 1.1, 1e-12);
+    ASSERT_EQ(clip.getNumFrames(), 41u);
+    for (unsigned c = 0; c < clip.getNumChannels(); ++c)
+        EXPECT_DOUBLE_EQ(clip.getFrame(40)[c], clip.getFrame(0)[c]) << "the last frame is the first: it loops";
+    // A quarter cycle in (frame 10): the left hip at its most forward, -0.35 rad, its knee straight but for 0.08.
+    EXPECT_NEAR(clip.getFrame(10)[clip.findChannel("l_hip.rx")], -0.35, 1e-12);
+    EXPECT_NEAR(clip.getFrame(10)[clip.findChannel("l_knee.rx")], 0.08, 1e-12);
+}
+
+TEST(TripodGait, RefusesAnActorWithoutLegChains)
+{
+    osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
+    ASSERT_TRUE(humanoid.valid());
+    osg::ref_ptr<osg::Group> group = new osg::Group;
+    group->addChild(humanoid.get());
+    osg::ref_ptr<TripodGait> gait = new TripodGait;
+    gait->setPath(straightPath(0.3));
+    group->setUpdateCallback(gait.get());
+    runUpdate(*group, 0.0, 1);
+    runUpdate(*group, 0.1, 2);
+    EXPECT_TRUE(humanoid->getControllers().empty()) << "no leg chains, no gait";
+}
+
+TEST(TripodGait, InsectFileHasALegChainPerLeg)
+{
+    osg::ref_ptr<ActorNode> insect = readActor("insect.actor");
+    ASSERT_TRUE(insect.valid());
+    for (unsigned leg = 0; leg < TripodGaitController::kNumLegs; ++leg)
+    {
+        const IkChainPtr chain = insect->findIkChain(TripodGaitController::legChainName(leg));
+        ASSERT_TRUE(chain) << TripodGaitController::legChainName(leg);
+        EXPECT_EQ(chain->getNumJoints(), 3u) << "coxa, femur, tibia";
+        EXPECT_EQ(chain->getNumDofs(), 3u) << "swing, lift, knee: the coxa's tilt is held";
+        // In the rest pose the foot's tip (0.37 along the tibia) stands on the floor, z = 0 below the body.
+        const osg::Vec3d foot = footWorld(*insect, *chain);
+        EXPECT_NEAR(foot.z(), 0.0, 0.005) << chain->getName();
+    }
+}
+
+TEST(TripodGait, FeetOnTheGroundStayPlantedByTheLegIkWhileTheBodyMoves)
+{
+    osg::ref_ptr<ActorNode> insect = readActor("insect.actor");
+    ASSERT_TRUE(insect.valid());
+    // In a frame scaled like the showcase's: the gait works in the path's frame, the IK goals in world space.
+    osg::ref_ptr<osg::MatrixTransform> group = new osg::MatrixTransform(osg::Matrixd::scale(0.8, 0.8, 0.8));
+    group->addChild(insect.get());
+    osg::ref_ptr<TripodGait> gait = new TripodGait;
+    const double speed = 0.3;   // path units per second
+    const double cycle = 0.8;   // seconds
+    gait->setPath(straightPath(speed));
+    gait->setCycleDuration(cycle);
+    gait->setStepHeight(0.08);
+    group->setUpdateCallback(gait.get());
+
+    const std::vector<LegTrack> tracks = trackFeet(*group, *insect, 4.0, 50.0);
+    const std::shared_ptr<TripodGaitController> controller = findGait(*insect);
+    ASSERT_TRUE(controller) << "the rig gave the insect its gait";
+    EXPECT_NEAR(insect->getPreTranslation().x(), speed * 4.0, 1e-9) << "the body follows the stored path";
+    for (unsigned leg = 0; leg < TripodGaitController::kNumLegs; ++leg)
+    {
+        const LegTrack& track = tracks[leg];
+        const char* name = TripodGaitController::kLegNames[leg];
+        EXPECT_GE(track.stancesSeen, 4u) << name;
+        EXPECT_LT(track.worstStanceSlip, 1e-4) << name << ": a planted foot slid (world units)";
+        EXPECT_LT(track.highestStance - track.lowestStance, 1e-4) << name << ": feet stand on one ground";
+        EXPECT_NEAR(track.lowestStance, 0.0, 0.005) << name << ": on the floor";
+        // Swings lift the foot by the step height (0.08 in the path's frame, scaled by 0.8) ...
+        EXPECT_NEAR(track.lowestSwingPeak - track.lowestStance, 0.08 * 0.8, 0.005) << name;
+        // ... and put it down one stride ahead: the body's travel in one cycle along +X.
+        for (std::size_t k = 1; k < track.touchDowns.size(); ++k)
+        {
+            const osg::Vec3d stride = track.touchDowns[k] - track.touchDowns[k - 1];
+            EXPECT_NEAR(stride.x(), speed * cycle * 0.8, 1e-4) << name;
+            EXPECT_NEAR(stride.y(), 0.0, 1e-4) << name;
+        }
+        EXPECT_TRUE(controller->getLegController(leg).getLastResult().reached) << name;
+    }
+}
+
+TEST(PathWalker, GivesTheActorThePathAndTheWalkAsLibraryPlayers)
+{
+    osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
+    ASSERT_TRUE(humanoid.valid());
+    osg::ref_ptr<osg::Group> group = new osg::Group;
+    group->addChild(humanoid.get());
+    osg::ref_ptr<PathWalker> walker = new PathWalker;
+    walker->setPath(straightPath(1.1));
+    walker->setCycleDuration(1.1);
+    group->setUpdateCallback(walker.get());
+    for (unsigned frame = 0; frame <= 11; ++frame) runUpdate(*group, frame * 0.05, frame + 1);
+    ASSERT_TRUE(std::dynamic_pointer_cast<TrajectoryPlayer>(humanoid->findController(PathWalker::kPathControllerName)));
+    ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(humanoid->findController(PathWalker::kWalkControllerName)));
+    EXPECT_NEAR(humanoid->getPreTranslation().x(), 1.1 * 0.55, 1e-9);
+    // 0.55 s is half a cycle: the left hip is back where it started, swinging the other way (-0.35 sin(pi)).
+    double hip = 1.0;
+    ASSERT_TRUE(humanoid->getDof("l_hip.rx", hip));
+    EXPECT_NEAR(hip, 0.0, 1e-9);
+    EXPECT_EQ(humanoid->getControllers().size(), 2u) << "rigged once";
+}
+
+TEST(ShowcaseScene, HasItsPartsAndRigsEvenWithoutADancer)
 {
     ShowcaseSources sources;
     sources.dancer.clear();
@@ -208,18 +282,56 @@ TEST(ShowcaseScene, HasItsPartsAndDriversEvenWithoutADancer)
     unsigned walkers = 0, gaits = 0;
     for (unsigned i = 0; i < scene->getNumChildren(); ++i)
     {
-        walkers += dynamic_cast<PathWalker*>(scene->getChild(i)->getUpdateCallback()) != nullptr;
-        gaits += dynamic_cast<TripodGait*>(scene->getChild(i)->getUpdateCallback()) != nullptr;
+        if (const PathWalker* walker = dynamic_cast<PathWalker*>(scene->getChild(i)->getUpdateCallback()))
+        {
+            ++walkers;
+            EXPECT_TRUE(walker->getPath());
+        }
+        if (const TripodGait* gait = dynamic_cast<TripodGait*>(scene->getChild(i)->getUpdateCallback()))
+        {
+            ++gaits;
+            EXPECT_TRUE(gait->getPath());
+        }
         EXPECT_NE(scene->getChild(i)->getName(), "dancer");
     }
     EXPECT_EQ(walkers, 1u);
     EXPECT_EQ(gaits, 1u);
 }
 
-TEST(ShowcaseFile, LoadsWithItsActorsAndDrivers)
+TEST(ShowcaseWrappers, PathsGoThroughOsgtAndBadOnesAreRefused)
 {
-    // Needs OSG_LIBRARY_PATH on the build's lib (set by ctest): osgdb_actor, the serializers, libosgActorShowcase.
-    const std::string file = std::string(OSGACTOR_TEST_DATA_DIR) + "/showcase.osgt";
+    osgDB::ReaderWriter* osgt = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
+    ASSERT_NE(osgt, nullptr);
+    osg::ref_ptr<TripodGait> gait = new TripodGait;
+    gait->setPath(straightPath(0.25));
+    gait->setStepHeight(0.05);
+    osg::ref_ptr<osgDB::Options> ascii = new osgDB::Options;
+    ascii->setPluginStringData("fileType", "Ascii"); // what the .osgt extension sets for a file
+    std::stringstream text;
+    ASSERT_TRUE(osgt->writeObject(*gait, text, ascii.get()).success());
+
+    osgDB::ReaderWriter::ReadResult read = osgt->readObject(text, ascii.get());
+    const TripodGait* back = dynamic_cast<const TripodGait*>(read.getObject());
+    ASSERT_NE(back, nullptr) << "libosgActorShowcase on OSG_LIBRARY_PATH?";
+    EXPECT_NEAR(back->getStepHeight(), 0.05, 1e-9);
+    ASSERT_TRUE(back->getPath());
+    EXPECT_EQ(back->getPath()->getName(), "straight");
+    ASSERT_EQ(back->getPath()->getKeys().size(), 2u);
+    EXPECT_NEAR(back->getPath()->getKeys()[1].position.x, 25.0, 1e-9);
+    EXPECT_NEAR(back->getPath()->getKeys()[1].heading, osg::PI_2, 1e-5);
+
+    // The same file with the second key's time before the first: refused as a whole.
+    std::string broken = text.str();
+    const std::size_t at = broken.find("100 25");
+    ASSERT_NE(at, std::string::npos) << broken;
+    broken.replace(at, 3, "-1 ");
+    std::stringstream brokenText(broken);
+    EXPECT_EQ(osgt->readObject(brokenText, ascii.get()).getObject(), nullptr);
+}
+
+TEST(ShowcaseFile, LoadsAndItsInsectKeepsItsFeetPlantedAllRoundItsPath)
+{
+    const std::string file = dataFile("showcase.osgt");
     const osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(file);
     ASSERT_TRUE(scene.valid()) << "cannot read " << file;
     struct Counter : public osg::NodeVisitor
@@ -229,36 +341,38 @@ TEST(ShowcaseFile, LoadsWithItsActorsAndDrivers)
         {
             walkers += dynamic_cast<PathWalker*>(node.getUpdateCallback()) != nullptr;
             gaits += dynamic_cast<TripodGait*>(node.getUpdateCallback()) != nullptr;
-            if (ActorNode* actor = dynamic_cast<ActorNode*>(&node)) names.push_back(actor->getDefinition()->getName());
+            if (ActorNode* actor = dynamic_cast<ActorNode*>(&node)) actors.push_back(actor);
             traverse(node);
         }
         unsigned walkers = 0, gaits = 0;
-        std::vector<std::string> names;
+        std::vector<ActorNode*> actors;
     } counter;
     scene->accept(counter);
     EXPECT_EQ(counter.walkers, 1u);
     EXPECT_EQ(counter.gaits, 1u);
-    ASSERT_EQ(counter.names.size(), 3u) << "the humanoid, the insect and the motion-capture dancer";
-    EXPECT_EQ(counter.names[0], "humanoid");
-    EXPECT_EQ(counter.names[1], "cockroach");
+    ASSERT_EQ(counter.actors.size(), 3u) << "the humanoid, the insect and the motion-capture dancer";
+    ActorNode& humanoid = *counter.actors[0];
+    ActorNode& insect = *counter.actors[1];
+    EXPECT_EQ(humanoid.getDefinition()->getName(), "humanoid");
+    EXPECT_EQ(insect.getDefinition()->getName(), "cockroach");
 
-    // Driven: after an update at t = 2 s the humanoid has walked away from where it was at t = 0.
-    ActorNode* humanoid = nullptr;
-    struct FirstActor : public osg::NodeVisitor
-    {
-        FirstActor() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
-        void apply(osg::Transform& node) override
-        {
-            if (!actor) actor = dynamic_cast<ActorNode*>(&node);
-            traverse(node);
-        }
-        ActorNode* actor = nullptr;
-    } first;
-    scene->accept(first);
-    humanoid = first.actor;
-    ASSERT_NE(humanoid, nullptr);
+    // Once round the figure of eight (about 40 s) at 30 frames per second, turns and all.
     runUpdate(*scene, 0.0, 1);
-    const osg::Vec3d start = humanoid->getPreTranslation();
-    runUpdate(*scene, 2.0, 2);
-    EXPECT_NEAR((humanoid->getPreTranslation() - start).length(), 2.0, 0.3) << "1.1 m/s on a gentle curve";
+    const std::shared_ptr<TripodGaitController> gait = findGait(insect);
+    ASSERT_TRUE(gait);
+    const double loop = gait->getBodyPlayer().getTrajectory()->getEndTime();
+    EXPECT_GT(loop, 30.0);
+    const osg::Vec3d humanoidStart = humanoid.getPreTranslation();
+    const std::vector<LegTrack> tracks = trackFeet(*scene, insect, loop, 30.0);
+    for (unsigned leg = 0; leg < TripodGaitController::kNumLegs; ++leg)
+    {
+        const char* name = TripodGaitController::kLegNames[leg];
+        EXPECT_GT(tracks[leg].stancesSeen, 50u) << name;
+        EXPECT_LT(tracks[leg].worstStanceSlip, 1e-4) << name << ": a planted foot slid (metres)";
+        EXPECT_NEAR(tracks[leg].lowestStance, 0.0, 0.005) << name;
+        EXPECT_LT(tracks[leg].highestStance, 0.005) << name;
+        EXPECT_GT(tracks[leg].lowestSwingPeak, 0.05) << name << ": every swing lifts the foot";
+    }
+    // The humanoid walked its stored path too: once round its ellipse takes about 14 s: after `loop` seconds it is elsewhere.
+    EXPECT_GT((humanoid.getPreTranslation() - humanoidStart).length(), 0.5);
 }
