@@ -454,12 +454,15 @@ void ActorNode::writeSceneGraph()
 void ActorNode::writeJointMatrices()
 {
     const ActorDefinition* definition = getDefinition().get();
-    _pose.consumeChangedLocals([this, definition](unsigned joint, const glm::dmat4& local) {
-        if (joint >= _skeletonNodes.size()) return;
+    const int* parents = definition ? definition->getParents().data() : nullptr;
+    const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
+    const std::size_t numNodes = _skeletonNodes.size();
+    _pose.consumeChangedLocals([&](unsigned joint, const glm::dmat4& local) {
+        if (joint >= numNodes) return;
         // Dirty the joint's bound and its ancestors' up to the first one already dirty (whose ancestors are too).
-        bool climb = _skeletonNodes[joint]->setMatrixWithinActor(toOsg(local));
-        for (int parent = definition->getParent(joint); climb && parent >= 0; parent = definition->getParent(parent))
-            climb = _skeletonNodes[static_cast<unsigned>(parent)]->markBoundDirtyWithinActor();
+        bool climb = nodes[joint]->setMatrixWithinActor(glm::value_ptr(local));
+        for (int parent = parents[joint]; climb && parent >= 0; parent = parents[parent])
+            climb = nodes[parent]->markBoundDirtyWithinActor();
         _boundsToPropagate = true;
     });
 }

@@ -6,6 +6,20 @@
 
 namespace osgActor {
 
+namespace {
+
+/** The FK job's trigonometry scratch for a pose of numDofs DOFs: one buffer per thread, grown as needed, so it stays
+  * in cache from one actor to the next instead of each pose carrying its own. */
+double* trigScratch(unsigned numDofs)
+{
+    thread_local std::vector<double> scratch;
+    const std::size_t needed = std::size_t(ForwardKinematicsJob::kTrigScratchPerDof) * numDofs;
+    if (scratch.size() < needed) scratch.resize(needed);
+    return scratch.data();
+}
+
+} // namespace
+
 ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(definition))
 {
     if (!_definition) return;
@@ -20,7 +34,6 @@ ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(defi
     _modelStale.assign(numJoints, 0);
     _local.assign(numJoints, glm::dmat4(1.0));
     _model.assign(numJoints, glm::dmat4(1.0));
-    _trigScratch.assign(3 * _dofs.size(), 0.0);
     _anyDirty = numJoints > 0;
 }
 
@@ -66,7 +79,7 @@ unsigned ActorPose::runForwardKinematics(bool rebuildLocal, bool computeModel)
     job.localChanged = _localChanged.data();
     job.modelStale = _modelStale.data();
     job.modelChanged = _modelChanged.data();
-    job.trigScratch = _trigScratch.data();
+    job.trigScratch = trigScratch(getNumDofs());
     job.computeModel = computeModel;
     job.rebuildLocal = rebuildLocal;
     job.run();

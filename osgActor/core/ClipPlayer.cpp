@@ -15,6 +15,15 @@ namespace {
 
 const glm::dvec3 kUp(0.0, 0.0, 1.0);
 
+/** Room for this frame's samples of a player's driven channels: one buffer per thread, reused by every player it
+  * runs, so an instance carries no per-frame buffer of its own. */
+double* drivenValuesScratch(unsigned count)
+{
+    thread_local std::vector<double> values;
+    if (values.size() < count) values.resize(count);
+    return values.data();
+}
+
 glm::dquat headingRotation(double heading) { return glm::angleAxis(heading, kUp); }
 
 } // namespace
@@ -121,47 +130,44 @@ double ClipPlayer::clipTimeAt(double t) const
 bool ClipPlayer::bind(const ActorDefinition& definition)
 {
     const unsigned numChannels = _clip->getNumChannels();
-    _channelDof.assign(numChannels, -1);
-    for (unsigned c = 0; c < numChannels; ++c) _channelDof[c] = definition.findDof(_clip->getChannel(c).target);
+    std::vector<int> channelDof(numChannels, -1);
+    for (unsigned c = 0; c < numChannels; ++c) channelDof[c] = definition.findDof(_clip->getChannel(c).target);
     _clip->initCursor(_cursor);
     _clip->initCursor(_swayCursor);
-    _sample.assign(numChannels, 0.0);
-    _swaySample.assign(numChannels, 0.0);
-    _scratchDofs = definition.getDefaultDofs();
-    bindSelection(definition);
+    bindSelection(definition, std::move(channelDof));
     bindRootMotion(definition);
     return true;
 }
 
-void ClipPlayer::bindSelection(const ActorDefinition& definition)
+void ClipPlayer::bindSelection(const ActorDefinition& definition, std::vector<int> channelDof)
 {
-    _drivenChannels.clear();
-    _drivenDofs.clear();
-    _drivenAtFullWeight = true;
+    auto binding = std::make_shared<ClipBinding>();
+    binding->channelDof = std::move(channelDof);
     const DofSelection& selection = getSelection();
-    for (unsigned c = 0; c < _channelDof.size(); ++c)
+    for (unsigned c = 0; c < binding->channelDof.size(); ++c)
     {
-        if (_channelDof[c] < 0) continue;
-        const unsigned dof = static_cast<unsigned>(_channelDof[c]);
+        if (binding->channelDof[c] < 0) continue;
+        const unsigned dof = static_cast<unsigned>(binding->channelDof[c]);
         const double weight = selection.weight(dof);
         if (!(weight > 0.0) || dof >= definition.getNumDofs()) continue;
-        _drivenChannels.push_back(c);
-        _drivenDofs.push_back(dof);
-        _drivenAtFullWeight = _drivenAtFullWeight && weight >= 1.0;
+        binding->drivenChannels.push_back(c);
+        binding->drivenDofs.push_back(dof);
+        binding->drivenAtFullWeight = binding->drivenAtFullWeight && weight >= 1.0;
     }
-    _drivenValues.assign(_drivenChannels.size(), 0.0);
+    _binding = std::move(binding);
     _boundSelectionVersion = getSelectionVersion();
 }
 
-void ClipPlayer::writeDrivenDofs(ActorPose& pose) const
+void ClipPlayer::writeDrivenDofs(ActorPose& pose, const double* values) const
 {
-    const unsigned count = static_cast<unsigned>(_drivenDofs.size());
-    if (_drivenAtFullWeight && getWeight() * _fade >= 1.0)
+    const ClipBinding& binding = *_binding;
+    const unsigned count = static_cast<unsigned>(binding.drivenDofs.size());
+    if (binding.drivenAtFullWeight && getWeight() * _fade >= 1.0)
     {
-        pose.setDofs(_drivenDofs.data(), _drivenValues.data(), count);
+        pose.setDofs(binding.drivenDofs.data(), values, count);
         return;
     }
-    for (unsigned i = 0; i < count; ++i) writeDof(pose, _drivenDofs[i], _drivenValues[i], _fade);
+    for (unsigned i = 0; i < count; ++i) writeDof(pose, binding.drivenDofs[i], values[i], _fade);
 }
 
 void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
@@ -175,9 +181,13 @@ void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
             if (definition.getDofMask(j) & kTranslationDofs) _rootJoint = static_cast<int>(j);
     if (_rootJoint < 0) return;
     const unsigned root = static_cast<unsigned>(_rootJoint);
-    for (unsigned c = 0; c < _channelDof.size(); ++c)
-        if (_channelDof[c] >= 0 && definition.getDofJoint(static_cast<unsigned>(_channelDof[c])) == root)
+    const std::vector<int>& channelDof = _binding->channelDof;
+    for (unsigned c = 0; c < channelDof.size(); ++c)
+        if (channelDof[c] >= 0 && definition.getDofJoint(static_cast<unsigned>(channelDof[c])) == root)
             _rootJointChannels.push_back(c);
+    _sample.assign(channelDof.size(), 0.0);
+    _swaySample.assign(channelDof.size(), 0.0);
+    _scratchDofs = definition.getDefaultDofs();
     for (unsigned axis = 0; axis < 3; ++axis)
     {
         const int dof = definition.getDofIndex(root, static_cast<Dof>(3 + axis));
@@ -187,7 +197,7 @@ void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
     // The heading is measured on the root-local axis that lies flattest at clip time 0 (so its ground projection
     // is well defined), relative to its direction then.
     _clip->sample(0.0, _cursor, _sample.data());
-    for (std::uint32_t c : _rootJointChannels) _scratchDofs[static_cast<unsigned>(_channelDof[c])] = _sample[c];
+    for (std::uint32_t c : _rootJointChannels) _scratchDofs[static_cast<unsigned>(_binding->channelDof[c])] = _sample[c];
     const glm::dmat3 rotation0(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data()));
     double flattest = 2.0;
     for (unsigned axis = 0; axis < 3; ++axis)
@@ -220,7 +230,7 @@ void ClipPlayer::rootTravelFromSample(const ActorDefinition& definition, glm::dv
         if (_rootChannel[axis] >= 0) p[axis] = _sample[static_cast<unsigned>(_rootChannel[axis])];
     // The root's translation DOFs act before its rotation, in its offset frame: L = offset * T(p) * R.
     displacement = definition.getOffsetRotation(root) * p;
-    for (std::uint32_t c : _rootJointChannels) _scratchDofs[static_cast<unsigned>(_channelDof[c])] = _sample[c];
+    for (std::uint32_t c : _rootJointChannels) _scratchDofs[static_cast<unsigned>(_binding->channelDof[c])] = _sample[c];
     const glm::dvec3 forward =
         glm::dmat3(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data())) * _forwardAxis;
     heading = std::atan2(forward.y, forward.x) - _heading0;
@@ -306,7 +316,7 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
         bind(*definition);
         _boundTo = definition;
     }
-    if (_boundSelectionVersion != getSelectionVersion()) bindSelection(*definition);
+    if (_boundSelectionVersion != getSelectionVersion()) bindSelection(*definition, _binding->channelDof);
     if (_playing) _playTime += context.deltaTime * _speed;
     double fadeTime = context.deltaTime;
     if (_fadeDelay > 0.0)
@@ -326,16 +336,18 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
     }
     if (_fade <= 0.0) return;
     const double clipTime = clipTimeAt(_playTime);
+    const std::vector<std::uint32_t>& driven = _binding->drivenChannels;
+    const unsigned numDriven = static_cast<unsigned>(driven.size());
+    double* values = drivenValuesScratch(numDriven);
     if (_rootJoint >= 0)
     {
         // Root motion reads the root's channels from a whole sample; the driven ones are picked from it.
         _clip->sample(clipTime, _cursor, _sample.data());
-        for (unsigned i = 0; i < _drivenChannels.size(); ++i) _drivenValues[i] = _sample[_drivenChannels[i]];
+        for (unsigned i = 0; i < numDriven; ++i) values[i] = _sample[driven[i]];
     }
     else
-        _clip->sample(clipTime, _cursor, _drivenChannels.data(), static_cast<unsigned>(_drivenChannels.size()),
-                      _drivenValues.data());
-    writeDrivenDofs(target.pose);
+        _clip->sample(clipTime, _cursor, driven.data(), numDriven, values);
+    writeDrivenDofs(target.pose, values);
     if (_rootJoint >= 0) applyRootMotion(*definition, clipTime, target);
 }
 

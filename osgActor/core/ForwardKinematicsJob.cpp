@@ -79,31 +79,50 @@ struct SequenceAxes
     static constexpr unsigned third = code % 3;
 };
 
+/** A joint's sines and cosines read from arrays indexed by DOF (the per-frame path: one batch for the whole pose). */
+struct TrigByDof
+{
+    const std::uint32_t* rotationDof;
+    const double* sines;
+    const double* cosines;
+    double sine(unsigned r) const { return sines[rotationDof[r]]; }
+    double cosine(unsigned r) const { return cosines[rotationDof[r]]; }
+};
+
+/** A joint's sines and cosines in product order (a single joint computed on its own). */
+struct TrigInOrder
+{
+    double sines[3];
+    double cosines[3];
+    double sine(unsigned r) const { return sines[r]; }
+    double cosine(unsigned r) const { return cosines[r]; }
+};
+
 /** m = R_a1 * R_a2 * R_a3 for a sequence known at compile time: every index is a constant, and the identity's
   * zeros and ones fold away (this file is built with -ffinite-math-only -fno-signed-zeros, which lets 0 * x fold;
   * FK sees finite values only, since the pose refuses NaN and infinity and definitions are validated). */
-template <unsigned Sequence>
-OSGACTOR_INLINE void composeRotation(Rotation3& m, const double* sines, const double* cosines)
+template <unsigned Sequence, class Trig>
+OSGACTOR_INLINE void composeRotation(Rotation3& m, const Trig& trig)
 {
     using Axes = SequenceAxes<Sequence>;
     if constexpr (Axes::count == 0)
         setAxisRotation<0>(m, 0.0, 1.0);
     else
     {
-        setAxisRotation<Axes::first>(m, sines[0], cosines[0]);
-        if constexpr (Axes::count >= 2) postRotateAxis<Axes::second>(m, sines[1], cosines[1]);
-        if constexpr (Axes::count >= 3) postRotateAxis<Axes::third>(m, sines[2], cosines[2]);
+        setAxisRotation<Axes::first>(m, trig.sine(0), trig.cosine(0));
+        if constexpr (Axes::count >= 2) postRotateAxis<Axes::second>(m, trig.sine(1), trig.cosine(1));
+        if constexpr (Axes::count >= 3) postRotateAxis<Axes::third>(m, trig.sine(2), trig.cosine(2));
     }
 }
 
-/** Writes skl_m of one joint (see computeJointMatrix) from the sines and cosines of its active rotations, in
-  * product order; Sequence is the joint's rotation sequence. */
-template <unsigned Sequence>
-OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* dofs, const double* sines,
-                                      const double* cosines, double* __restrict out)
+/** Writes skl_m of one joint (see computeJointMatrix) from the sines and cosines of its active rotations;
+  * Sequence is the joint's rotation sequence. */
+template <unsigned Sequence, class Trig>
+OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* dofs, const Trig& trig,
+                                      double* __restrict out)
 {
     Rotation3 rotation;
-    composeRotation<Sequence>(rotation, sines, cosines);
+    composeRotation<Sequence>(rotation, trig);
 
     // The translation DOFs, slid along the rotated axes (the paper) or in the offset frame (mocap).
     double slide[3] = {0.0, 0.0, 0.0};
@@ -142,13 +161,14 @@ OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* do
 }
 
 /** buildJointMatrix for the joint's own rotation sequence: one jump to code specialised for it. */
-OSGACTOR_INLINE void buildJointMatrixDispatched(const JointKinematics& k, const double* dofs, const double* sines,
-                                                const double* cosines, double* __restrict out)
+template <class Trig>
+OSGACTOR_INLINE void buildJointMatrixDispatched(const JointKinematics& k, const double* dofs, const Trig& trig,
+                                                double* __restrict out)
 {
     switch (k.rotationSequence)
     {
 #define OSGACTOR_SEQUENCE(S)                                                                                           \
-    case S: buildJointMatrix<S>(k, dofs, sines, cosines, out); return;
+    case S: buildJointMatrix<S>(k, dofs, trig, out); return;
 #define OSGACTOR_SEQUENCES_FROM(S)                                                                                     \
     OSGACTOR_SEQUENCE(S) OSGACTOR_SEQUENCE(S + 1) OSGACTOR_SEQUENCE(S + 2) OSGACTOR_SEQUENCE(S + 3)                   \
     OSGACTOR_SEQUENCE(S + 4) OSGACTOR_SEQUENCE(S + 5) OSGACTOR_SEQUENCE(S + 6) OSGACTOR_SEQUENCE(S + 7)
@@ -181,14 +201,12 @@ OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, cons
     const bool rebuildLocal = job.rebuildLocal;
     const bool computeModel = job.computeModel;
     unsigned numRecomputed = 0;
-    unsigned nextAngle = 0;
     for (unsigned j = 0; j < numJoints; ++j)
     {
         if (rebuildLocal && jointDirty[j])
         {
             const JointKinematics& k = kinematics[j];
-            buildJointMatrixDispatched(k, dofs, sines + nextAngle, cosines + nextAngle, &local[j][0][0]);
-            nextAngle += k.numRotations;
+            buildJointMatrixDispatched(k, dofs, TrigByDof{k.rotationDof, sines, cosines}, &local[j][0][0]);
             jointDirty[j] = 0;
             localChanged[j] = 1;
             modelStale[j] = 1;
@@ -220,14 +238,14 @@ glm::dmat4 multiplyAffine(const glm::dmat4& a, const glm::dmat4& b)
 
 glm::dmat4 computeJointMatrix(const JointKinematics& k, const double* dofs)
 {
-    double sines[3], cosines[3];
+    TrigInOrder trig;
     for (unsigned r = 0; r < k.numRotations; ++r)
     {
-        sines[r] = std::sin(dofs[k.rotationDof[r]]);
-        cosines[r] = std::cos(dofs[k.rotationDof[r]]);
+        trig.sines[r] = std::sin(dofs[k.rotationDof[r]]);
+        trig.cosines[r] = std::cos(dofs[k.rotationDof[r]]);
     }
     glm::dmat4 result;
-    buildJointMatrixDispatched(k, dofs, sines, cosines, &result[0][0]);
+    buildJointMatrixDispatched(k, dofs, trig, &result[0][0]);
     return result;
 }
 
@@ -244,20 +262,39 @@ bool ForwardKinematicsJob::run()
     const unsigned numJoints = definition->getNumJoints();
     const JointKinematics* kinematics = definition->getAllKinematics().data();
 
-    // 1. Gather the angles of every dirty joint's rotations, in joint and product order, and take their sines and
-    //    cosines in one batch.
+    // 1. The sines and cosines of the dirty joints' angles in one batch, indexed by DOF. When most joints are dirty
+    //    (a clip playing) the batch is the DOF vector itself: no gathering, and the few translations cost a few
+    //    wasted lanes. Otherwise the dirty joints' angles are gathered, and the results scattered back.
     const unsigned numDofs = definition->getNumDofs();
-    double* angles = trigScratch;
-    double* sines = trigScratch + numDofs;
-    double* cosines = trigScratch + 2 * numDofs;
-    unsigned numAngles = 0;
-    for (unsigned j = 0; rebuildLocal && j < numJoints; ++j)
+    double* sines = trigScratch;
+    double* cosines = trigScratch + numDofs;
+    if (rebuildLocal && numDofs > 0)
     {
-        if (!jointDirty[j]) continue;
-        const JointKinematics& k = kinematics[j];
-        for (unsigned r = 0; r < k.numRotations; ++r) angles[numAngles++] = dofs[k.rotationDof[r]];
+        unsigned numDirty = 0;
+        for (unsigned j = 0; j < numJoints; ++j) numDirty += jointDirty[j] != 0 ? 1u : 0u;
+        if (2 * numDirty >= numJoints)
+            sinCos(dofs, sines, cosines, numDofs);
+        else
+        {
+            double* angles = trigScratch + 2 * numDofs;
+            double* gatheredSines = angles + numDofs;
+            double* gatheredCosines = gatheredSines + numDofs;
+            unsigned numAngles = 0;
+            for (unsigned j = 0; j < numJoints; ++j)
+                if (jointDirty[j])
+                    for (unsigned r = 0; r < kinematics[j].numRotations; ++r)
+                        angles[numAngles++] = dofs[kinematics[j].rotationDof[r]];
+            sinCos(angles, gatheredSines, gatheredCosines, numAngles);
+            numAngles = 0;
+            for (unsigned j = 0; j < numJoints; ++j)
+                if (jointDirty[j])
+                    for (unsigned r = 0; r < kinematics[j].numRotations; ++r, ++numAngles)
+                    {
+                        sines[kinematics[j].rotationDof[r]] = gatheredSines[numAngles];
+                        cosines[kinematics[j].rotationDof[r]] = gatheredCosines[numAngles];
+                    }
+        }
     }
-    if (numAngles > 0) sinCos(angles, sines, cosines, numAngles);
 
     // 2. Local matrices of dirty joints, model matrices below any change.
     numRecomputed = computeMatrices(*this, sines, cosines);

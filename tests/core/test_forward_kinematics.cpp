@@ -41,7 +41,7 @@ TEST(ForwardKinematicsJob, RefusesMissingBuffers)
     std::vector<double> dofs(1, 0.0);
     std::vector<std::uint8_t> dirty(1, 1), localChanged(1, 0), modelStale(1, 0), modelChanged(1, 0);
     std::vector<glm::dmat4> local(1), model(1);
-    std::vector<double> scratch(3);
+    std::vector<double> scratch(ForwardKinematicsJob::kTrigScratchPerDof);
 
     ForwardKinematicsJob job;
     EXPECT_FALSE(job.validate());
