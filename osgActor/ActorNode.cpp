@@ -363,7 +363,8 @@ void ActorNode::runControllers(double time)
     if (_controllers.empty() || !std::isfinite(time)) return;
     ControllerContext context;
     context.time = time;
-    context.deltaTime = std::isnan(_lastControllerTime) ? 0.0 : std::max(0.0, time - _lastControllerTime);
+    // Negative when simulation time went back (a viewer scrubbing): players then move their play heads back.
+    context.deltaTime = std::isnan(_lastControllerTime) ? 0.0 : time - _lastControllerTime;
     _lastControllerTime = time;
 
     ActorTransforms transforms;

@@ -318,7 +318,7 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
     }
     if (_boundSelectionVersion != getSelectionVersion()) bindSelection(*definition, _binding->channelDof);
     if (_playing) _playTime += context.deltaTime * _speed;
-    double fadeTime = context.deltaTime;
+    double fadeTime = std::max(0.0, context.deltaTime); // fades only go forward
     if (_fadeDelay > 0.0)
     {
         const double waited = std::min(fadeTime, _fadeDelay);

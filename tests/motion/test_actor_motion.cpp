@@ -55,3 +55,31 @@ TEST(ActorMotion, ATrajectoryMovesTheBodyWhileAClipMovesTheLegs)
     EXPECT_LT((actor->getJointWorldPosition(2) - osg::Vec3d(1, 2, 0)).length(), 1e-12);
     EXPECT_LT((actor->getMatrix().getTrans() - osg::Vec3d(2, 2, 0)).length(), 1e-12) << "written to the node";
 }
+
+TEST(ActorMotion, PlayersFollowSimulationTimeBackwards)
+{
+    // A viewer scrubbing back sends earlier frame stamps: clip and trajectory play heads go back with them, so the
+    // actor shows the pose of the time shown.
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makeCockroach());
+    ClipBuilder gait("gait");
+    const unsigned leg = gait.addChannel("leg.rz");
+    gait.addKey(leg, 0.0, 0.0);
+    gait.addKey(leg, 1.0, glm::pi<double>() / 2);
+    const TrajectoryPtr path =
+        readTrajectoryCsvFile(std::string(OSGACTOR_TEST_SOURCE_DIR) + "/motion/data/cockroach.csv").trajectory;
+    ASSERT_TRUE(path);
+    actor->addController(std::make_shared<TrajectoryPlayer>(path));
+    auto legs = std::make_shared<ClipPlayer>(gait.build().clip);
+    legs->setPlayMode(PlayMode::Once);
+    actor->addController(legs);
+
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    runUpdate(*root, 0);
+    runUpdate(*root, 60);  // t = 1 s: leg at 90 degrees
+    runUpdate(*root, 30);  // back to t = 0.5 s: body at (1, 0, 0), leg at 45 degrees, as on the way there
+    EXPECT_DOUBLE_EQ(legs->getPlayTime(), 0.5);
+    EXPECT_LT((actor->getPreTranslation() - osg::Vec3d(1, 0, 0)).length(), 1e-12);
+    const double half = std::sqrt(0.5);
+    EXPECT_LT((actor->getJointWorldPosition(2) - osg::Vec3d(1 + half, half, 0)).length(), 1e-12);
+}
