@@ -34,8 +34,9 @@ bool IkJob::validateInputs() const
     for (unsigned c = 0; c < 4; ++c)
         for (unsigned r = 0; r < 4; ++r)
             if (!std::isfinite(rootParentModel[c][r])) return false;
+    // Finite and within the range a pose can hold: beyond it the chain's matrices could overflow.
     for (const IkChainDof& d : chain->getDofs())
-        if (!std::isfinite(dofs[d.dof])) return false;
+        if (!(std::abs(dofs[d.dof]) <= kMaxDofMagnitude)) return false;
     return true;
 }
 
