@@ -15,10 +15,15 @@ namespace {
 
 constexpr unsigned kNoFrame = std::numeric_limits<unsigned>::max();
 
-// Not Vec3d::valid(): that only rejects NaN, and an infinite translation makes the actor matrix NaN (found by
-// tests/robustness/test_error_handling.cpp).
-bool isFinite(const osg::Vec3d& v) { return std::isfinite(v.x()) && std::isfinite(v.y()) && std::isfinite(v.z()); }
-bool isFinite(const osg::Quat& q)
+// Not Vec3d::valid(): that only rejects NaN, and an infinite translation makes the actor matrix NaN; nor every finite
+// one: two translations of 1e308 overflow the actor matrix, so components beyond kMaxDofMagnitude are refused too
+// (both found by tests/robustness/test_error_handling.cpp).
+bool isAcceptable(const osg::Vec3d& v)
+{
+    return std::abs(v.x()) <= kMaxDofMagnitude && std::abs(v.y()) <= kMaxDofMagnitude &&
+           std::abs(v.z()) <= kMaxDofMagnitude;
+}
+bool isAcceptable(const osg::Quat& q)
 {
     return std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()) && std::isfinite(q.w()) &&
            q.length2() > 0.0 && std::isfinite(q.length2());
@@ -265,9 +270,10 @@ void ActorNode::resetDofs() { _pose.resetDofs(); }
 template <class Value>
 bool ActorNode::storeTransform(const Value& value, Value& member, bool& dirty, const char* what)
 {
-    if (!isFinite(value))
+    if (!isAcceptable(value))
     {
-        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero or non-finite " << what << std::endl;
+        OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero, non-finite or out-of-range (beyond +-"
+                 << kMaxDofMagnitude << ") " << what << std::endl;
         return false;
     }
     member = value;

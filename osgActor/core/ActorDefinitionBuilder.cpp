@@ -5,6 +5,7 @@
 #include <glm/ext/quaternion_trigonometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <unordered_map>
@@ -30,6 +31,8 @@ std::string checkDof(const JointSpec& joint, Dof dof)
         what << "DOF " << name << " has its minimum " << spec.min << " above its maximum " << spec.max;
     else if (!std::isfinite(spec.defaultValue))
         what << "DOF " << name << " has a non-finite default value";
+    else if (std::abs(spec.defaultValue) > kMaxDofMagnitude)
+        what << "DOF " << name << " has its default value " << spec.defaultValue << " beyond +-" << kMaxDofMagnitude;
     else if (spec.defaultValue < spec.min || spec.defaultValue > spec.max)
         what << "DOF " << name << " has its default value " << spec.defaultValue << " outside its limits ["
              << spec.min << ", " << spec.max << "]";
@@ -43,6 +46,13 @@ std::string checkJoint(const JointSpec& joint)
 {
     if (joint.name.empty()) return "a joint has an empty name";
     if (!isFinite(joint.translation)) return "joint " + quoted(joint.name) + " has a non-finite offset";
+    if (std::max({std::abs(joint.translation.x), std::abs(joint.translation.y), std::abs(joint.translation.z)}) >
+        kMaxDofMagnitude)
+    {
+        std::ostringstream what;
+        what << "joint " << quoted(joint.name) << " has an offset beyond +-" << kMaxDofMagnitude;
+        return what.str();
+    }
     const glm::dquat& q = joint.rotation;
     const double norm = std::sqrt(q.w * q.w + q.x * q.x + q.y * q.y + q.z * q.z);
     if (!std::isfinite(norm) || norm < 1e-12)
@@ -247,6 +257,8 @@ BuildResult ActorDefinitionBuilder::build() const
             def->_dofTypes.push_back(static_cast<Dof>(d));
             def->_dofMins.push_back(dof.min);
             def->_dofMaxs.push_back(dof.max);
+            def->_dofRangeMins.push_back(std::min(std::max(dof.min, -kMaxDofMagnitude), kMaxDofMagnitude));
+            def->_dofRangeMaxs.push_back(std::max(std::min(dof.max, kMaxDofMagnitude), -kMaxDofMagnitude));
             def->_dofDefaults.push_back(dof.defaultValue);
             def->_dofWeights.push_back(dof.weight);
         }

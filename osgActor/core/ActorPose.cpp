@@ -25,8 +25,8 @@ ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(defi
     if (!_definition) return;
     const unsigned numJoints = _definition->getNumJoints();
     _dofs = _definition->getDefaultDofs();
-    _dofMins = _definition->getDofMins().data();
-    _dofMaxs = _definition->getDofMaxs().data();
+    _dofMins = _definition->getDofRangeMins().data();
+    _dofMaxs = _definition->getDofRangeMaxs().data();
     _dofJoints = _definition->getDofJoints().data();
     _jointDirty.assign(numJoints, 1);
     _localChanged.assign(numJoints, 0);

@@ -117,6 +117,10 @@ TEST(Builder, RefusesBadLimits)
     ActorDefinitionBuilder outside;
     outside.addJoint("elbow").dofs(dofBit(Dof::RX)).limits(Dof::RX, 0.5, 1.0);
     EXPECT_TRUE(refusedWith(outside, "default value 0 outside its limits"));
+
+    ActorDefinitionBuilder far;
+    far.addJoint("root").dofs(dofBit(Dof::TX)).defaultValue(Dof::TX, 1e200);
+    EXPECT_TRUE(refusedWith(far, "'root.tx' has its default value 1e+200 beyond +-1e+150"));
 }
 
 TEST(Builder, IgnoresLimitsOfInactiveDofs)
@@ -131,6 +135,10 @@ TEST(Builder, RefusesNonFiniteOffsetsAndZeroRotations)
     ActorDefinitionBuilder offset;
     offset.addJoint("hip").offset(0.0, kInf, 0.0);
     EXPECT_TRUE(refusedWith(offset, "joint 'hip' has a non-finite offset"));
+
+    ActorDefinitionBuilder far;
+    far.addJoint("hip").offset(0.0, 0.0, -2e150);
+    EXPECT_TRUE(refusedWith(far, "joint 'hip' has an offset beyond +-1e+150"));
 
     ActorDefinitionBuilder rotation;
     rotation.addJoint("hip").rotation(1.0, 0.0, 0.0, 0.0);

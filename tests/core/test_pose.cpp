@@ -70,6 +70,27 @@ TEST(ActorPose, LimitsAreEnforcedOnWrite)
     EXPECT_EQ(pose.setDof(0, 100.0), DofWriteStatus::Written) << "an unlimited DOF takes any finite value";
 }
 
+TEST(ActorPose, NoDofGoesBeyondTheMagnitudeLimitWhateverItsLimits)
+{
+    // Unlimited DOFs (shoulder.rx, a rotation; a slide without limits) and limits wider than the range alike: a
+    // value near the end of the double range would overflow the matrices, so it is clamped to +-kMaxDofMagnitude.
+    ActorDefinitionBuilder b("free");
+    b.addJoint("root").dofs(dofBit(Dof::RX) | Dof::TX | Dof::TY).limits(Dof::TY, -1e300, 1e200);
+    ActorPose pose(b.build().definition);
+    const double huge = std::numeric_limits<double>::max();
+    for (unsigned d = 0; d < pose.getNumDofs(); ++d)
+    {
+        EXPECT_EQ(pose.setDof(d, huge), DofWriteStatus::Clamped) << d;
+        EXPECT_EQ(pose.getDof(d), kMaxDofMagnitude) << d;
+        EXPECT_EQ(pose.setDof(d, -huge), DofWriteStatus::Clamped) << d;
+        EXPECT_EQ(pose.getDof(d), -kMaxDofMagnitude) << d;
+        EXPECT_EQ(pose.setDof(d, 1e149), DofWriteStatus::Written) << d;
+    }
+    EXPECT_EQ(pose.getDefinition()->getDofMin(2), -1e300) << "the limits themselves are kept as given";
+    EXPECT_EQ(pose.getDefinition()->getDofRangeMin(2), -kMaxDofMagnitude);
+    EXPECT_EQ(pose.getDefinition()->getDofRangeMax(2), kMaxDofMagnitude);
+}
+
 TEST(ActorPose, OnlyTheChangedJointIsRecomputed)
 {
     ActorPose pose(makeArm());

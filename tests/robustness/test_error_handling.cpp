@@ -26,6 +26,13 @@ osg::ref_ptr<ActorNode> readPosedHumanoid()
     return actor;
 }
 
+bool isFinite(const osg::Matrixd& m)
+{
+    for (int i = 0; i < 16; ++i)
+        if (!std::isfinite(m.ptr()[i])) return false;
+    return true;
+}
+
 /** "file:LINE: what", with LINE a positive number. */
 void expectFileAndLine(const std::string& error, const std::string& file)
 {
@@ -91,6 +98,30 @@ TEST(ErrorHandling, RefusedTransformsKeepTheOldOnes)
     actor->setPostRotation(osg::Quat(0, 0, std::numeric_limits<double>::infinity(), 1));
     actor->setPostRotation(osg::Quat(1e300, 1e300, 0, 1)) /* finite parts, infinite length */;
     EXPECT_EQ(actor->getActorMatrix(), before);
+}
+
+TEST(ErrorHandling, HugeFiniteValuesNeverMakeAMatrixNonFinite)
+{
+    // Finite values at the end of the double range are taken (clamped), but a rotation mixing two of them (a translation
+    // DOF without limits, a pre- and a post-translation) must not overflow a matrix to infinity or NaN.
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    osg::ref_ptr<ActorNode> actor = readHumanoid();
+    scene->addChild(actor);
+    const double huge = std::numeric_limits<double>::max();
+    for (unsigned d = 0; d < actor->getNumDofs(); ++d) actor->setDof(d, d % 4 == 3 ? -huge : huge);
+    actor->setPreTranslation(osg::Vec3d(huge, huge, -huge));
+    actor->setPreRotation(osg::Quat(0.7, osg::Vec3d(1, 1, 0)));
+    actor->setPostTranslation(osg::Vec3d(huge, -huge, huge));
+    actor->setPostRotation(osg::Quat(-1.1, osg::Vec3d(0, 1, 1)));
+    runUpdate(*scene, 1);
+
+    EXPECT_TRUE(isFinite(actor->getMatrix()));
+    for (unsigned j = 0; j < actor->getNumSkeletonNodes(); ++j)
+    {
+        EXPECT_TRUE(isFinite(actor->getSkeletonNode(j)->getMatrix())) << actor->getDefinition()->getJointName(j);
+        EXPECT_TRUE(isFinite(actor->getJointModelMatrix(j))) << actor->getDefinition()->getJointName(j);
+        EXPECT_TRUE(isFinite(actor->getJointWorldMatrix(j))) << actor->getDefinition()->getJointName(j);
+    }
 }
 
 TEST(ErrorHandling, ABrokenMocapFileGivesNoActorAndSaysWhere)

@@ -1,7 +1,9 @@
 /* Soak test (ctest label "long"): thousands of frames of a parallel ActorGroup with random DOF writes (NaN and inf
- * among them), clip switches and cross-fades, hides, clones and removals. Every frame: no NaN or inf in any
- * skeleton-node matrix, every DOF within its limits. After a warm-up, the heap in use must not grow. */
+ * among them), clip switches and cross-fades, hides, clones and removals, and IK goals of every kind on every actor
+ * (SoakIk). Every frame: no NaN or inf in any skeleton-node matrix, every DOF within its limits, the IK controllers
+ * sane. After a warm-up, the heap in use must not grow. */
 #include "RobustnessUtil"
+#include "SoakIk"
 #include "nodes/NodeTestUtil"
 
 #include <osgActor/ActorGroup>
@@ -12,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <limits>
 
@@ -56,6 +59,14 @@ osg::ref_ptr<ActorNode> makeActor(const ActorNode& prototype, const ClipPtr& cli
     return actor;
 }
 
+/** The actors of the group (all its children are actors). */
+std::vector<ActorNode*> actorsOf(ActorGroup& group)
+{
+    std::vector<ActorNode*> actors;
+    for (unsigned c = 0; c < group.getNumChildren(); ++c) actors.push_back(static_cast<ActorNode*>(group.getChild(c)));
+    return actors;
+}
+
 } // namespace
 
 TEST(Soak, ManyActorsManyFramesNoNaNWithinLimitsNoGrowth)
@@ -66,12 +77,20 @@ TEST(Soak, ManyActorsManyFramesNoNaNWithinLimitsNoGrowth)
     std::vector<ClipPtr> clips;
     for (int c = 0; c < 6; ++c) clips.push_back(makeRandomClip(*definition, random, c));
 
+    // The scene: the actors under their group, and beside them the nodes IK goals follow.
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
     osg::ref_ptr<ActorGroup> group = new ActorGroup;
     group->setNumThreads(4);
-    for (unsigned a = 0; a < kActors; ++a) group->addChild(makeActor(*prototype, clips[a % clips.size()]));
+    scene->addChild(group);
+    SoakIk ik(definition, *scene, random);
+    for (unsigned a = 0; a < kActors; ++a)
+    {
+        group->addChild(makeActor(*prototype, clips[a % clips.size()]));
+        ik.equip(*static_cast<ActorNode*>(group->getChild(a)));
+    }
 
     const double specials[] = {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
-                               -std::numeric_limits<double>::infinity(), 1e300, -1e300};
+                               -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::max(), -1e300};
     std::uniform_real_distribution<double> wide(-10.0, 10.0);
     const unsigned frames = numFrames();
     const unsigned warmUpFrames = frames / 4;
@@ -82,7 +101,7 @@ TEST(Soak, ManyActorsManyFramesNoNaNWithinLimitsNoGrowth)
     {
         ActorNode* actor = static_cast<ActorNode*>(group->getChild(random() % group->getNumChildren()));
         const unsigned dof = random() % actor->getNumDofs();
-        switch (random() % 8)
+        switch (random() % 10)
         {
         case 0: // a DOF write that must be refused and leave the value as it was
         {
@@ -106,6 +125,7 @@ TEST(Soak, ManyActorsManyFramesNoNaNWithinLimitsNoGrowth)
                 actor->removeController(actor->findController("player"));
                 next->setName("player");
                 actor->addController(next);
+                SoakIk::moveLast(*actor); // IK stays on top of the clip
             }
             break;
         case 3:
@@ -128,12 +148,19 @@ TEST(Soak, ManyActorsManyFramesNoNaNWithinLimitsNoGrowth)
             group->removeChild(random() % group->getNumChildren());
             group->addChild(makeActor(*prototype, clips[random() % clips.size()]));
             break;
-        default:
+        case 7:
             actor->setPreTranslation(osg::Vec3d(wide(random), wide(random), 0.0));
+            break;
+        default: // an IK goal (valid or not), a chain or solver switch, a goal node moved, hidden or deleted
+            ik.randomAction(*actor, actorsOf(*group));
             break;
         }
 
-        runUpdate(*group, frame);
+        if (frame % 4 == 0) ik.newGoals(actorsOf(*group), 6); // goals move every few frames
+
+        runUpdate(*scene, frame);
+        ik.checkAfterFrame(actorsOf(*group), frame);
+        if (::testing::Test::HasFatalFailure()) return;
 
         for (unsigned c = 0; c < group->getNumChildren(); ++c)
         {
@@ -151,6 +178,19 @@ TEST(Soak, ManyActorsManyFramesNoNaNWithinLimitsNoGrowth)
         if (frame == warmUpFrames) heapAfterWarmUp = heapInUse();
     }
     EXPECT_GT(refusedWrites, 0u);
+    // Every kind of IK event happened (at the TSan run's 400 frames too), and solves reached their goals.
+    const SoakIkCounts& counts = ik.counts();
+    EXPECT_GT(counts.goalsSet, 0u);
+    EXPECT_GT(counts.goalsRefused, 0u);
+    EXPECT_GT(counts.hugeGoals, 0u);
+    EXPECT_GT(counts.chainSwitches, 0u);
+    EXPECT_GT(counts.solvesReached, 0u);
+    RecordProperty("ik_goals", counts.goalsSet);
+    RecordProperty("ik_goal_nodes_deleted", counts.goalNodesDeleted);
+    RecordProperty("ik_orphans_stopped", counts.orphansStopped);
+    std::printf("IK: %u goals set, %u refused, %u huge, %u chain switches, %u goal nodes deleted, %u followers "
+                "stopped, %u solves at their goal\n", counts.goalsSet, counts.goalsRefused, counts.hugeGoals,
+                counts.chainSwitches, counts.goalNodesDeleted, counts.orphansStopped, counts.solvesReached);
     // The same number of actors, clips and controllers as after the warm-up: the heap may move by allocator slack
     // (vector capacities, OSG's caches), not by what thousands of frames would leak.
     const size_t heapAtEnd = heapInUse();

@@ -25,22 +25,49 @@ constexpr unsigned kMaxKicks = 64;
 constexpr double kAccelerateAbove = 0.1;
 constexpr unsigned kMaxPatternTrials = 10;
 
+/** v divided by its largest component's magnitude: the same direction, every component within [-1, 1]. */
+glm::dvec3 scaledToUnitMax(const glm::dvec3& v)
+{
+    const double largest = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    return largest > 0.0 && std::isfinite(largest) ? v / largest : v;
+}
+
+/** The position objective's terms for unit axis a: C = f . t and S = a . (f x t), with f and t the parts of from
+  * (effector - pivot) and to (goal - pivot) across the axis. With rescale, from and to are first brought to unit
+  * size: the same best angle, computed without overflow. */
+void positionTerms(const glm::dvec3& a, glm::dvec3 from, glm::dvec3 to, bool rescale, double& cosTerm,
+                   double& sinTerm)
+{
+    if (rescale)
+    {
+        from = scaledToUnitMax(from);
+        to = scaledToUnitMax(to);
+    }
+    const glm::dvec3 f = from - a * glm::dot(a, from);
+    const glm::dvec3 t = to - a * glm::dot(a, to);
+    cosTerm = glm::dot(f, t);
+    sinTerm = glm::dot(a, glm::cross(f, t));
+}
+
 /** The angle about unit axis a (through pivot) that maximizes positionWeight * (goal - pivot) . R (effector - pivot)
-  * + orientationWeight * sum_i goalAxis_i . R effectorAxis_i, i.e. that best turns the effector onto the goal. */
+  * + orientationWeight * sum_i goalAxis_i . R effectorAxis_i, i.e. that best turns the effector onto the goal.
+  * Always finite: where the products overflow (a goal or an effector near the end of the double range, finite but
+  * 1e300 away), the position term dwarfs any orientation term and the angle is taken from the directions alone. */
 double bestAngle(const glm::dvec3& a, const glm::dvec3& pivot, const glm::dvec3& effector,
                  const glm::dmat3& effectorRotation, const glm::dvec3& goal, const glm::dmat3& goalRotation,
                  double positionWeight, double orientationWeight)
 {
     // Each objective is c0 + C cos(angle) + S sin(angle); their weighted sum peaks at atan2(S, C).
+    const glm::dvec3 from = effector - pivot;
+    glm::dvec3 to = goal - pivot;
+    if (!std::isfinite(to.x) || !std::isfinite(to.y) || !std::isfinite(to.z)) to = goal * 0.5 - pivot * 0.5;
     double cosTerm = 0.0, sinTerm = 0.0;
     if (positionWeight > 0.0)
     {
-        const glm::dvec3 from = effector - pivot;
-        const glm::dvec3 to = goal - pivot;
-        const glm::dvec3 f = from - a * glm::dot(a, from);
-        const glm::dvec3 t = to - a * glm::dot(a, to);
-        cosTerm += positionWeight * glm::dot(f, t);
-        sinTerm += positionWeight * glm::dot(a, glm::cross(f, t));
+        double c, s;
+        positionTerms(a, from, to, false, c, s);
+        cosTerm += positionWeight * c;
+        sinTerm += positionWeight * s;
     }
     if (orientationWeight > 0.0)
     {
@@ -51,6 +78,12 @@ double bestAngle(const glm::dvec3& a, const glm::dvec3& pivot, const glm::dvec3&
             cosTerm += orientationWeight * (glm::dot(e, g) - glm::dot(a, e) * glm::dot(a, g));
             sinTerm += orientationWeight * glm::dot(a, glm::cross(e, g));
         }
+    }
+    if (!std::isfinite(cosTerm) || !std::isfinite(sinTerm))
+    {
+        if (!(positionWeight > 0.0)) return 0.0;
+        positionTerms(a, from, to, true, cosTerm, sinTerm);
+        if (!std::isfinite(cosTerm) || !std::isfinite(sinTerm)) return 0.0;
     }
     if (cosTerm * cosTerm + sinTerm * sinTerm < 1e-30) return 0.0;
     return arctangent2(sinTerm, cosTerm);
@@ -87,6 +120,8 @@ void runCcdSweep(const IkChain& chain, const IkGoal& goal, const glm::dmat3& goa
         {
             const double slide = glm::dot(goal.position - effector, axis);
             const double next = std::min(std::max(current + chainDof.weight * slide, chainDof.min), chainDof.max);
+            // A slide without limits toward a goal beyond the double range from here (the step overflows): stay.
+            if (!std::isfinite(next)) continue;
             dofs[chainDof.dof] = next;
             effector += axis * (next - current);
         }

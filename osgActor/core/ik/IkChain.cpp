@@ -148,8 +148,8 @@ IkChainBuildResult buildIkChain(const ActorDefinition& definition, const IkChain
             for (std::uint8_t slot = 0; slot < kinematics.numRotations; ++slot)
                 if (kinematics.rotationDof[slot] == d) chainDof.rotationSlot = slot;
             chainDof.weight = weight;
-            chainDof.min = definition.getDofMin(d);
-            chainDof.max = definition.getDofMax(d);
+            chainDof.min = definition.getDofRangeMin(d); // the limits, within +-kMaxDofMagnitude
+            chainDof.max = definition.getDofRangeMax(d);
             chain->_dofs.push_back(chainDof);
             largestWeight = std::max(largestWeight, weight);
         }

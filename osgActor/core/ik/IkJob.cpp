@@ -1,5 +1,6 @@
 #include <osgActor/core/ik/IkJob>
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 
@@ -49,7 +50,8 @@ bool IkJob::validateInputs() const
     std::uint64_t any = 0;
     const double* matrix = &rootParentModel[0][0];
     for (unsigned i = 0; i < 16; ++i) any |= nonFinite(matrix[i]);
-    for (const IkChainDof& d : chain->getDofs()) any |= nonFinite(dofs[d.dof]);
+    // The DOFs finite and within the range a pose can hold: beyond it the chain's matrices could overflow.
+    for (const IkChainDof& d : chain->getDofs()) any |= !(std::abs(dofs[d.dof]) <= kMaxDofMagnitude) ? 1u : 0u;
     return any == 0;
 }
 
