@@ -447,6 +447,9 @@ bool ActorNode::claimFrame(const osg::FrameStamp* stamp)
 
 void ActorNode::computeFrame(double time)
 {
+    // The skeleton nodes are written after the controllers and FK have run: start fetching them now.
+    if (!_controllers.empty() || _pose.hasDirtyJoints())
+        for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) node->prefetchForMatrixWrite();
     runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
     _pose.updateLocalMatrices();
