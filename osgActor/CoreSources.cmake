@@ -1,6 +1,6 @@
 # The OSG-free part of libosgActor (DESIGN.md section 3): core (GLM only), the .actor format (io/) and the
-# motion-capture parsers (mocap/). Paths are relative to this folder. Included by osgActor/CMakeLists.txt and by
-# fuzz/CMakeLists.txt, which builds the parsers alone with libFuzzer.
+# motion-capture parsers (mocap/). Paths are relative to this folder. Included by osgActor/CMakeLists.txt, which
+# compiles them into the object library osgActorCore (linked alone into the fuzzers of fuzz/).
 
 set(OSGACTOR_CORE_HEADERS
     core/ActorDefinition

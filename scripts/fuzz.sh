@@ -1,21 +1,23 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (fuzz/, clang, -fsanitize=fuzzer,address,undefined) and runs each for a bounded
-# time on a corpus seeded from the project's data and the real mocap files (copied into a temporary folder; nothing
-# is written to the repository). Fails on any crash, hang, leak or sanitizer report; the input that caused it is
-# kept in $OSGACTOR_FUZZ_ARTIFACTS (build-fuzz/artifacts/) to be added to tests/robustness/inputs/.
+# Builds the libFuzzer targets (fuzz/: clang, -fsanitize=fuzzer,address,undefined) in the AddressSanitizer build
+# (build-asan/, shared with scripts/test-sanitizers.sh asan: after it, nothing is left to build) and runs each for a
+# bounded time on a corpus seeded from the project's data and the real mocap files (copied into a temporary folder;
+# nothing is written to the repository). Fails on any crash, hang, leak or sanitizer report; the input that caused
+# it is kept in $OSGACTOR_FUZZ_ARTIFACTS (build-asan/fuzz-artifacts/) to be added to tests/robustness/inputs/.
 #   OSGACTOR_FUZZ_SECONDS  seconds per target (default 60)
 #   OSGACTOR_FUZZ_TARGETS  which targets (default: all of them)
-#   OSGACTOR_FUZZ_BUILD_DIR, OSGACTOR_JOBS
+#   OSGACTOR_ASAN_BUILD_DIR, OSGACTOR_JOBS
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-build="${OSGACTOR_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+build="${OSGACTOR_ASAN_BUILD_DIR:-$root/build-asan}"
 seconds="${OSGACTOR_FUZZ_SECONDS:-60}"
 targets=(${OSGACTOR_FUZZ_TARGETS:-actor bvh asf amc trajectory_csv})
 shared="$root/../shared"
 assimp=/usr/share/assimp/models/BVH
-artifacts="${OSGACTOR_FUZZ_ARTIFACTS:-$build/artifacts}"
+artifacts="${OSGACTOR_FUZZ_ARTIFACTS:-$build/fuzz-artifacts}"
 
-CC=clang CXX=clang++ cmake -S "$root/fuzz" -B "$build" >/dev/null
+source "$root/scripts/sanitizers/configure.sh"
+sanitizer_configure asan "$build"
 cmake --build "$build" -j "${OSGACTOR_JOBS:-$(nproc)}" --target $(printf 'fuzz_%s ' "${targets[@]}")
 
 # Seeds per target: shell globs, those that match nothing are skipped.
@@ -41,7 +43,7 @@ for target in "${targets[@]}"; do
     echo "fuzz: $target for ${seconds}s on $(ls "$corpus" | wc -l) seeds"
     # -max_len: big mocap seeds are cut to their first 64 KiB (header and first frames), which keeps each run fast.
     # -timeout: an input that takes longer than 10 s is a hang. -rss_limit_mb: a runaway allocation is a finding.
-    if ! "$build/fuzz_$target" "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+    if ! "$build/bin/fuzz_$target" "${dict[@]}" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
             -max_len=65536 -print_final_stats=1 -artifact_prefix="$artifacts/${target}-" "$corpus" \
             >"$work/$target.log" 2>&1; then
         tail -n 60 "$work/$target.log"

@@ -13,6 +13,7 @@ packages=(
     libbenchmark-dev                       # benchmarks
     assimp-testmodels                      # real BVH files used by the tests
     xvfb xauth                             # windowed smoke tests without a display
+    libgl1-mesa-dri                        # Mesa's software GL driver under Xvfb (the ASan run preloads it)
     clang libclang-rt-14-dev               # fuzzers (libFuzzer) and sanitizer builds
     gnuplot-nox                            # the benchmark's plot
 )

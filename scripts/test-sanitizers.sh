@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# Sanitizer runs (docs/robustness.md), each in its own build directory beside build/:
-#   asan  the quick test suite (ctest -LE long; the applications' tests aside) built with AddressSanitizer +
-#         UndefinedBehaviorSanitizer (GCC, as the normal build); any report fails the test that made it.
-#   tsan  ThreadSanitizer on the parallel actor update (WorkerPool and ActorGroup tests, a short soak run: many
-#         actors playing clips on several threads) and on osgViewer's threaded models under xvfb-run.
-# Usage: scripts/test-sanitizers.sh [asan|tsan]... (both by default). OSGACTOR_JOBS as for build.sh.
+# Sanitizer runs (docs/robustness.md), each in its own build directory beside build/, configured by
+# scripts/sanitizers/configure.sh:
+#   asan  the whole quick test suite (ctest -LE long; the applications' tests aside) built with AddressSanitizer +
+#         UndefinedBehaviorSanitizer (clang, -O0, the core at -O1); any report fails the test that made it. The
+#         same build holds the libFuzzer targets, which scripts/fuzz.sh then runs without building anything more.
+#   tsan  ThreadSanitizer (GCC) on the parallel actor update (WorkerPool and ActorGroup tests, a short soak run: many
+#         actors playing clips under IK on several threads) and on osgViewer's threaded models under xvfb-run.
+# Usage: scripts/test-sanitizers.sh [asan|tsan]... (both by default). OSGACTOR_JOBS as for build.sh;
+# OSGACTOR_ASAN_BUILD_DIR, OSGACTOR_TSAN_BUILD_DIR (build-asan, build-tsan).
 # OSG itself is not built with sanitizers: scripts/sanitizers/*.supp hold the few suppressions its (and Mesa's)
 # own code needs, each with its reason.
 set -euo pipefail
@@ -14,33 +17,33 @@ supp="$root/scripts/sanitizers"
 steps=("$@")
 [ ${#steps[@]} -eq 0 ] && steps=(asan tsan)
 
-# configure <build dir> <sanitizer flags>: the library, plugins and tests at -O1 (quicker to build, still usable
-# stacks); no applications, examples or benchmarks, whose code the tests cover or which time things.
-configure() {
-    cmake -S "$root" -B "$1" -DCMAKE_BUILD_TYPE=Sanitize -DCMAKE_CXX_FLAGS="-O1 -g -fno-omit-frame-pointer $2" \
-        -DCMAKE_EXE_LINKER_FLAGS="$2" -DCMAKE_SHARED_LINKER_FLAGS="$2" -DCMAKE_MODULE_LINKER_FLAGS="$2" \
-        -DOSGACTOR_BUILD_APPLICATIONS=OFF -DOSGACTOR_BUILD_BENCHMARKS=OFF >/dev/null
-}
+source "$supp/configure.sh"
 
 asan() {
     local build="${OSGACTOR_ASAN_BUILD_DIR:-$root/build-asan}"
-    configure "$build" "-fsanitize=address,undefined -fno-sanitize-recover=undefined"
+    sanitizer_configure asan "$build"
     cmake --build "$build" -j "$jobs"
     local options="detect_leaks=1:halt_on_error=1:detect_stack_use_after_return=1"
     export LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0"
     export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
     # osgconv_* and osgviewer_* run OSG's own (uninstrumented) programs, which cannot load instrumented plugins
-    # (ASan's runtime must come first); the plugin tests load the same plugins into an instrumented program.
+    # (ASan's runtime lives in the instrumented programs); the plugin tests load the same plugins into one.
     # fast_unwind_on_malloc=0: OSG has no frame pointers, and the slow unwinder gives the whole stacks that the
-    # suppressions match; too slow for the windowed tests (Mesa allocates all the time), which run apart.
+    # suppressions match; far too slow for the windowed tests (Mesa allocates all the time), which run apart.
     (cd "$build" && ASAN_OPTIONS="$options:fast_unwind_on_malloc=0" \
         ctest --output-on-failure -j "$jobs" -LE 'long|viewer' -E '^(osgconv|osgviewer)_')
-    (cd "$build" && ASAN_OPTIONS="$options" ctest --output-on-failure -j "$jobs" -L viewer -E '^(osgconv|osgviewer)_')
+    # Mesa's software driver (swrast_dri.so) is preloaded so that closing the GL context at exit cannot unload it:
+    # its globals hold the roots of its own caches, which LeakSanitizer would otherwise report as leaks from an
+    # unknown module, past any suppression.
+    local dri
+    dri="$(find /usr/lib -name swrast_dri.so -print -quit 2>/dev/null)"
+    (cd "$build" && LD_PRELOAD="$dri" ASAN_OPTIONS="$options" \
+        ctest --output-on-failure -j "$jobs" -L viewer -E '^(osgconv|osgviewer)_')
 }
 
 tsan() {
     local build="${OSGACTOR_TSAN_BUILD_DIR:-$root/build-tsan}"
-    configure "$build" "-fsanitize=thread"
+    sanitizer_configure tsan "$build"
     cmake --build "$build" -j "$jobs" --target osgactor_node_tests osgactor_soak_test osgactor_threaded_viewer
     # Any report makes the program exit with 66 at the end (TSan's exitcode), which fails this script.
     export TSAN_OPTIONS="suppressions=$supp/tsan.supp:second_deadlock_stack=1:history_size=4"
