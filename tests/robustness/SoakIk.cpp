@@ -147,7 +147,16 @@ void SoakIk::randomAction(ActorNode& actor, const std::vector<ActorNode*>& actor
     case 5:
         switch (_random() % 3)
         {
-        case 0: either.setWeight(_random() % 4 ? uniform(_random, 0.0, 1.0) : kNaN); break; // NaN is refused
+        case 0:
+            if (_random() % 4)
+                either.setWeight(uniform(_random, 0.0, 1.0));
+            else
+            {
+                const double before = either.getWeight();
+                either.setWeight(kNaN);
+                EXPECT_EQ(either.getWeight(), before) << "a NaN weight is refused";
+            }
+            break;
         case 1: either.setEnabled(!either.getEnabled()); break;
         default: either.clearGoal(); break;
         }
