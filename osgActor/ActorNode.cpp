@@ -101,7 +101,7 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     {
         if (getDefinition() && getDefinition()->getParent(node->getJointIndex()) == kNoParent) removeChild(node.get());
     }
-    _skeletonNodes.clear();
+    releaseSkeletonNodes();
     _pose = ActorPose(std::move(definition));
     dropUnfittingIkChains();
     buildSkeletonNodes();
@@ -175,11 +175,27 @@ void ActorNode::buildSkeletonNodes()
         else _skeletonNodes[static_cast<unsigned>(parent)]->addChild(node.get());
         _skeletonNodes.push_back(node);
     }
+    bindLocalMatricesToNodes();
+}
+
+void ActorNode::bindLocalMatricesToNodes()
+{
+    std::vector<double*> targets;
+    targets.reserve(_skeletonNodes.size());
+    for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) targets.push_back(node->getMatrixStorageForActor());
+    // Only fails on a count that does not match the definition, which both callers have ruled out.
+    _pose.redirectLocalMatrices(targets);
+}
+
+void ActorNode::releaseSkeletonNodes()
+{
+    _pose.ownLocalMatrices();
+    _skeletonNodes.clear();
 }
 
 bool ActorNode::rebindSkeletonNodes()
 {
-    _skeletonNodes.clear();
+    releaseSkeletonNodes();
     const ActorDefinition* def = getDefinition().get();
     if (!def) return true;
     std::vector<osg::ref_ptr<SkeletonNode>> nodes(def->getNumJoints());
@@ -192,6 +208,7 @@ bool ActorNode::rebindSkeletonNodes()
         return false;
     }
     _skeletonNodes.swap(nodes);
+    bindLocalMatricesToNodes();
     // The nodes may hold stale matrices (a reader made them): write every joint at the next update.
     _pose.markAllJointsDirty();
     _actorMatrixWritten = false;
@@ -396,8 +413,21 @@ void ActorNode::runControllers(double time)
 void ActorNode::updatePose() const
 {
     // A blocked actor applies no new DOF values but still answers with the pose its nodes show.
-    if (_blocked) _pose.updateModelMatrices();
-    else _pose.updateMatrices();
+    if (_blocked)
+    {
+        _pose.updateModelMatrices();
+        return;
+    }
+    if (_pose.updateMatrices() == 0) return;
+    // FK wrote the changed matrices into the nodes in place: dirty the bounds now rather than at the next update.
+    // Non-const work on behalf of a const query, like osg::Node::getBound() computing its cached bound.
+    ActorNode* self = const_cast<ActorNode*>(this);
+    self->writeJointMatrices();
+    if (self->_boundsToPropagate)
+    {
+        self->dirtyBound();
+        self->_boundsToPropagate = false;
+    }
 }
 
 osg::Matrixd ActorNode::getJointModelMatrix(unsigned joint) const
@@ -467,10 +497,10 @@ void ActorNode::writeJointMatrices()
     const int* parents = definition ? definition->getParents().data() : nullptr;
     const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
     const std::size_t numNodes = _skeletonNodes.size();
-    _pose.consumeChangedLocals([&](unsigned joint, const glm::dmat4& local) {
+    _pose.consumeChangedLocals([&](unsigned joint, const double* local) {
         if (joint >= numNodes) return;
         // Dirty the joint's bound and its ancestors' up to the first one already dirty (whose ancestors are too).
-        bool climb = nodes[joint]->setMatrixWithinActor(glm::value_ptr(local));
+        bool climb = nodes[joint]->setMatrixWithinActor(local);
         for (int parent = parents[joint]; climb && parent >= 0; parent = parents[parent])
             climb = nodes[parent]->markBoundDirtyWithinActor();
         _boundsToPropagate = true;

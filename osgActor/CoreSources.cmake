@@ -13,6 +13,7 @@ set(OSGACTOR_CORE_HEADERS
     core/Controller
     core/Dof
     core/ForwardKinematicsJob
+    core/LocalMatrices
     core/SinCos
     core/Trajectory
     core/WorkerPool)
@@ -40,6 +41,7 @@ set(OSGACTOR_CORE_SOURCES
     core/Controller.cpp
     core/Dof.cpp
     core/ForwardKinematicsJob.cpp
+    core/LocalMatrices.cpp
     core/SinCos.cpp
     core/Trajectory.cpp
     core/WorkerPool.cpp

@@ -32,7 +32,7 @@ ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(defi
     _localChanged.assign(numJoints, 0);
     _modelChanged.assign(numJoints, 0);
     _modelStale.assign(numJoints, 0);
-    _local.assign(numJoints, glm::dmat4(1.0));
+    _local = LocalMatrices(numJoints);
     _model.assign(numJoints, glm::dmat4(1.0));
     _anyDirty = numJoints > 0;
 }
@@ -74,7 +74,7 @@ unsigned ActorPose::runForwardKinematics(bool rebuildLocal, bool computeModel)
     job.definition = _definition.get();
     job.dofs = _dofs.data();
     job.jointDirty = _jointDirty.data();
-    job.local = _local.data();
+    job.local = _local.targets();
     job.model = _model.data();
     job.localChanged = _localChanged.data();
     job.modelStale = _modelStale.data();

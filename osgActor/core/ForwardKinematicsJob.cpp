@@ -6,6 +6,7 @@
 #include <osgActor/core/SinCos>
 
 #include <cmath>
+#include <cstring>
 
 // Not in sanitizer builds: the clones' IFUNC resolver runs while the library is relocated, before the sanitizer's
 // runtime is set up, and the instrumented resolver crashes there (ThreadSanitizer: SIGSEGV in _dl_relocate_object).
@@ -196,7 +197,7 @@ OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, cons
     std::uint8_t* const localChanged = job.localChanged;
     std::uint8_t* const modelStale = job.modelStale;
     std::uint8_t* const modelChanged = job.modelChanged;
-    glm::dmat4* const local = job.local;
+    double* const* const local = job.local;
     glm::dmat4* const model = job.model;
     const bool rebuildLocal = job.rebuildLocal;
     const bool computeModel = job.computeModel;
@@ -206,7 +207,7 @@ OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, cons
         if (rebuildLocal && jointDirty[j])
         {
             const JointKinematics& k = kinematics[j];
-            buildJointMatrixDispatched(k, dofs, TrigByDof{k.rotationDof, sines, cosines}, &local[j][0][0]);
+            buildJointMatrixDispatched(k, dofs, TrigByDof{k.rotationDof, sines, cosines}, local[j]);
             jointDirty[j] = 0;
             localChanged[j] = 1;
             modelStale[j] = 1;
@@ -220,9 +221,9 @@ OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, cons
         if (!moved) continue;
         modelStale[j] = 0;
         if (parent >= 0)
-            multiplyAffineInto(&model[parent][0][0], &local[j][0][0], &model[j][0][0]);
+            multiplyAffineInto(&model[parent][0][0], local[j], &model[j][0][0]);
         else
-            model[j] = local[j];
+            std::memcpy(&model[j][0][0], local[j], sizeof(glm::dmat4));
     }
     return numRecomputed;
 }

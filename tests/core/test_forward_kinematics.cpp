@@ -41,13 +41,14 @@ TEST(ForwardKinematicsJob, RefusesMissingBuffers)
     std::vector<double> dofs(1, 0.0);
     std::vector<std::uint8_t> dirty(1, 1), localChanged(1, 0), modelStale(1, 0), modelChanged(1, 0);
     std::vector<glm::dmat4> local(1), model(1);
+    double* const localTargets[1] = {&local[0][0][0]};
     std::vector<double> scratch(ForwardKinematicsJob::kTrigScratchPerDof);
 
     ForwardKinematicsJob job;
     EXPECT_FALSE(job.validate());
     job.definition = def.get();
     job.jointDirty = dirty.data();
-    job.local = local.data();
+    job.local = localTargets;
     job.model = model.data();
     job.localChanged = localChanged.data();
     job.modelChanged = modelChanged.data();

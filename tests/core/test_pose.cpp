@@ -3,7 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <vector>
 
 using namespace osgActor;
 
@@ -114,16 +116,16 @@ TEST(ActorPose, ChangedLocalsAreConsumedOnce)
     ActorPose pose(makeArm());
     pose.updateMatrices();
     unsigned seen = 0;
-    pose.consumeChangedLocals([&](unsigned, const glm::dmat4&) { ++seen; });
+    pose.consumeChangedLocals([&](unsigned, const double*) { ++seen; });
     EXPECT_EQ(seen, 5u);
     pose.setDof(3, 1.0);
     pose.updateMatrices();
     pose.setDof(5, 1.0);
     pose.updateMatrices();
     std::vector<unsigned> joints;
-    pose.consumeChangedLocals([&](unsigned joint, const glm::dmat4&) { joints.push_back(joint); });
+    pose.consumeChangedLocals([&](unsigned joint, const double*) { joints.push_back(joint); });
     EXPECT_EQ(joints, (std::vector<unsigned>{1, 2})) << "two runs gathered, each joint once";
-    pose.consumeChangedLocals([&](unsigned joint, const glm::dmat4&) { joints.push_back(joint); });
+    pose.consumeChangedLocals([&](unsigned joint, const double*) { joints.push_back(joint); });
     EXPECT_EQ(joints.size(), 2u);
 }
 
@@ -137,6 +139,60 @@ TEST(ActorPose, CopiesAreIndependent)
     EXPECT_EQ(a.getDof(3), 0.0);
     EXPECT_NE(a.getModelMatrix(3), b.getModelMatrix(3));
     EXPECT_EQ(a.getDefinition(), b.getDefinition()) << "the definition is shared";
+}
+
+TEST(ActorPose, RedirectedLocalMatricesAreWrittenInPlace)
+{
+    ActorPose pose(makeArm());
+    pose.setDof(3, 0.5); // the elbow
+    pose.updateMatrices();
+    const glm::dmat4 elbowBefore = pose.getLocalMatrix(1);
+    std::vector<glm::dmat4> outside(pose.getNumJoints(), glm::dmat4(0.0));
+    std::vector<double*> targets;
+    for (glm::dmat4& m : outside) targets.push_back(&m[0][0]);
+    ASSERT_TRUE(pose.redirectLocalMatrices(targets));
+    EXPECT_EQ(outside[1], elbowBefore) << "the current values are copied to the new place";
+
+    pose.setDof(3, 1.0);
+    pose.updateMatrices();
+    const double c = std::cos(1.0), s = std::sin(1.0);
+    // R_x(1) after the elbow's offset (0, 0, -0.3): column-major, columns x, y, z, translation.
+    const glm::dmat4 expected(1, 0, 0, 0, 0, c, s, 0, 0, -s, c, 0, 0, 0, -0.3, 1);
+    for (int col = 0; col < 4; ++col)
+        for (int row = 0; row < 4; ++row) EXPECT_NEAR(outside[1][col][row], expected[col][row], 1e-15);
+    EXPECT_EQ(pose.getLocalMatrix(1), outside[1]) << "the pose reads its matrices where they are";
+    EXPECT_EQ(pose.getModelMatrix(2), pose.getModelMatrix(1) * outside[2]) << "model space composes them";
+
+    // A copy owns its matrices: posing it must not write the original's targets.
+    ActorPose copy = pose;
+    copy.setDof(3, 2.0);
+    copy.updateMatrices();
+    EXPECT_EQ(outside[1], pose.getLocalMatrix(1));
+    EXPECT_NE(copy.getLocalMatrix(1), outside[1]);
+
+    // Taking them back keeps the values and stops writing outside.
+    pose.ownLocalMatrices();
+    const glm::dmat4 kept = outside[1];
+    pose.setDof(3, 1.5);
+    pose.updateMatrices();
+    EXPECT_EQ(outside[1], kept);
+    EXPECT_NE(pose.getLocalMatrix(1), kept);
+}
+
+TEST(ActorPose, RefusesBadLocalMatrixTargets)
+{
+    ActorPose pose(makeArm());
+    pose.updateMatrices();
+    std::vector<glm::dmat4> outside(pose.getNumJoints());
+    std::vector<double*> targets;
+    for (glm::dmat4& m : outside) targets.push_back(&m[0][0]);
+    targets.pop_back();
+    EXPECT_FALSE(pose.redirectLocalMatrices(targets)) << "one short";
+    targets.push_back(nullptr);
+    EXPECT_FALSE(pose.redirectLocalMatrices(targets)) << "a null target";
+    pose.setDof(3, 1.0);
+    pose.updateMatrices();
+    EXPECT_NE(pose.getLocalMatrix(1), glm::dmat4(1.0)) << "still its own matrices";
 }
 
 TEST(ActorPose, ResetRestoresDefaults)

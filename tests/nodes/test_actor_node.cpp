@@ -180,15 +180,19 @@ TEST(ActorNode, WorldQueriesGoThroughTransformsAboveTheActor)
     }
 }
 
-TEST(ActorNode, WorldQueriesAreCurrentBetweenFramesWithoutTouchingTheGraph)
+TEST(ActorNode, WorldQueriesAreCurrentBetweenFramesAndLeaveTheGraphConsistent)
 {
     osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    actor->getSkeletonNode(3u)->addChild(makeBox(osg::Vec3(), 0.1f)); // a hand at the tip, (2.5, 0, 0)
+    EXPECT_TRUE(vec3Near(actor->getBound().center(), osg::Vec3d(2.5, 0, 0), 1e-6));
     actor->setDof("base.rz", kQuarter);
+    EXPECT_TRUE(actor->getSkeletonNode(0u)->getMatrix().isIdentity()) << "a DOF write alone touches no node";
     EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(3), osg::Vec3d(0, 2.5, 0), 1e-14));
-    EXPECT_TRUE(vec3Near(actor->getSkeletonNode(0u)->getMatrix().getTrans(), osg::Vec3d(0, 0, 0)));
-    EXPECT_TRUE(actor->getSkeletonNode(0u)->getMatrix().isIdentity()) << "only the update traversal writes nodes";
+    // The query ran FK, which writes the nodes in place; their bounds follow at once, as with setMatrix().
+    EXPECT_TRUE(vec3Near(osg::Vec3d(1, 0, 0) * actor->getSkeletonNode(0u)->getMatrix(), osg::Vec3d(0, 1, 0), 1e-15));
+    EXPECT_TRUE(vec3Near(actor->getBound().center(), osg::Vec3d(0, 2.5, 0), 1e-6)) << "the bound follows the hand";
     runUpdate(*actor, 1);
-    EXPECT_FALSE(actor->getSkeletonNode(0u)->getMatrix().isIdentity()) << "the pending write happens in update";
+    EXPECT_TRUE(vec3Near(actor->getBound().center(), osg::Vec3d(0, 2.5, 0), 1e-6));
 }
 
 TEST(ActorNode, RunsOncePerFrameWithSeveralParents)
