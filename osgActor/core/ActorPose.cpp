@@ -1,8 +1,11 @@
 #include <osgActor/core/ActorPose>
 #include <osgActor/core/ForwardKinematicsJob>
 
+#include "HotPath.h"
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace osgActor {
 
@@ -16,6 +19,48 @@ double* trigScratch(unsigned numDofs)
     const std::size_t needed = std::size_t(ForwardKinematicsJob::kTrigScratchPerDof) * numDofs;
     if (scratch.size() < needed) scratch.resize(needed);
     return scratch.data();
+}
+
+/** The vectorized half of ActorPose::setDofRange: setDof()'s clamp, NaN and infinity refusal and change test for
+  * count consecutive DOFs, without branches; changed[i] is 1 where DOF i took a new value, else 0 (64-bit, the
+  * width of the values, so the loop vectorizes without packing). Returns how many values were refused. */
+OSGACTOR_HOT_PATH std::uint64_t clampAndStoreDofs(const double* __restrict values, const double* __restrict mins,
+                                                  const double* __restrict maxs, double* __restrict dofs,
+                                                  std::uint64_t* __restrict changed, unsigned count)
+{
+    std::uint64_t refused = 0;
+    for (unsigned i = 0; i < count; ++i)
+    {
+        const double value = values[i];
+        const bool finite = std::fabs(value) <= std::numeric_limits<double>::max(); // false for NaN too
+        const double clamped = std::min(std::max(value, mins[i]), maxs[i]);
+        const double old = dofs[i];
+        const double stored = finite ? clamped : old;
+        changed[i] = stored != old ? 1u : 0u;
+        dofs[i] = stored;
+        refused += finite ? 0u : 1u;
+    }
+    return refused;
+}
+
+/** The OR of a joint's n change flags (n <= 6, a joint's DOFs at most), unrolled: as a loop GCC vectorizes it, and
+  * for so few flags the vector set-up costs more than the work. */
+inline std::uint64_t anyOf(const std::uint64_t* flags, unsigned n)
+{
+    std::uint64_t any = 0;
+    switch (n)
+    {
+    case 6: any |= flags[5]; [[fallthrough]];
+    case 5: any |= flags[4]; [[fallthrough]];
+    case 4: any |= flags[3]; [[fallthrough]];
+    case 3: any |= flags[2]; [[fallthrough]];
+    case 2: any |= flags[1]; [[fallthrough]];
+    case 1: any |= flags[0]; [[fallthrough]];
+    case 0: return any;
+    default:
+        for (unsigned i = 0; i < n; ++i) any |= flags[i];
+        return any;
+    }
 }
 
 } // namespace
@@ -46,6 +91,38 @@ DofWriteStatus ActorPose::setDofs(const double* values, std::size_t count)
     for (unsigned i = 0; i < count; ++i)
         anyClamped = setDof(i, values[i]) == DofWriteStatus::Clamped || anyClamped;
     return anyClamped ? DofWriteStatus::Clamped : DofWriteStatus::Written;
+}
+
+unsigned ActorPose::setDofRange(unsigned firstDof, const double* values, unsigned count)
+{
+    if (firstDof > _dofs.size() || count > _dofs.size() - firstDof) return count;
+    // Every array in a local: the dirty flags are bytes, which may alias anything, so members would be reloaded
+    // after each flag store.
+    const unsigned* const firstDofs = _definition->getFirstDofs().data();
+    const unsigned* const dofJoints = _dofJoints;
+    std::uint8_t* const jointDirty = _jointDirty.data();
+    std::uint64_t refused = 0, anyChanged = 0;
+    // In blocks, so the change flags stay in a small buffer on the stack (a joint split by a block's end is
+    // marked from both sides).
+    constexpr unsigned kBlock = 128;
+    std::uint64_t changed[kBlock];
+    for (unsigned begin = firstDof, end = firstDof + count; begin < end; begin += kBlock)
+    {
+        const unsigned blockEnd = std::min(begin + kBlock, end);
+        refused += clampAndStoreDofs(values + (begin - firstDof), _dofMins + begin, _dofMaxs + begin,
+                                     _dofs.data() + begin, changed, blockEnd - begin);
+        // A joint's DOFs are consecutive: mark each joint the block touches once, if any of its DOFs changed.
+        for (unsigned joint = dofJoints[begin], last = dofJoints[blockEnd - 1]; joint <= last; ++joint)
+        {
+            const unsigned from = std::max(firstDofs[joint], begin);
+            const unsigned to = std::min(firstDofs[joint + 1], blockEnd);
+            const std::uint64_t jointChanged = anyOf(changed + (from - begin), to - from);
+            jointDirty[joint] |= static_cast<std::uint8_t>(jointChanged);
+            anyChanged |= jointChanged;
+        }
+    }
+    _anyDirty = _anyDirty || anyChanged != 0;
+    return static_cast<unsigned>(refused);
 }
 
 void ActorPose::resetDofs()

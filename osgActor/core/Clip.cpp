@@ -2,6 +2,8 @@
 
 #include <glm/ext/scalar_constants.hpp>
 
+#include "HotPath.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -38,6 +40,24 @@ inline double interpolate(Clip::Kernel kernel, double before, double a, double b
     return a;
 }
 
+/** values[c] = a[c] + t (b[c] - a[c]) for c < count, the whole loop vectorized: the linear kernel, and the
+  * linear-angular one (angular[c] = 1) whenever no angular step exceeds half a turn. Returns false, with values
+  * unspecified, when one does (the caller then folds it exactly, like shortestDelta); between neighbouring frames
+  * of motion capture that is a wrap through +-180 degrees, once in a while. */
+OSGACTOR_HOT_PATH bool lerpRange(const double* __restrict a, const double* __restrict b,
+                                 const double* __restrict angular, double t, unsigned count,
+                                 double* __restrict values)
+{
+    std::uint64_t wraps = 0; // as wide as the values: a bool would keep the loop from vectorizing
+    for (unsigned c = 0; c < count; ++c)
+    {
+        const double delta = b[c] - a[c];
+        values[c] = a[c] + t * delta;
+        wraps |= std::fabs(delta) * angular[c] > glm::pi<double>() ? 1u : 0u;
+    }
+    return wraps == 0;
+}
+
 Clip::Kernel kernelOf(const ClipChannel& channel)
 {
     switch (channel.interpolation)
@@ -70,37 +90,55 @@ void Clip::setChannels(const std::vector<ClipChannel>& channels)
 {
     _channels = channels;
     _kernels.clear();
-    for (const ClipChannel& channel : _channels) _kernels.push_back(kernelOf(channel));
+    _angularMask.clear();
+    _nonLinearBefore.assign(1, 0u);
+    for (const ClipChannel& channel : _channels)
+    {
+        const Kernel kernel = kernelOf(channel);
+        _kernels.push_back(kernel);
+        _angularMask.push_back(kernel == Kernel::LinearAngular ? 1.0 : 0.0);
+        const bool linear = kernel == Kernel::Linear || kernel == Kernel::LinearAngular;
+        _nonLinearBefore.push_back(_nonLinearBefore.back() + (linear ? 0u : 1u));
+    }
 }
 
 void Clip::initCursor(ClipCursor& cursor) const { cursor.keys.assign(_uniform ? 0 : _channels.size(), 0u); }
 
 template <class SampleOne>
-void Clip::sampleEach(const std::uint32_t* channels, unsigned count, double* values, SampleOne sampleOne) const
+void Clip::sampleEach(ChannelSet set, double* values, SampleOne sampleOne) const
 {
-    if (channels)
-        for (unsigned i = 0; i < count; ++i) values[i] = sampleOne(channels[i]);
+    if (set.channels)
+        for (unsigned i = 0; i < set.count; ++i) values[i] = sampleOne(set.channels[i]);
     else
-        for (unsigned c = 0; c < count; ++c) values[c] = sampleOne(c);
+        for (unsigned i = 0; i < set.count; ++i) values[i] = sampleOne(set.first + i);
 }
 
 void Clip::sample(double time, ClipCursor& cursor, double* values) const
 {
-    sample(time, cursor, nullptr, getNumChannels(), values);
+    sampleAny(time, cursor, ChannelSet{nullptr, 0, getNumChannels()}, values);
 }
 
 void Clip::sample(double time, ClipCursor& cursor, const std::uint32_t* channels, unsigned count,
                   double* values) const
 {
-    time = std::isfinite(time) ? std::min(std::max(time, 0.0), _duration) : 0.0;
-    if (_uniform)
-        sampleUniform(time, channels, count, values);
-    else
-        sampleEach(channels, count, values,
-                   [&](unsigned c) { return sampleKeyed(c, time, cursor.keys[c]); });
+    sampleAny(time, cursor, ChannelSet{channels, 0, count}, values);
 }
 
-void Clip::sampleUniform(double time, const std::uint32_t* channels, unsigned count, double* values) const
+void Clip::sampleRange(double time, ClipCursor& cursor, unsigned firstChannel, unsigned count, double* values) const
+{
+    sampleAny(time, cursor, ChannelSet{nullptr, firstChannel, count}, values);
+}
+
+void Clip::sampleAny(double time, ClipCursor& cursor, ChannelSet set, double* values) const
+{
+    time = std::isfinite(time) ? std::min(std::max(time, 0.0), _duration) : 0.0;
+    if (_uniform)
+        sampleUniform(time, set, values);
+    else
+        sampleEach(set, values, [&](unsigned c) { return sampleKeyed(c, time, cursor.keys[c]); });
+}
+
+void Clip::sampleUniform(double time, ChannelSet set, double* values) const
 {
     const unsigned last = _numFrames - 1;
     double position = time * _frameRate; // in frames
@@ -116,14 +154,20 @@ void Clip::sampleUniform(double time, const std::uint32_t* channels, unsigned co
     const double* a = getFrame(i);
     if (i == last || t == 0.0)
     {
-        sampleEach(channels, count, values, [a](unsigned c) { return a[c]; });
+        if (set.channels)
+            sampleEach(set, values, [a](unsigned c) { return a[c]; });
+        else
+            std::copy(a + set.first, a + set.first + set.count, values);
         return;
     }
-    const double* before = getFrame(i > 0 ? i - 1 : 0);
     const double* b = getFrame(i + 1);
+    if (!set.channels && isLinearRange(set.first, set.count) &&
+        lerpRange(a + set.first, b + set.first, _angularMask.data() + set.first, t, set.count, values))
+        return;
+    const double* before = getFrame(i > 0 ? i - 1 : 0);
     const double* after = getFrame(std::min(i + 2, last));
     const Kernel* kernels = _kernels.data();
-    sampleEach(channels, count, values, [=](unsigned c) {
+    sampleEach(set, values, [=](unsigned c) {
         // Motion capture is all angular-linear (and linear for the root's travel): those inline, the rest call.
         const Kernel kernel = kernels[c];
         if (kernel == Kernel::LinearAngular) return a[c] + t * shortestDelta(b[c] - a[c]);

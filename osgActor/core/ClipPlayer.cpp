@@ -154,8 +154,26 @@ void ClipPlayer::bindSelection(const ActorDefinition& definition, std::vector<in
         binding->drivenDofs.push_back(dof);
         binding->drivenAtFullWeight = binding->drivenAtFullWeight && weight >= 1.0;
     }
+    findRuns(*binding);
     _binding = std::move(binding);
     _boundSelectionVersion = getSelectionVersion();
+}
+
+void ClipPlayer::findRuns(ClipBinding& binding)
+{
+    const std::vector<std::uint32_t>& channels = binding.drivenChannels;
+    const std::vector<std::uint32_t>& dofs = binding.drivenDofs;
+    for (std::uint32_t i = 0; i < channels.size(); ++i)
+    {
+        ClipBinding::Run* last = binding.runs.empty() ? nullptr : &binding.runs.back();
+        if (last && channels[i] == last->firstChannel + last->count && dofs[i] == last->firstDof + last->count)
+            ++last->count;
+        else
+            binding.runs.push_back(ClipBinding::Run{channels[i], dofs[i], 1});
+    }
+    // A run costs a call and a frame lookup: below a few channels per run the per-channel path is faster.
+    constexpr std::size_t kMinChannelsPerRun = 4;
+    if (binding.runs.size() * kMinChannelsPerRun > channels.size()) binding.runs.clear();
 }
 
 void ClipPlayer::writeDrivenDofs(ActorPose& pose, const double* values) const
@@ -336,6 +354,17 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
     }
     if (_fade <= 0.0) return;
     const double clipTime = clipTimeAt(_playTime);
+    if (_rootJoint < 0 && !_binding->runs.empty() && _binding->drivenAtFullWeight && getWeight() * _fade >= 1.0)
+    {
+        // The common case, one clip driving the skeleton it was made for: sample and write a run at a time.
+        for (const ClipBinding::Run& run : _binding->runs)
+        {
+            double* values = drivenValuesScratch(run.count);
+            _clip->sampleRange(clipTime, _cursor, run.firstChannel, run.count, values);
+            target.pose.setDofRange(run.firstDof, values, run.count);
+        }
+        return;
+    }
     const std::vector<std::uint32_t>& driven = _binding->drivenChannels;
     const unsigned numDriven = static_cast<unsigned>(driven.size());
     double* values = drivenValuesScratch(numDriven);

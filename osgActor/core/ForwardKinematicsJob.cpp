@@ -5,17 +5,10 @@
 #include <osgActor/core/ForwardKinematicsJob>
 #include <osgActor/core/SinCos>
 
+#include "HotPath.h"
+
 #include <cmath>
 #include <cstring>
-
-// Not in sanitizer builds: the clones' IFUNC resolver runs while the library is relocated, before the sanitizer's
-// runtime is set up, and the instrumented resolver crashes there (ThreadSanitizer: SIGSEGV in _dl_relocate_object).
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__SANITIZE_THREAD__) &&             \
-    !defined(__SANITIZE_ADDRESS__)
-#define OSGACTOR_HOT_PATH __attribute__((target_clones("avx2,fma", "default")))
-#else
-#define OSGACTOR_HOT_PATH
-#endif
 
 namespace osgActor {
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 using namespace osgActor;
@@ -193,6 +194,50 @@ TEST(ActorPose, RefusesBadLocalMatrixTargets)
     pose.setDof(3, 1.0);
     pose.updateMatrices();
     EXPECT_NE(pose.getLocalMatrix(1), glm::dmat4(1.0)) << "still its own matrices";
+}
+
+TEST(ActorPose, ARangeWriteFollowsTheRulesOfSetDof)
+{
+    ActorPose pose(makeArm());
+    pose.updateMatrices();
+    // DOFs 3..6: elbow.rx in [0, 2.5], wrist.rx, wrist.ry, slider.tx in [-0.1, 0.1].
+    const double values[] = {3.0, kNaN, 0.2, 0.5};
+    EXPECT_EQ(pose.setDofRange(3, values, 4), 1u) << "the NaN is refused";
+    EXPECT_EQ(pose.getDof(3), 2.5) << "clamped";
+    EXPECT_EQ(pose.getDof(4), 0.0) << "the refused value keeps the old one";
+    EXPECT_EQ(pose.getDof(5), 0.2);
+    EXPECT_EQ(pose.getDof(6), 0.1) << "clamped";
+    EXPECT_FALSE(pose.isJointDirty(0)) << "the shoulder was not written";
+    EXPECT_TRUE(pose.isJointDirty(1));
+    EXPECT_TRUE(pose.isJointDirty(2));
+    EXPECT_FALSE(pose.isJointDirty(3)) << "the hand has no DOF";
+    EXPECT_TRUE(pose.isJointDirty(4));
+    pose.updateMatrices();
+    const double same[] = {2.5, 0.0, 0.2, 0.1};
+    EXPECT_EQ(pose.setDofRange(3, same, 4), 0u);
+    EXPECT_FALSE(pose.hasDirtyJoints()) << "values already held mark nothing";
+    const double inf[] = {kInf};
+    EXPECT_EQ(pose.setDofRange(0, inf, 1), 1u);
+    EXPECT_EQ(pose.setDofRange(5, values, 3), 3u) << "past the end: all refused";
+    EXPECT_EQ(pose.getDof(5), 0.2);
+    EXPECT_FALSE(pose.hasDirtyJoints());
+}
+
+TEST(ActorPose, ALongRangeWriteMarksOnlyTheJointsThatChanged)
+{
+    // 60 joints of 3 DOFs: 180 DOFs, more than one block of the range write; joint 42 straddles DOF 128.
+    ActorDefinitionBuilder b("snake");
+    b.addJoint("j0").dofs(kRotationDofs);
+    for (unsigned j = 1; j < 60; ++j)
+        b.addJoint("j" + std::to_string(j), "j" + std::to_string(j - 1)).offset(0, 0, 0.1).dofs(kRotationDofs);
+    ActorPose pose(b.build().definition);
+    pose.updateMatrices();
+    std::vector<double> values(pose.getDofs());
+    values[128] = 0.5; // joint 42's third DOF
+    values[10] = 0.25; // joint 3
+    EXPECT_EQ(pose.setDofRange(0, values.data(), 180), 0u);
+    for (unsigned j = 0; j < 60; ++j) EXPECT_EQ(pose.isJointDirty(j), j == 42 || j == 3) << "joint " << j;
+    EXPECT_EQ(pose.getDofs(), values);
 }
 
 TEST(ActorPose, ResetRestoresDefaults)

@@ -169,3 +169,44 @@ TEST(Clip, CursorsFollowTimeBackwardsAndForwards)
         EXPECT_NEAR(value, expected, 1e-12) << "t = " << t;
     }
 }
+
+TEST(Clip, SamplesARangeOfChannelsAsEachOnItsOwn)
+{
+    // Five channels of a uniform clip: a translation, two rotations (one wrapping through +-180 degrees between
+    // frames 1 and 2), a stepped and a cubic one. A range of linear channels takes the vectorized path, the others
+    // the per-channel one; all must agree with sampling every channel.
+    ClipBuilder b("mixed");
+    b.addChannel("hips.tx");
+    b.addChannel("hips.rz");
+    b.addChannel("neck.rz");
+    b.addChannel("neck.rx", Interpolation::Step);
+    b.addChannel("neck.ry", Interpolation::Cubic);
+    const double d = kPi / 180.0;
+    b.setFrames(10.0, {0.0, 10 * d, 100 * d, 1.0, 0.0,   //
+                       1.0, 20 * d, 170 * d, 2.0, 1.0,    //
+                       3.0, 40 * d, -170 * d, 3.0, 4.0,   //
+                       6.0, 30 * d, -160 * d, 4.0, 9.0});
+    const ClipPtr clip = b.build().clip;
+    ASSERT_TRUE(clip);
+    ClipCursor cursor;
+    clip->initCursor(cursor);
+    for (double time = 0.0; time <= 0.3; time += 0.0125)
+    {
+        double all[5], range[5];
+        clip->sample(time, cursor, all);
+        for (unsigned first = 0; first < 5; ++first)
+            for (unsigned count = 1; first + count <= 5; ++count)
+            {
+                clip->sampleRange(time, cursor, first, count, range);
+                for (unsigned i = 0; i < count; ++i)
+                    EXPECT_EQ(range[i], all[first + i]) << "t " << time << ", channel " << first + i;
+            }
+    }
+    // The wrap itself: halfway between 170 and -170 degrees is 180, the short way.
+    double wrapped = 0.0;
+    clip->sampleRange(0.15, cursor, 2, 1, &wrapped);
+    EXPECT_NEAR(std::cos(wrapped), -1.0, 1e-12);
+    double slide = 0.0;
+    clip->sampleRange(0.15, cursor, 0, 1, &slide);
+    EXPECT_DOUBLE_EQ(slide, 2.0);
+}

@@ -11,6 +11,10 @@
 #include <glm/ext/scalar_constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include <cmath>
+#include <string>
+#include <vector>
+
 using namespace osgActor;
 using namespace osgActor::test;
 
@@ -228,4 +232,54 @@ TEST(ClipPlayer, PutsTheSwayInThePostTransformWhenAsked)
     // At 1.5 s the hips are at (1.5, -0.1): the path (midpoint of 1 s and 2 s) is (1.5, 0), the sway -0.1.
     EXPECT_TRUE(vectorsNear(split.transforms.preTranslation, glm::dvec3(1.5, 0, 0), 1e-12));
     EXPECT_TRUE(vectorsNear(split.transforms.postTranslation, glm::dvec3(0, -0.1, 0), 1e-12));
+}
+
+TEST(ClipPlayer, WritesRunsOfChannelsAsItWritesThemOneByOne)
+{
+    // A clip made for the skeleton (channels in DOF order: one run, sampled and written in bulk) and the same
+    // motion with its channels reversed (no run: channel by channel) must pose two actors alike, clamps, a wrap
+    // through 180 degrees and a selection that splits the run included.
+    ActorDefinitionBuilder b("chain");
+    b.addJoint("j0").dofs(kRotationDofs).limits(Dof::RY, -0.5, 0.5);
+    for (unsigned j = 1; j < 12; ++j)
+        b.addJoint("j" + std::to_string(j), "j" + std::to_string(j - 1)).offset(0, 0, 0.2).dofs(kRotationDofs);
+    const ActorDefinitionPtr definition = b.build().definition;
+    const unsigned numDofs = definition->getNumDofs();
+    const unsigned numFrames = 8;
+    std::vector<double> frames(numFrames * numDofs);
+    for (unsigned f = 0; f < numFrames; ++f)
+        for (unsigned d = 0; d < numDofs; ++d) frames[f * numDofs + d] = std::sin(0.7 * f + 1.3 * d) * 2.0;
+    frames[3 * numDofs + 7] = 3.0; // a wrap from about 172 to about -172 degrees between frames 3 and 4
+    frames[4 * numDofs + 7] = -3.0;
+    ClipBuilder inOrder("inOrder"), reversed("reversed");
+    for (unsigned d = 0; d < numDofs; ++d) inOrder.addChannel(definition->getDofName(d));
+    for (unsigned d = numDofs; d-- > 0;) reversed.addChannel(definition->getDofName(d));
+    std::vector<double> reversedFrames(frames.size());
+    for (unsigned f = 0; f < numFrames; ++f)
+        for (unsigned d = 0; d < numDofs; ++d) reversedFrames[f * numDofs + (numDofs - 1 - d)] = frames[f * numDofs + d];
+    inOrder.setFrames(30.0, frames);
+    reversed.setFrames(30.0, reversedFrames);
+
+    for (bool splitRun : {false, true})
+    {
+        Rig bulk(definition), oneByOne(definition);
+        auto bulkPlayer = std::make_shared<ClipPlayer>(inOrder.build().clip);
+        auto onePlayer = std::make_shared<ClipPlayer>(reversed.build().clip);
+        for (const auto& player : {bulkPlayer, onePlayer})
+        {
+            player->setPlayMode(PlayMode::Loop);
+            player->play();
+            if (splitRun) // every joint but j5 and j6: two runs
+                player->setSelection(DofSelection::joints(
+                    *definition, {"j0", "j1", "j2", "j3", "j4", "j7", "j8", "j9", "j10", "j11"}, false));
+        }
+        for (int frame = 0; frame < 20; ++frame)
+        {
+            bulk.run({bulkPlayer}, 1.0 / 45.0); // between the clip's frames as often as on them
+            oneByOne.run({onePlayer}, 1.0 / 45.0);
+            ASSERT_EQ(bulk.pose.getDofs(), oneByOne.pose.getDofs()) << "frame " << frame;
+        }
+        EXPECT_LE(bulk.dof("j0.ry"), 0.5) << "clamped to its limit";
+        EXPECT_EQ(bulk.dof("j6.rx") == 0.0, splitRun) << "driven only inside the selection";
+    }
 }
