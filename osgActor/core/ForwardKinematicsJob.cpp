@@ -16,25 +16,41 @@ namespace {
 
 #define OSGACTOR_INLINE inline __attribute__((always_inline))
 
-/** A 3x3 rotation, c[column][row]. */
+// Columns pass by value between always-inline functions only, so the warning that a 32-byte vector argument changes
+// the ABI without AVX (the baseline clone) concerns no real call.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+/** Four doubles as one value: a matrix column. GCC's vector extension, so the same code is 4 wide in the AVX2 clone
+  * and two SSE2 halves in the baseline one. */
+typedef double Column __attribute__((vector_size(32)));
+/** The same at double alignment, for loads and stores of matrices wherever they are (a node's matrix). */
+typedef double UnalignedColumn __attribute__((vector_size(32), aligned(8)));
+
+OSGACTOR_INLINE Column loadColumn(const double* p) { return *reinterpret_cast<const UnalignedColumn*>(p); }
+OSGACTOR_INLINE void storeColumn(double* p, Column c) { *reinterpret_cast<UnalignedColumn*>(p) = c; }
+
+/** A 3x3 rotation as three columns (x, y, z, 0): each column is one vector. */
 struct Rotation3
 {
-    double c[3][3];
+    Column c[3];
 };
 
+/** The unit column along an axis. */
+template <unsigned Axis>
+OSGACTOR_INLINE Column unitColumn()
+{
+    return Column{Axis == 0 ? 1.0 : 0.0, Axis == 1 ? 1.0 : 0.0, Axis == 2 ? 1.0 : 0.0, 0.0};
+}
+
 /** m = R_Axis(angle), from the angle's sine and cosine. Column I, row J of an axis rotation: X mixes (Y, Z),
-  * Y mixes (Z, X), Z mixes (X, Y). The axis is a template argument so every index is a constant and the matrix
-  * stays in registers. */
+  * Y mixes (Z, X), Z mixes (X, Y). The axis is a template argument so every index is a constant. */
 template <unsigned Axis>
 OSGACTOR_INLINE void setAxisRotation(Rotation3& m, double s, double c)
 {
     constexpr unsigned i = (Axis + 1) % 3, j = (Axis + 2) % 3;
-    for (unsigned col = 0; col < 3; ++col)
-        for (unsigned row = 0; row < 3; ++row) m.c[col][row] = col == row ? 1.0 : 0.0;
-    m.c[i][i] = c;
-    m.c[i][j] = s;
-    m.c[j][i] = -s;
-    m.c[j][j] = c;
+    m.c[Axis] = unitColumn<Axis>();
+    m.c[i] = c * unitColumn<i>() + s * unitColumn<j>();
+    m.c[j] = -s * unitColumn<i>() + c * unitColumn<j>();
 }
 
 /** m = m * R_Axis(angle): right-multiplying by an axis rotation mixes two columns only. */
@@ -42,12 +58,9 @@ template <unsigned Axis>
 OSGACTOR_INLINE void postRotateAxis(Rotation3& m, double s, double c)
 {
     constexpr unsigned i = (Axis + 1) % 3, j = (Axis + 2) % 3;
-    for (unsigned row = 0; row < 3; ++row)
-    {
-        const double ci = m.c[i][row], cj = m.c[j][row];
-        m.c[i][row] = c * ci + s * cj;
-        m.c[j][row] = -s * ci + c * cj;
-    }
+    const Column ci = m.c[i], cj = m.c[j];
+    m.c[i] = c * ci + s * cj;
+    m.c[j] = -s * ci + c * cj;
 }
 
 /** out = a * b for affine matrices stored as dmat4 (16 doubles, column-major); out may not alias a or b. Written
@@ -119,39 +132,31 @@ OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* do
     composeRotation<Sequence>(rotation, trig);
 
     // The translation DOFs, slid along the rotated axes (the paper) or in the offset frame (mocap).
-    double slide[3] = {0.0, 0.0, 0.0};
+    Column slide = {0.0, 0.0, 0.0, 0.0};
     if (k.hasTranslation)
     {
         double t[3];
         for (unsigned axis = 0; axis < 3; ++axis) t[axis] = k.translationDof[axis] >= 0 ? dofs[k.translationDof[axis]] : 0.0;
-        for (unsigned row = 0; row < 3; ++row)
-            slide[row] = k.translationMode == TranslationMode::AfterRotation
-                             ? rotation.c[0][row] * t[0] + rotation.c[1][row] * t[1] + rotation.c[2][row] * t[2]
-                             : t[row];
+        slide = k.translationMode == TranslationMode::AfterRotation
+                    ? rotation.c[0] * t[0] + rotation.c[1] * t[1] + rotation.c[2] * t[2]
+                    : Column{t[0], t[1], t[2], 0.0};
     }
 
-    // skl_m = offset_m * [rotation | slide].
+    // skl_m = offset_m * [rotation | slide]. Columns of the rotation end in 0, the offset's translation in 1.
     const double* offset = &k.offset[0][0];
     if (k.offsetIsTranslation)
     {
-        for (unsigned col = 0; col < 3; ++col)
-        {
-            for (unsigned row = 0; row < 3; ++row) out[col * 4 + row] = rotation.c[col][row];
-            out[col * 4 + 3] = 0.0;
-        }
-        for (unsigned row = 0; row < 3; ++row) out[12 + row] = slide[row] + offset[12 + row];
-        out[15] = 1.0;
+        for (unsigned col = 0; col < 3; ++col) storeColumn(out + 4 * col, rotation.c[col]);
+        storeColumn(out + 12, slide + loadColumn(offset + 12));
         return;
     }
-    double articulation[16];
+    const Column o0 = loadColumn(offset), o1 = loadColumn(offset + 4), o2 = loadColumn(offset + 8);
     for (unsigned col = 0; col < 3; ++col)
     {
-        for (unsigned row = 0; row < 3; ++row) articulation[col * 4 + row] = rotation.c[col][row];
-        articulation[col * 4 + 3] = 0.0;
+        const Column r = rotation.c[col];
+        storeColumn(out + 4 * col, o0 * r[0] + o1 * r[1] + o2 * r[2]);
     }
-    for (unsigned row = 0; row < 3; ++row) articulation[12 + row] = slide[row];
-    articulation[15] = 1.0;
-    multiplyAffineInto(offset, articulation, out);
+    storeColumn(out + 12, o0 * slide[0] + o1 * slide[1] + o2 * slide[2] + loadColumn(offset + 12));
 }
 
 /** buildJointMatrix for the joint's own rotation sequence: one jump to code specialised for it. */
