@@ -5,6 +5,7 @@
 #include <osgActor/core/SinCos>
 
 #include <cmath>
+#include <cstdint>
 
 namespace osgActor {
 
@@ -52,13 +53,14 @@ OSGACTOR_INLINE void reducedSinCos(double x, double& sine, double& cosine)
 // The loops as a macro, pasted into each variant: a function inlined into a target("avx2") function is still
 // vectorized for its own (baseline) target.
 #define OSGACTOR_SINCOS_LOOPS                                                                                       \
-    double numLarge = 0.0; /* a double, so the count vectorizes with the rest */                                    \
+    /* As wide as the angles, so it vectorizes with them (a sum of doubles would be added lane by lane). */          \
+    std::uint64_t anyLarge = 0;                                                                                     \
     for (unsigned i = 0; i < count; ++i)                                                                            \
     {                                                                                                               \
         reducedSinCos(angles[i], sines[i], cosines[i]);                                                             \
-        numLarge += std::fabs(angles[i]) > kLargestFastAngle ? 1.0 : 0.0;                                           \
+        anyLarge |= std::fabs(angles[i]) > kLargestFastAngle ? 1u : 0u;                                             \
     }                                                                                                               \
-    for (unsigned i = 0; numLarge > 0.0 && i < count; ++i)                                                          \
+    for (unsigned i = 0; anyLarge != 0 && i < count; ++i)                                                           \
         if (std::fabs(angles[i]) > kLargestFastAngle)                                                               \
         {                                                                                                           \
             sines[i] = std::sin(angles[i]);                                                                         \
