@@ -36,14 +36,18 @@ bool LocalMatrices::redirect(const std::vector<double*>& targets)
     for (unsigned j = 0; j < size(); ++j)
         if (targets[j] != _targets[j]) std::memcpy(targets[j], _targets[j], sizeof(glm::dmat4));
     _targets = targets;
+    _redirected = true;
+    std::vector<glm::dmat4>().swap(_own);
     return true;
 }
 
 void LocalMatrices::own()
 {
     if (isOwn()) return;
+    _own.resize(size());
     for (unsigned j = 0; j < size(); ++j) std::memcpy(&_own[j][0][0], _targets[j], sizeof(glm::dmat4));
     for (unsigned j = 0; j < size(); ++j) _targets[j] = &_own[j][0][0];
+    _redirected = false;
 }
 
 void LocalMatrices::copyValuesFrom(const double* const* sources)
