@@ -7,6 +7,7 @@
 #include <osg/MatrixTransform>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 using namespace osgActor;
@@ -304,4 +305,20 @@ TEST(ActorNode, ControllersDriveDofsAndTransformsFromTheFrameStamp)
     EXPECT_FALSE(actor->removeController(spin));
     runUpdate(*actor, 90);
     EXPECT_EQ(actor->getDof(0u), 1.0) << "no controller, no motion";
+}
+
+TEST(SkeletonNode, MatricesStartACacheLine)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    osg::ref_ptr<ActorNode> clone = osg::clone(actor.get(), osg::CopyOp::DEEP_COPY_NODES);
+    osg::ref_ptr<SkeletonNode> alone = new SkeletonNode(0, "alone");
+    std::vector<const SkeletonNode*> nodes{alone.get()};
+    for (unsigned j = 0; j < actor->getNumSkeletonNodes(); ++j)
+    {
+        nodes.push_back(actor->getSkeletonNode(j));
+        nodes.push_back(clone->getSkeletonNode(j));
+    }
+    for (const SkeletonNode* node : nodes)
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(node->getMatrix().ptr()) % 64, 0u) << node->getName();
+    EXPECT_NE(clone->getSkeletonNode(1u), actor->getSkeletonNode(1u)) << "the clone has nodes of its own";
 }
