@@ -63,16 +63,16 @@ OSGACTOR_INLINE void postRotateAxis(Rotation3& m, double s, double c)
     m.c[j] = -s * ci + c * cj;
 }
 
-/** out = a * b for affine matrices stored as dmat4 (16 doubles, column-major); out may not alias a or b. Written
-  * as the full product, four columns of four rows, because that is what vectorizes (b's bottom row 0 0 0 1 keeps
-  * out's bottom row exact). */
+/** out = a * b for affine matrices stored as dmat4 (16 doubles, column-major; bottom rows 0 0 0 1); out may not
+  * alias a or b. Column by column: out's column k is a's columns weighted by b's column k, whose bottom element is
+  * known (0, or 1 for the translation), so each column costs three broadcasts and three multiply-adds. */
 OSGACTOR_INLINE void multiplyAffineInto(const double* __restrict a, const double* __restrict b,
                                         double* __restrict out)
 {
-    for (unsigned col = 0; col < 4; ++col)
-        for (unsigned row = 0; row < 4; ++row)
-            out[col * 4 + row] = a[row] * b[col * 4] + a[4 + row] * b[col * 4 + 1] + a[8 + row] * b[col * 4 + 2] +
-                                 a[12 + row] * b[col * 4 + 3];
+    const Column a0 = loadColumn(a), a1 = loadColumn(a + 4), a2 = loadColumn(a + 8), a3 = loadColumn(a + 12);
+    for (unsigned col = 0; col < 3; ++col)
+        storeColumn(out + 4 * col, a0 * b[4 * col] + a1 * b[4 * col + 1] + a2 * b[4 * col + 2]);
+    storeColumn(out + 12, a0 * b[12] + a1 * b[13] + a2 * b[14] + a3);
 }
 
 /** The axes of a rotation sequence (see rotationSequenceOf), decoded at compile time. */
