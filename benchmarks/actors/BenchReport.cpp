@@ -3,10 +3,14 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <map>
+#include <tuple>
 
 namespace bench {
 
@@ -56,9 +60,12 @@ void SummaryReporter::ReportRuns(const std::vector<Run>& runs)
     for (const Run& run : runs)
     {
         if (run.error_occurred) continue;
+        // With --benchmark_repetitions the summary takes each benchmark's median; the repetitions themselves (and
+        // the other aggregates) only go to the console.
+        if (run.repetitions > 1 && (run.run_type != Run::RT_Aggregate || run.aggregate_name != "median")) continue;
         // Names look like "update/osgActor_all/1000", perhaps followed by "/real_time" or "/iterations:1".
         std::vector<std::string> parts;
-        const std::string name = run.benchmark_name();
+        const std::string name = run.run_name.str();
         for (std::size_t start = 0, slash; start <= name.size(); start = slash + 1)
         {
             slash = name.find('/', start);
@@ -76,14 +83,41 @@ void SummaryReporter::ReportRuns(const std::vector<Run>& runs)
     }
 }
 
-void SummaryReporter::writeSummary() const
+namespace {
+
+/** Where a row goes in the summary: by mode, then N, then system, whatever order the runs came in (random
+  * interleaving shuffles them). */
+int rank(const std::string& name, std::initializer_list<const char*> order)
 {
+    int i = 0;
+    for (const char* known : order)
+    {
+        if (name == known) return i;
+        ++i;
+    }
+    return i;
+}
+
+} // namespace
+
+void SummaryReporter::writeSummary()
+{
+    std::stable_sort(_results.begin(), _results.end(), [](const Result& a, const Result& b) {
+        const auto key = [](const Result& r) {
+            return std::make_tuple(rank(r.mode, {"update", "update_cull", "parallel", "memory"}), r.n,
+                                   rank(r.system, {"osgActor_all", "osgActor_quarter", "osgActor_idle", "osgAnimation",
+                                                   "plainOSG", "osgActor_1thread", "osgActor_2threads"}));
+        };
+        return key(a) < key(b);
+    });
     // The reference of each row: osgAnimation at the same mode and N; for the parallel rows, one thread.
     std::map<std::pair<std::string, long>, double> osgAnimation;
     for (const Result& r : _results)
         if (r.system == "osgAnimation" || r.system == "osgActor_1thread") osgAnimation[{r.mode, r.n}] = r.value;
 
     const std::string dir = outputDirectory();
+    std::error_code error;
+    std::filesystem::create_directories(dir, error); // OSGACTOR_BENCH_OUT may name a folder not made yet
     const std::string csvPath = dir + "/osgactor_bench.csv";
     std::ofstream csv(csvPath);
     csv << "mode,system,n,value,unit,ratio_to_osgAnimation\n";
@@ -107,6 +141,11 @@ void SummaryReporter::writeSummary() const
             std::printf("%-12s %-18s %6ld %9.2f %s\n", r.mode.c_str(), r.system.c_str(), r.n, r.value, unit);
     }
     csv.close();
+    if (!csv)
+    {
+        std::printf("\nresults: could not write %s\n", csvPath.c_str());
+        return;
+    }
     std::printf("\nresults: %s\n", csvPath.c_str());
 
     // The plot: ns per joint against N for each system, update and update+cull side by side, log scales. gnuplot
@@ -142,10 +181,12 @@ void SummaryReporter::writeSummary() const
     gp.close();
     data.close();
     const std::string command = "gnuplot '" + script + "' 2>/dev/null";
-    if (std::system("command -v gnuplot >/dev/null 2>&1") == 0 && std::system(command.c_str()) == 0)
-        std::printf("plot: %s\n", plotPath.c_str());
-    else
+    if (std::system("command -v gnuplot >/dev/null 2>&1") != 0)
         std::printf("plot: not written (gnuplot not installed; scripts/setup-debian.sh installs gnuplot-nox)\n");
+    else if (std::system(command.c_str()) != 0)
+        std::printf("plot: not written (gnuplot failed on %s)\n", script.c_str());
+    else
+        std::printf("plot: %s\n", plotPath.c_str());
 }
 
 } // namespace bench
