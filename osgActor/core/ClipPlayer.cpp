@@ -176,11 +176,13 @@ void ClipPlayer::findRuns(ClipBinding& binding)
     if (binding.runs.size() * kMinChannelsPerRun > channels.size()) binding.runs.clear();
 }
 
+bool ClipPlayer::writesAtFullWeight() const { return _binding->drivenAtFullWeight && getWeight() * _fade >= 1.0; }
+
 void ClipPlayer::writeDrivenDofs(ActorPose& pose, const double* values) const
 {
     const ClipBinding& binding = *_binding;
     const unsigned count = static_cast<unsigned>(binding.drivenDofs.size());
-    if (binding.drivenAtFullWeight && getWeight() * _fade >= 1.0)
+    if (writesAtFullWeight())
     {
         pose.setDofs(binding.drivenDofs.data(), values, count);
         return;
@@ -354,7 +356,7 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
     }
     if (_fade <= 0.0) return;
     const double clipTime = clipTimeAt(_playTime);
-    if (_rootJoint < 0 && !_binding->runs.empty() && _binding->drivenAtFullWeight && getWeight() * _fade >= 1.0)
+    if (_rootJoint < 0 && !_binding->runs.empty() && writesAtFullWeight())
     {
         // The common case, one clip driving the skeleton it was made for: sample and write a run at a time.
         for (const ClipBinding::Run& run : _binding->runs)
