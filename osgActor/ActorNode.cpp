@@ -423,11 +423,7 @@ void ActorNode::updatePose() const
     // Non-const work on behalf of a const query, like osg::Node::getBound() computing its cached bound.
     ActorNode* self = const_cast<ActorNode*>(this);
     self->writeJointMatrices();
-    if (self->_boundsToPropagate)
-    {
-        self->dirtyBound();
-        self->_boundsToPropagate = false;
-    }
+    self->propagateBounds();
 }
 
 osg::Matrixd ActorNode::getJointModelMatrix(unsigned joint) const
@@ -515,11 +511,14 @@ void ActorNode::writeActorMatrix()
         _actorMatrixWritten = true;
         _boundsToPropagate = false;
     }
-    if (_boundsToPropagate)
-    {
-        dirtyBound();
-        _boundsToPropagate = false;
-    }
+    propagateBounds();
+}
+
+void ActorNode::propagateBounds()
+{
+    if (!_boundsToPropagate) return;
+    dirtyBound();
+    _boundsToPropagate = false;
 }
 
 } // namespace osgActor
