@@ -29,6 +29,13 @@ typedef double UnalignedColumn __attribute__((vector_size(32), aligned(8)));
 OSGACTOR_INLINE Column loadColumn(const double* p) { return *reinterpret_cast<const UnalignedColumn*>(p); }
 OSGACTOR_INLINE void storeColumn(double* p, Column c) { *reinterpret_cast<UnalignedColumn*>(p) = c; }
 
+/** x a0 + y a1 + z a2: a point or direction (x, y, z) taken through the three axis columns of a matrix. Every product
+  * of matrices here is columns of this. */
+OSGACTOR_INLINE Column combineColumns(Column a0, Column a1, Column a2, double x, double y, double z)
+{
+    return a0 * x + a1 * y + a2 * z;
+}
+
 /** A 3x3 rotation as three columns (x, y, z, 0): each column is one vector. */
 struct Rotation3
 {
@@ -71,8 +78,8 @@ OSGACTOR_INLINE void multiplyAffineInto(const double* __restrict a, const double
 {
     const Column a0 = loadColumn(a), a1 = loadColumn(a + 4), a2 = loadColumn(a + 8), a3 = loadColumn(a + 12);
     for (unsigned col = 0; col < 3; ++col)
-        storeColumn(out + 4 * col, a0 * b[4 * col] + a1 * b[4 * col + 1] + a2 * b[4 * col + 2]);
-    storeColumn(out + 12, a0 * b[12] + a1 * b[13] + a2 * b[14] + a3);
+        storeColumn(out + 4 * col, combineColumns(a0, a1, a2, b[4 * col], b[4 * col + 1], b[4 * col + 2]));
+    storeColumn(out + 12, combineColumns(a0, a1, a2, b[12], b[13], b[14]) + a3);
 }
 
 /** The axes of a rotation sequence (see rotationSequenceOf), decoded at compile time. */
@@ -136,9 +143,10 @@ OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* do
     if (k.hasTranslation)
     {
         double t[3];
-        for (unsigned axis = 0; axis < 3; ++axis) t[axis] = k.translationDof[axis] >= 0 ? dofs[k.translationDof[axis]] : 0.0;
+        for (unsigned axis = 0; axis < 3; ++axis)
+            t[axis] = k.translationDof[axis] >= 0 ? dofs[k.translationDof[axis]] : 0.0;
         slide = k.translationMode == TranslationMode::AfterRotation
-                    ? rotation.c[0] * t[0] + rotation.c[1] * t[1] + rotation.c[2] * t[2]
+                    ? combineColumns(rotation.c[0], rotation.c[1], rotation.c[2], t[0], t[1], t[2])
                     : Column{t[0], t[1], t[2], 0.0};
     }
 
@@ -154,9 +162,9 @@ OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* do
     for (unsigned col = 0; col < 3; ++col)
     {
         const Column r = rotation.c[col];
-        storeColumn(out + 4 * col, o0 * r[0] + o1 * r[1] + o2 * r[2]);
+        storeColumn(out + 4 * col, combineColumns(o0, o1, o2, r[0], r[1], r[2]));
     }
-    storeColumn(out + 12, o0 * slide[0] + o1 * slide[1] + o2 * slide[2] + loadColumn(offset + 12));
+    storeColumn(out + 12, combineColumns(o0, o1, o2, slide[0], slide[1], slide[2]) + loadColumn(offset + 12));
 }
 
 /** buildJointMatrix for the joint's own rotation sequence: one jump to code specialised for it. */

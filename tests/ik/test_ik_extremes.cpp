@@ -109,13 +109,8 @@ TEST(IkExtremes, HugeFiniteGoalsAndPosesNeverLeaveTheRangeNorGiveNaNErrors)
                 for (unsigned s = 0; s < starts.size(); ++s)
                 {
                     std::vector<double> dofs = starts[s];
-                    IkJob job;
-                    job.definition = walker.get();
-                    job.chain = chain.get();
-                    job.goal = &goals[g];
+                    IkJob job = makeIkJob(*walker, *chain, goals[g], dofs, workspace);
                     job.rootParentModel = rootParentModel(walker, *chain, dofs);
-                    job.dofs = dofs.data();
-                    job.workspace = &workspace;
                     const bool solved = solveIk(job);
                     const std::string where = spec.name + " " + ikSolverName(c.solver) + " iterations " +
                                               std::to_string(iterations) + " goal " + std::to_string(g) + " start " +
@@ -146,12 +141,7 @@ TEST(IkExtremes, AStartPoseBeyondWhatAPoseHoldsIsRefused)
             workspace.resize(*chain);
             IkGoal goal;
             goal.position = glm::dvec3(0.0, 0.0, 1.0);
-            IkJob job;
-            job.definition = walker.get();
-            job.chain = chain.get();
-            job.goal = &goal;
-            job.dofs = dofs.data();
-            job.workspace = &workspace;
+            IkJob job = makeIkJob(*walker, *chain, goal, dofs, workspace);
             EXPECT_FALSE(solveIk(job)) << ikSolverName(solver) << " from " << at.x;
             EXPECT_EQ(dofs, start);
         }

@@ -60,16 +60,11 @@ RandomTargetReport solveRandomTargets(const char* label, const ActorDefinitionPt
             return position + (withOrientation ? angleBetween(effectorOrientation(definition, *chain, pose), goal.orientation) : 0.0);
         };
         const double startError = combinedError(dofs);
-        IkJob job;
-        job.definition = definition.get();
-        job.chain = chain.get();
-        job.goal = &goal;
+        IkJob job = makeIkJob(*definition, *chain, goal, dofs, workspace);
         job.rootParentModel = rootParentModel(definition, *chain, dofs);
         // Every other solve starts from the actor's model matrices rather than computing the chain's own.
         const std::vector<glm::dmat4> startModels = modelMatrices(definition, dofs);
         if (i % 2) job.jointModels = startModels.data();
-        job.dofs = dofs.data();
-        job.workspace = &workspace;
         EXPECT_TRUE(solveIk(job));
         EXPECT_TRUE(withinLimits(*definition, dofs)) << "target " << i;
         if (combinedError(dofs) > startError + 1e-12) ++report.worse;
@@ -99,13 +94,8 @@ IkJob solveOnce(const ActorDefinitionPtr& definition, const IkChainPtr& chain, c
                 std::vector<double>& dofs, IkWorkspace& workspace)
 {
     workspace.resize(*chain);
-    IkJob job;
-    job.definition = definition.get();
-    job.chain = chain.get();
-    job.goal = &goal;
+    IkJob job = makeIkJob(*definition, *chain, goal, dofs, workspace);
     job.rootParentModel = rootParentModel(definition, *chain, dofs);
-    job.dofs = dofs.data();
-    job.workspace = &workspace;
     EXPECT_TRUE(solveIk(job));
     return job;
 }
@@ -145,15 +135,7 @@ TEST(IkJobs, RefuseMissingOrInvalidInputsAndTouchNothing)
     IkGoal goal;
     goal.position = glm::dvec3(0.1, 0.3, 0.2);
 
-    auto makeJob = [&]() {
-        IkJob job;
-        job.definition = leg.get();
-        job.chain = chain.get();
-        job.goal = &goal;
-        job.dofs = dofs.data();
-        job.workspace = &workspace;
-        return job;
-    };
+    auto makeJob = [&]() { return makeIkJob(*leg, *chain, goal, dofs, workspace); };
     auto expectRefused = [&](IkJob job, const char* why) {
         TwoBoneIkJob twoBone;
         static_cast<IkJob&>(twoBone) = job;

@@ -23,23 +23,35 @@ ActorDefinitionPtr makeCockroach()
     return b.build().definition;
 }
 
+/** The leg turning from 0 to 90 degrees over the first second. */
+ClipPtr makeGait()
+{
+    ClipBuilder gait("gait");
+    const unsigned leg = gait.addChannel("leg.rz");
+    gait.addKey(leg, 0.0, 0.0);
+    gait.addKey(leg, 1.0, glm::pi<double>() / 2);
+    return gait.build().clip;
+}
+
+/** The body's path (motion/data/cockroach.csv): (0, 0) to (2, 0) facing +X in the first second, then to (2, 2)
+  * facing +Y. */
+TrajectoryPtr readCockroachPath()
+{
+    return readTrajectoryCsvFile(std::string(OSGACTOR_TEST_SOURCE_DIR) + "/motion/data/cockroach.csv").trajectory;
+}
+
 } // namespace
 
 TEST(ActorMotion, ATrajectoryMovesTheBodyWhileAClipMovesTheLegs)
 {
     osg::ref_ptr<ActorNode> actor = new ActorNode(makeCockroach());
-    ClipBuilder gait("gait");
-    const unsigned leg = gait.addChannel("leg.rz");
-    gait.addKey(leg, 0.0, 0.0);
-    gait.addKey(leg, 1.0, glm::pi<double>() / 2);
     ClipLibraryPtr library = std::make_shared<ClipLibrary>();
-    ASSERT_TRUE(library->addClip(gait.build().clip));
+    ASSERT_TRUE(library->addClip(makeGait()));
     actor->setClipLibrary(library);
 
     auto legs = std::make_shared<ClipPlayer>(actor->getClipLibrary()->getClip("gait"));
     legs->setPlayMode(PlayMode::Once);
-    const TrajectoryPtr path =
-        readTrajectoryCsvFile(std::string(OSGACTOR_TEST_SOURCE_DIR) + "/motion/data/cockroach.csv").trajectory;
+    const TrajectoryPtr path = readCockroachPath();
     ASSERT_TRUE(path);
     actor->addController(std::make_shared<TrajectoryPlayer>(path));
     actor->addController(legs);
@@ -61,15 +73,10 @@ TEST(ActorMotion, PlayersFollowSimulationTimeBackwards)
     // A viewer scrubbing back sends earlier frame stamps: clip and trajectory play heads go back with them, so the
     // actor shows the pose of the time shown.
     osg::ref_ptr<ActorNode> actor = new ActorNode(makeCockroach());
-    ClipBuilder gait("gait");
-    const unsigned leg = gait.addChannel("leg.rz");
-    gait.addKey(leg, 0.0, 0.0);
-    gait.addKey(leg, 1.0, glm::pi<double>() / 2);
-    const TrajectoryPtr path =
-        readTrajectoryCsvFile(std::string(OSGACTOR_TEST_SOURCE_DIR) + "/motion/data/cockroach.csv").trajectory;
+    const TrajectoryPtr path = readCockroachPath();
     ASSERT_TRUE(path);
     actor->addController(std::make_shared<TrajectoryPlayer>(path));
-    auto legs = std::make_shared<ClipPlayer>(gait.build().clip);
+    auto legs = std::make_shared<ClipPlayer>(makeGait());
     legs->setPlayMode(PlayMode::Once);
     actor->addController(legs);
 
