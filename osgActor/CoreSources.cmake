@@ -13,6 +13,7 @@ set(OSGACTOR_CORE_HEADERS
     core/Controller
     core/Dof
     core/ForwardKinematicsJob
+    core/JointBatches
     core/LocalMatrices
     core/SinCos
     core/Trajectory
@@ -41,6 +42,7 @@ set(OSGACTOR_CORE_SOURCES
     core/Controller.cpp
     core/Dof.cpp
     core/ForwardKinematicsJob.cpp
+    core/JointBatches.cpp
     core/LocalMatrices.cpp
     core/SinCos.cpp
     core/Trajectory.cpp

@@ -272,6 +272,7 @@ BuildResult ActorDefinitionBuilder::build() const
         def->_firstDofs.push_back(static_cast<unsigned>(def->_dofJoints.size()));
         def->_jointIndex.emplace(joint.name, i);
     }
+    def->_jointBatches = planJointBatches(def->_kinematics);
     result.definition = def;
     return result;
 }

@@ -9,12 +9,15 @@
 
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 namespace osgActor {
 
 namespace {
 
 #define OSGACTOR_INLINE inline __attribute__((always_inline))
+// The same for a lambda, which takes the attribute without the keyword.
+#define OSGACTOR_INLINE_LAMBDA __attribute__((always_inline))
 
 // Columns pass by value between always-inline functions only, so the warning that a 32-byte vector argument changes
 // the ABI without AVX (the baseline clone) concerns no real call.
@@ -36,36 +39,55 @@ OSGACTOR_INLINE Column combineColumns(Column a0, Column a1, Column a2, double x,
     return a0 * x + a1 * y + a2 * z;
 }
 
-/** A 3x3 rotation as three columns (x, y, z, 0): each column is one vector. */
-struct Rotation3
+/** Four joints' 3-vectors, one joint per lane: x holds the four x components, and so on. */
+struct LaneVector3
 {
-    Column c[3];
+    Column x, y, z;
 };
 
-/** The unit column along an axis. */
-template <unsigned Axis>
-OSGACTOR_INLINE Column unitColumn()
+OSGACTOR_INLINE LaneVector3 operator*(Column s, const LaneVector3& v) { return {s * v.x, s * v.y, s * v.z}; }
+OSGACTOR_INLINE LaneVector3 operator+(const LaneVector3& a, const LaneVector3& b)
 {
-    return Column{Axis == 0 ? 1.0 : 0.0, Axis == 1 ? 1.0 : 0.0, Axis == 2 ? 1.0 : 0.0, 0.0};
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
 }
 
-/** m = R_Axis(angle), from the angle's sine and cosine. Column I, row J of an axis rotation: X mixes (Y, Z),
-  * Y mixes (Z, X), Z mixes (X, Y). The axis is a template argument so every index is a constant. */
-template <unsigned Axis>
-OSGACTOR_INLINE void setAxisRotation(Rotation3& m, double s, double c)
+/** A 3x3 rotation as three columns. Vector3 is a Column (x, y, z, 0) for one joint, or a LaneVector3 for four
+  * joints at once; the products below are written once for both. */
+template <class Vector3>
+struct Rotation3
+{
+    Vector3 c[3];
+};
+
+/** The unit vector along an axis, for one joint or for every lane. */
+template <unsigned Axis, class Vector3>
+OSGACTOR_INLINE Vector3 unitVector()
+{
+    constexpr double x = Axis == 0 ? 1.0 : 0.0, y = Axis == 1 ? 1.0 : 0.0, z = Axis == 2 ? 1.0 : 0.0;
+    if constexpr (std::is_same_v<Vector3, LaneVector3>)
+        return LaneVector3{Column{x, x, x, x}, Column{y, y, y, y}, Column{z, z, z, z}};
+    else
+        return Column{x, y, z, 0.0};
+}
+
+/** m = R_Axis(angle), from the angle's sine and cosine (a double, or a Column of one per lane). Column I, row J of
+  * an axis rotation: X mixes (Y, Z), Y mixes (Z, X), Z mixes (X, Y). The axis is a template argument so every index
+  * is a constant, and the zeros and ones of the unit vectors fold away. */
+template <unsigned Axis, class Vector3, class Scalar>
+OSGACTOR_INLINE void setAxisRotation(Rotation3<Vector3>& m, Scalar s, Scalar c)
 {
     constexpr unsigned i = (Axis + 1) % 3, j = (Axis + 2) % 3;
-    m.c[Axis] = unitColumn<Axis>();
-    m.c[i] = c * unitColumn<i>() + s * unitColumn<j>();
-    m.c[j] = -s * unitColumn<i>() + c * unitColumn<j>();
+    m.c[Axis] = unitVector<Axis, Vector3>();
+    m.c[i] = c * unitVector<i, Vector3>() + s * unitVector<j, Vector3>();
+    m.c[j] = -s * unitVector<i, Vector3>() + c * unitVector<j, Vector3>();
 }
 
 /** m = m * R_Axis(angle): right-multiplying by an axis rotation mixes two columns only. */
-template <unsigned Axis>
-OSGACTOR_INLINE void postRotateAxis(Rotation3& m, double s, double c)
+template <unsigned Axis, class Vector3, class Scalar>
+OSGACTOR_INLINE void postRotateAxis(Rotation3<Vector3>& m, Scalar s, Scalar c)
 {
     constexpr unsigned i = (Axis + 1) % 3, j = (Axis + 2) % 3;
-    const Column ci = m.c[i], cj = m.c[j];
+    const Vector3 ci = m.c[i], cj = m.c[j];
     m.c[i] = c * ci + s * cj;
     m.c[j] = -s * ci + c * cj;
 }
@@ -93,6 +115,29 @@ struct SequenceAxes
     static constexpr unsigned third = code % 3;
 };
 
+/** Calls visit(std::integral_constant<unsigned, S>()) for the rotation sequence S = sequence: one jump to code
+  * specialised for it. */
+template <class Visitor>
+OSGACTOR_INLINE void withRotationSequence(unsigned sequence, Visitor&& visit)
+{
+    switch (sequence)
+    {
+#define OSGACTOR_SEQUENCE(S)                                                                                           \
+    case S: visit(std::integral_constant<unsigned, S>()); return;
+#define OSGACTOR_SEQUENCES_FROM(S)                                                                                     \
+    OSGACTOR_SEQUENCE(S) OSGACTOR_SEQUENCE(S + 1) OSGACTOR_SEQUENCE(S + 2) OSGACTOR_SEQUENCE(S + 3)                   \
+    OSGACTOR_SEQUENCE(S + 4) OSGACTOR_SEQUENCE(S + 5) OSGACTOR_SEQUENCE(S + 6) OSGACTOR_SEQUENCE(S + 7)
+        OSGACTOR_SEQUENCES_FROM(0)
+        OSGACTOR_SEQUENCES_FROM(8)
+        OSGACTOR_SEQUENCES_FROM(16)
+        OSGACTOR_SEQUENCES_FROM(24)
+        OSGACTOR_SEQUENCES_FROM(32)
+#undef OSGACTOR_SEQUENCES_FROM
+#undef OSGACTOR_SEQUENCE
+    }
+    static_assert(kNumRotationSequences == 40, "one case per rotation sequence above");
+}
+
 /** A joint's sines and cosines read from arrays indexed by DOF (the per-frame path: one batch for the whole pose). */
 struct TrigByDof
 {
@@ -112,15 +157,29 @@ struct TrigInOrder
     double cosine(unsigned r) const { return cosines[r]; }
 };
 
+/** A batch's sines and cosines read from arrays indexed by DOF, gathered into one lane per joint. */
+struct TrigByLane
+{
+    const JointBatch& batch;
+    const double* sines;
+    const double* cosines;
+    OSGACTOR_INLINE static Column gather(const double* values, const std::uint32_t* dof)
+    {
+        return Column{values[dof[0]], values[dof[1]], values[dof[2]], values[dof[3]]};
+    }
+    OSGACTOR_INLINE Column sine(unsigned r) const { return gather(sines, batch.angleDofs[r]); }
+    OSGACTOR_INLINE Column cosine(unsigned r) const { return gather(cosines, batch.angleDofs[r]); }
+};
+
 /** m = R_a1 * R_a2 * R_a3 for a sequence known at compile time: every index is a constant, and the identity's
   * zeros and ones fold away (this file is built with -ffinite-math-only -fno-signed-zeros, which lets 0 * x fold;
   * FK sees finite values only, since the pose refuses NaN and infinity and definitions are validated). */
-template <unsigned Sequence, class Trig>
-OSGACTOR_INLINE void composeRotation(Rotation3& m, const Trig& trig)
+template <unsigned Sequence, class Vector3, class Trig>
+OSGACTOR_INLINE void composeRotation(Rotation3<Vector3>& m, const Trig& trig)
 {
     using Axes = SequenceAxes<Sequence>;
     if constexpr (Axes::count == 0)
-        setAxisRotation<0>(m, 0.0, 1.0);
+        m = Rotation3<Vector3>{{unitVector<0, Vector3>(), unitVector<1, Vector3>(), unitVector<2, Vector3>()}};
     else
     {
         setAxisRotation<Axes::first>(m, trig.sine(0), trig.cosine(0));
@@ -135,7 +194,7 @@ template <unsigned Sequence, class Trig>
 OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* dofs, const Trig& trig,
                                       double* __restrict out)
 {
-    Rotation3 rotation;
+    Rotation3<Column> rotation;
     composeRotation<Sequence>(rotation, trig);
 
     // The translation DOFs, slid along the rotated axes (the paper) or in the offset frame (mocap).
@@ -167,59 +226,124 @@ OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* do
     storeColumn(out + 12, combineColumns(o0, o1, o2, slide[0], slide[1], slide[2]) + loadColumn(offset + 12));
 }
 
-/** buildJointMatrix for the joint's own rotation sequence: one jump to code specialised for it. */
+/** buildJointMatrix for the joint's own rotation sequence. */
 template <class Trig>
 OSGACTOR_INLINE void buildJointMatrixDispatched(const JointKinematics& k, const double* dofs, const Trig& trig,
                                                 double* __restrict out)
 {
-    switch (k.rotationSequence)
-    {
-#define OSGACTOR_SEQUENCE(S)                                                                                           \
-    case S: buildJointMatrix<S>(k, dofs, trig, out); return;
-#define OSGACTOR_SEQUENCES_FROM(S)                                                                                     \
-    OSGACTOR_SEQUENCE(S) OSGACTOR_SEQUENCE(S + 1) OSGACTOR_SEQUENCE(S + 2) OSGACTOR_SEQUENCE(S + 3)                   \
-    OSGACTOR_SEQUENCE(S + 4) OSGACTOR_SEQUENCE(S + 5) OSGACTOR_SEQUENCE(S + 6) OSGACTOR_SEQUENCE(S + 7)
-        OSGACTOR_SEQUENCES_FROM(0)
-        OSGACTOR_SEQUENCES_FROM(8)
-        OSGACTOR_SEQUENCES_FROM(16)
-        OSGACTOR_SEQUENCES_FROM(24)
-        OSGACTOR_SEQUENCES_FROM(32)
-#undef OSGACTOR_SEQUENCES_FROM
-#undef OSGACTOR_SEQUENCE
-    }
-    static_assert(kNumRotationSequences == 40, "one case per rotation sequence above");
+    withRotationSequence(k.rotationSequence,
+                         [&](auto sequence) OSGACTOR_INLINE_LAMBDA { buildJointMatrix<decltype(sequence)::value>(k, dofs, trig, out); });
 }
 
-/** Step 2 of the job: one pass over the joints, parents first. Returns how many local matrices it rebuilt. Every
-  * buffer is read into a local first: the flags are bytes, which may alias anything, so fields of the job would be
-  * reloaded after each flag store. */
-OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, const double* sines, const double* cosines)
+/** Shuffle masks: lane indices into the 8 lanes of two Columns. */
+typedef long long ColumnLanes __attribute__((vector_size(32)));
+
+/** The four joints' own columns from one LaneVector3: result[l] = (v.x[l], v.y[l], v.z[l], 0), a 4x4 transpose
+  * with a zero row. */
+OSGACTOR_INLINE void transposeLanes(const LaneVector3& v, Column result[JointBatch::kWidth])
 {
-    const unsigned numJoints = job.definition->getNumJoints();
+    const Column zero = {0.0, 0.0, 0.0, 0.0};
+    const Column xy02 = __builtin_shuffle(v.x, v.y, ColumnLanes{0, 4, 2, 6});
+    const Column xy13 = __builtin_shuffle(v.x, v.y, ColumnLanes{1, 5, 3, 7});
+    const Column z02 = __builtin_shuffle(v.z, zero, ColumnLanes{0, 4, 2, 6});
+    const Column z13 = __builtin_shuffle(v.z, zero, ColumnLanes{1, 5, 3, 7});
+    result[0] = __builtin_shuffle(xy02, z02, ColumnLanes{0, 1, 4, 5});
+    result[1] = __builtin_shuffle(xy13, z13, ColumnLanes{0, 1, 4, 5});
+    result[2] = __builtin_shuffle(xy02, z02, ColumnLanes{2, 3, 6, 7});
+    result[3] = __builtin_shuffle(xy13, z13, ColumnLanes{2, 3, 6, 7});
+}
+
+/** Writes skl_m of the batch's joints whose bit is set in lanes (see JointBatch): the rotations of all four
+  * composed at once, one per lane, then turned into each joint's columns. Their offsets are translations and they
+  * have no translation DOF, so the last column is the offset's. */
+template <unsigned Sequence>
+OSGACTOR_INLINE void buildBatchMatrices(const JointBatch& batch, const JointKinematics* kinematics,
+                                        const double* sines, const double* cosines, double* const* local,
+                                        unsigned lanes)
+{
+    Rotation3<LaneVector3> rotation;
+    composeRotation<Sequence>(rotation, TrigByLane{batch, sines, cosines});
+    Column columns[3][JointBatch::kWidth];
+    for (unsigned col = 0; col < 3; ++col) transposeLanes(rotation.c[col], columns[col]);
+    for (unsigned lane = 0; lane < JointBatch::kWidth; ++lane)
+    {
+        if ((lanes >> lane & 1u) == 0) continue;
+        const std::uint32_t joint = batch.joints[lane];
+        double* const out = local[joint];
+        for (unsigned col = 0; col < 3; ++col) storeColumn(out + 4 * col, columns[col][lane]);
+        storeColumn(out + 12, loadColumn(&kinematics[joint].offset[3][0]));
+    }
+}
+
+/** The flags of a joint whose local matrix was just rebuilt. */
+OSGACTOR_INLINE void markRebuilt(std::uint8_t* jointDirty, std::uint8_t* localChanged, std::uint8_t* modelStale,
+                                 unsigned joint)
+{
+    jointDirty[joint] = 0;
+    localChanged[joint] = 1;
+    modelStale[joint] = 1;
+}
+
+/** Step 2 of the job: the local matrices of the dirty joints, batch by batch (see JointBatch), then the joints built
+  * one at a time. A batch with a single dirty joint builds it on its own, which is cheaper than four lanes. Returns
+  * how many local matrices it rebuilt. Every buffer is read into a local first: the flags are bytes, which may alias
+  * anything, so fields of the job would be reloaded after each flag store. */
+OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job, const double* sines,
+                                              const double* cosines)
+{
+    const JointBatchPlan& plan = job.definition->getJointBatches();
     const JointKinematics* const kinematics = job.definition->getAllKinematics().data();
-    const int* const parents = job.definition->getParents().data();
     const double* const dofs = job.dofs;
     std::uint8_t* const jointDirty = job.jointDirty;
     std::uint8_t* const localChanged = job.localChanged;
     std::uint8_t* const modelStale = job.modelStale;
+    double* const* const local = job.local;
+    const auto buildOne = [&](unsigned joint) OSGACTOR_INLINE_LAMBDA {
+        const JointKinematics& k = kinematics[joint];
+        buildJointMatrixDispatched(k, dofs, TrigByDof{k.rotationDof, sines, cosines}, local[joint]);
+        markRebuilt(jointDirty, localChanged, modelStale, joint);
+    };
+    unsigned numRebuilt = 0;
+    for (const JointBatch& batch : plan.batches)
+    {
+        unsigned lanes = 0;
+        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+            lanes |= (jointDirty[batch.joints[lane]] != 0 ? 1u : 0u) << lane;
+        if (lanes == 0) continue;
+        if ((lanes & (lanes - 1)) == 0)
+        {
+            buildOne(batch.joints[__builtin_ctz(lanes)]);
+            ++numRebuilt;
+            continue;
+        }
+        withRotationSequence(batch.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
+            buildBatchMatrices<decltype(sequence)::value>(batch, kinematics, sines, cosines, local, lanes);
+        });
+        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+            if (lanes >> lane & 1u) markRebuilt(jointDirty, localChanged, modelStale, batch.joints[lane]);
+        numRebuilt += static_cast<unsigned>(__builtin_popcount(lanes));
+    }
+    for (const std::uint32_t joint : plan.singleJoints)
+        if (jointDirty[joint])
+        {
+            buildOne(joint);
+            ++numRebuilt;
+        }
+    return numRebuilt;
+}
+
+/** Step 3 of the job: one pass over the joints, parents first, composing the model matrix of every joint whose
+  * local matrix or any ancestor's was rebuilt. */
+OSGACTOR_HOT_PATH void composeModelMatrices(const ForwardKinematicsJob& job)
+{
+    const unsigned numJoints = job.definition->getNumJoints();
+    const int* const parents = job.definition->getParents().data();
+    std::uint8_t* const modelStale = job.modelStale;
     std::uint8_t* const modelChanged = job.modelChanged;
     double* const* const local = job.local;
     glm::dmat4* const model = job.model;
-    const bool rebuildLocal = job.rebuildLocal;
-    const bool computeModel = job.computeModel;
-    unsigned numRecomputed = 0;
     for (unsigned j = 0; j < numJoints; ++j)
     {
-        if (rebuildLocal && jointDirty[j])
-        {
-            const JointKinematics& k = kinematics[j];
-            buildJointMatrixDispatched(k, dofs, TrigByDof{k.rotationDof, sines, cosines}, local[j]);
-            jointDirty[j] = 0;
-            localChanged[j] = 1;
-            modelStale[j] = 1;
-            ++numRecomputed;
-        }
-        if (!computeModel) continue;
         const int parent = parents[j];
         // Parents come first, so modelChanged[parent] is already final for this run.
         const bool moved = modelStale[j] || (parent >= 0 && modelChanged[parent]);
@@ -231,7 +355,6 @@ OSGACTOR_HOT_PATH unsigned computeMatrices(const ForwardKinematicsJob& job, cons
         else
             std::memcpy(&model[j][0][0], local[j], sizeof(glm::dmat4));
     }
-    return numRecomputed;
 }
 
 } // namespace
@@ -303,8 +426,9 @@ bool ForwardKinematicsJob::run()
         }
     }
 
-    // 2. Local matrices of dirty joints, model matrices below any change.
-    numRecomputed = computeMatrices(*this, sines, cosines);
+    // 2. Local matrices of dirty joints. 3. Model matrices below any change.
+    if (rebuildLocal) numRecomputed = buildLocalMatrices(*this, sines, cosines);
+    if (computeModel) composeModelMatrices(*this);
     return true;
 }
 
