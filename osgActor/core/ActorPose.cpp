@@ -11,16 +11,6 @@ namespace osgActor {
 
 namespace {
 
-/** The FK job's trigonometry scratch for a pose of numDofs DOFs: one buffer per thread, grown as needed, so it stays
-  * in cache from one actor to the next instead of each pose carrying its own. */
-double* trigScratch(unsigned numDofs)
-{
-    thread_local std::vector<double> scratch;
-    const std::size_t needed = std::size_t(ForwardKinematicsJob::kTrigScratchPerDof) * numDofs;
-    if (scratch.size() < needed) scratch.resize(needed);
-    return scratch.data();
-}
-
 /** The vectorized half of ActorPose::setDofRange: setDof()'s clamp, NaN and infinity refusal and change test for
   * count consecutive DOFs, without branches; changed[i] is 1 where DOF i took a new value, else 0 (64-bit, the
   * width of the values, so the loop vectorizes without packing). Returns how many values were refused. */
@@ -41,26 +31,6 @@ OSGACTOR_HOT_PATH std::uint64_t clampAndStoreDofs(const double* __restrict value
         refused += finite ? 0u : 1u;
     }
     return refused;
-}
-
-/** The OR of a joint's n change flags (n <= 6, a joint's DOFs at most), unrolled: as a loop GCC vectorizes it, and
-  * for so few flags the vector set-up costs more than the work. */
-inline std::uint64_t anyOf(const std::uint64_t* flags, unsigned n)
-{
-    std::uint64_t any = 0;
-    switch (n)
-    {
-    case 6: any |= flags[5]; [[fallthrough]];
-    case 5: any |= flags[4]; [[fallthrough]];
-    case 4: any |= flags[3]; [[fallthrough]];
-    case 3: any |= flags[2]; [[fallthrough]];
-    case 2: any |= flags[1]; [[fallthrough]];
-    case 1: any |= flags[0]; [[fallthrough]];
-    case 0: return any;
-    default:
-        for (unsigned i = 0; i < n; ++i) any |= flags[i];
-        return any;
-    }
 }
 
 } // namespace
@@ -98,7 +68,6 @@ unsigned ActorPose::setDofRange(unsigned firstDof, const double* values, unsigne
     if (firstDof > _dofs.size() || count > _dofs.size() - firstDof) return count;
     // Every array in a local: the dirty flags are bytes, which may alias anything, so members would be reloaded
     // after each flag store.
-    const unsigned* const firstDofs = _definition->getFirstDofs().data();
     const unsigned* const dofJoints = _dofJoints;
     std::uint8_t* const jointDirty = _jointDirty.data();
     std::uint64_t refused = 0, anyChanged = 0;
@@ -111,14 +80,14 @@ unsigned ActorPose::setDofRange(unsigned firstDof, const double* values, unsigne
         const unsigned blockEnd = std::min(begin + kBlock, end);
         refused += clampAndStoreDofs(values + (begin - firstDof), _dofMins + begin, _dofMaxs + begin,
                                      _dofs.data() + begin, changed, blockEnd - begin);
-        // A joint's DOFs are consecutive: mark each joint the block touches once, if any of its DOFs changed.
-        for (unsigned joint = dofJoints[begin], last = dofJoints[blockEnd - 1]; joint <= last; ++joint)
+        // Each DOF marks its joint: a joint's DOFs are consecutive, so its flag stays in a register-sized store
+        // buffer, and this costs less than finding where each joint's DOFs start and end in the block.
+#pragma GCC unroll 4
+        for (unsigned i = begin; i < blockEnd; ++i)
         {
-            const unsigned from = std::max(firstDofs[joint], begin);
-            const unsigned to = std::min(firstDofs[joint + 1], blockEnd);
-            const std::uint64_t jointChanged = anyOf(changed + (from - begin), to - from);
-            jointDirty[joint] |= static_cast<std::uint8_t>(jointChanged);
-            anyChanged |= jointChanged;
+            const std::uint64_t dofChanged = changed[i - begin];
+            jointDirty[dofJoints[i]] |= static_cast<std::uint8_t>(dofChanged);
+            anyChanged |= dofChanged;
         }
     }
     _anyDirty = _anyDirty || anyChanged != 0;
@@ -156,7 +125,6 @@ unsigned ActorPose::runForwardKinematics(bool rebuildLocal, bool computeModel)
     job.localChanged = _localChanged.data();
     job.modelStale = _modelStale.data();
     job.modelChanged = _modelChanged.data();
-    job.trigScratch = trigScratch(getNumDofs());
     job.computeModel = computeModel;
     job.rebuildLocal = rebuildLocal;
     job.run();

@@ -3,9 +3,10 @@
 // translation, not a full 4x4 product. This file is compiled with -O3 and its loop is built twice (AVX2+FMA and
 // the x86-64 baseline), the right one chosen when the library is loaded.
 #include <osgActor/core/ForwardKinematicsJob>
-#include <osgActor/core/SinCos>
 
+#include "Column.h"
 #include "HotPath.h"
+#include "SinCosColumn.h"
 
 #include <cmath>
 #include <cstring>
@@ -14,23 +15,6 @@
 namespace osgActor {
 
 namespace {
-
-#define OSGACTOR_INLINE inline __attribute__((always_inline))
-// The same for a lambda, which takes the attribute without the keyword.
-#define OSGACTOR_INLINE_LAMBDA __attribute__((always_inline))
-
-// Columns pass by value between always-inline functions only, so the warning that a 32-byte vector argument changes
-// the ABI without AVX (the baseline clone) concerns no real call.
-#pragma GCC diagnostic ignored "-Wpsabi"
-
-/** Four doubles as one value: a matrix column. GCC's vector extension, so the same code is 4 wide in the AVX2 clone
-  * and two SSE2 halves in the baseline one. */
-typedef double Column __attribute__((vector_size(32)));
-/** The same at double alignment, for loads and stores of matrices wherever they are (a node's matrix). */
-typedef double UnalignedColumn __attribute__((vector_size(32), aligned(8)));
-
-OSGACTOR_INLINE Column loadColumn(const double* p) { return *reinterpret_cast<const UnalignedColumn*>(p); }
-OSGACTOR_INLINE void storeColumn(double* p, Column c) { *reinterpret_cast<UnalignedColumn*>(p) = c; }
 
 /** x a0 + y a1 + z a2: a point or direction (x, y, z) taken through the three axis columns of a matrix. Every product
   * of matrices here is columns of this. */
@@ -138,37 +122,57 @@ OSGACTOR_INLINE void withRotationSequence(unsigned sequence, Visitor&& visit)
     static_assert(kNumRotationSequences == 40, "one case per rotation sequence above");
 }
 
-/** A joint's sines and cosines read from arrays indexed by DOF (the per-frame path: one batch for the whole pose). */
-struct TrigByDof
-{
-    const std::uint32_t* rotationDof;
-    const double* sines;
-    const double* cosines;
-    double sine(unsigned r) const { return sines[rotationDof[r]]; }
-    double cosine(unsigned r) const { return cosines[rotationDof[r]]; }
-};
-
-/** A joint's sines and cosines in product order (a single joint computed on its own). */
+/** A joint's sines and cosines in product order. */
 struct TrigInOrder
 {
-    double sines[3];
-    double cosines[3];
+    double sines[4];
+    double cosines[4];
+    /** Computed together, one column for up to three angles; every angle within the fast range (see
+      * withinFastSinCosRange). */
+    static OSGACTOR_INLINE TrigInOrder inFastRange(const JointKinematics& k, const double* dofs)
+    {
+        double angles[4] = {0.0, 0.0, 0.0, 0.0};
+        for (unsigned r = 0; r < k.numRotations; ++r) angles[r] = dofs[k.rotationDof[r]];
+        Column s, c;
+        sinCosColumnInFastRange(loadColumn(angles), s, c);
+        TrigInOrder trig;
+        storeColumn(trig.sines, s);
+        storeColumn(trig.cosines, c);
+        return trig;
+    }
+    /** From the library's functions, for any finite angle. */
+    static TrigInOrder exact(const JointKinematics& k, const double* dofs)
+    {
+        TrigInOrder trig;
+        for (unsigned r = 0; r < k.numRotations; ++r)
+        {
+            trig.sines[r] = std::sin(dofs[k.rotationDof[r]]);
+            trig.cosines[r] = std::cos(dofs[k.rotationDof[r]]);
+        }
+        return trig;
+    }
     double sine(unsigned r) const { return sines[r]; }
     double cosine(unsigned r) const { return cosines[r]; }
 };
 
-/** A batch's sines and cosines read from arrays indexed by DOF, gathered into one lane per joint. */
+/** A batch's sines and cosines in product order (Count rotations), one joint per lane: each rotation's angles are
+  * gathered from the DOF vector into one column. */
+template <unsigned Count>
 struct TrigByLane
 {
-    const JointBatch& batch;
-    const double* sines;
-    const double* cosines;
-    OSGACTOR_INLINE static Column gather(const double* values, const std::uint32_t* dof)
+    Column sines[Count > 0 ? Count : 1];
+    Column cosines[Count > 0 ? Count : 1];
+    OSGACTOR_INLINE TrigByLane(const JointBatch& batch, const double* dofs)
     {
-        return Column{values[dof[0]], values[dof[1]], values[dof[2]], values[dof[3]]};
+        for (unsigned r = 0; r < Count; ++r)
+        {
+            const std::uint32_t* dof = batch.angleDofs[r];
+            sinCosColumnInFastRange(Column{dofs[dof[0]], dofs[dof[1]], dofs[dof[2]], dofs[dof[3]]}, sines[r],
+                                    cosines[r]);
+        }
     }
-    OSGACTOR_INLINE Column sine(unsigned r) const { return gather(sines, batch.angleDofs[r]); }
-    OSGACTOR_INLINE Column cosine(unsigned r) const { return gather(cosines, batch.angleDofs[r]); }
+    OSGACTOR_INLINE Column sine(unsigned r) const { return sines[r]; }
+    OSGACTOR_INLINE Column cosine(unsigned r) const { return cosines[r]; }
 };
 
 /** m = R_a1 * R_a2 * R_a3 for a sequence known at compile time: every index is a constant, and the identity's
@@ -188,10 +192,10 @@ OSGACTOR_INLINE void composeRotation(Rotation3<Vector3>& m, const Trig& trig)
     }
 }
 
-/** Writes skl_m of one joint (see computeJointMatrix) from the sines and cosines of its active rotations;
-  * Sequence is the joint's rotation sequence. */
-template <unsigned Sequence, class Trig>
-OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* dofs, const Trig& trig,
+/** Writes skl_m of one joint (see computeJointMatrix) from the sines and cosines of its rotations; Sequence is the
+  * joint's rotation sequence. */
+template <unsigned Sequence>
+OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* dofs, const TrigInOrder& trig,
                                       double* __restrict out)
 {
     Rotation3<Column> rotation;
@@ -227,12 +231,12 @@ OSGACTOR_INLINE void buildJointMatrix(const JointKinematics& k, const double* do
 }
 
 /** buildJointMatrix for the joint's own rotation sequence. */
-template <class Trig>
-OSGACTOR_INLINE void buildJointMatrixDispatched(const JointKinematics& k, const double* dofs, const Trig& trig,
+OSGACTOR_INLINE void buildJointMatrixDispatched(const JointKinematics& k, const double* dofs, const TrigInOrder& trig,
                                                 double* __restrict out)
 {
-    withRotationSequence(k.rotationSequence,
-                         [&](auto sequence) OSGACTOR_INLINE_LAMBDA { buildJointMatrix<decltype(sequence)::value>(k, dofs, trig, out); });
+    withRotationSequence(k.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
+        buildJointMatrix<decltype(sequence)::value>(k, dofs, trig, out);
+    });
 }
 
 /** Shuffle masks: lane indices into the 8 lanes of two Columns. */
@@ -257,12 +261,11 @@ OSGACTOR_INLINE void transposeLanes(const LaneVector3& v, Column result[JointBat
   * composed at once, one per lane, then turned into each joint's columns. Their offsets are translations and they
   * have no translation DOF, so the last column is the offset's. */
 template <unsigned Sequence>
-OSGACTOR_INLINE void buildBatchMatrices(const JointBatch& batch, const JointKinematics* kinematics,
-                                        const double* sines, const double* cosines, double* const* local,
-                                        unsigned lanes)
+OSGACTOR_INLINE void buildBatchMatrices(const JointBatch& batch, const JointKinematics* kinematics, const double* dofs,
+                                        double* const* local, unsigned lanes)
 {
     Rotation3<LaneVector3> rotation;
-    composeRotation<Sequence>(rotation, TrigByLane{batch, sines, cosines});
+    composeRotation<Sequence>(rotation, TrigByLane<SequenceAxes<Sequence>::count>(batch, dofs));
     Column columns[3][JointBatch::kWidth];
     for (unsigned col = 0; col < 3; ++col) transposeLanes(rotation.c[col], columns[col]);
     for (unsigned lane = 0; lane < JointBatch::kWidth; ++lane)
@@ -284,12 +287,12 @@ OSGACTOR_INLINE void markRebuilt(std::uint8_t* jointDirty, std::uint8_t* localCh
     modelStale[joint] = 1;
 }
 
-/** Step 2 of the job: the local matrices of the dirty joints, batch by batch (see JointBatch), then the joints built
+/** Step 1 of the job: the local matrices of the dirty joints, batch by batch (see JointBatch), then the joints built
   * one at a time. A batch with a single dirty joint builds it on its own, which is cheaper than four lanes. Returns
-  * how many local matrices it rebuilt. Every buffer is read into a local first: the flags are bytes, which may alias
+  * how many local matrices it rebuilt. Every angle must be within the fast sine and cosine's range (see
+  * withinFastSinCosRange). Every buffer is read into a local first: the flags are bytes, which may alias
   * anything, so fields of the job would be reloaded after each flag store. */
-OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job, const double* sines,
-                                              const double* cosines)
+OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
 {
     const JointBatchPlan& plan = job.definition->getJointBatches();
     const JointKinematics* const kinematics = job.definition->getAllKinematics().data();
@@ -300,7 +303,7 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job, c
     double* const* const local = job.local;
     const auto buildOne = [&](unsigned joint) OSGACTOR_INLINE_LAMBDA {
         const JointKinematics& k = kinematics[joint];
-        buildJointMatrixDispatched(k, dofs, TrigByDof{k.rotationDof, sines, cosines}, local[joint]);
+        buildJointMatrixDispatched(k, dofs, TrigInOrder::inFastRange(k, dofs), local[joint]);
         markRebuilt(jointDirty, localChanged, modelStale, joint);
     };
     unsigned numRebuilt = 0;
@@ -317,7 +320,7 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job, c
             continue;
         }
         withRotationSequence(batch.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
-            buildBatchMatrices<decltype(sequence)::value>(batch, kinematics, sines, cosines, local, lanes);
+            buildBatchMatrices<decltype(sequence)::value>(batch, kinematics, dofs, local, lanes);
         });
         for (unsigned lane = 0; lane < batch.numJoints; ++lane)
             if (lanes >> lane & 1u) markRebuilt(jointDirty, localChanged, modelStale, batch.joints[lane]);
@@ -332,7 +335,7 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job, c
     return numRebuilt;
 }
 
-/** Step 3 of the job: one pass over the joints, parents first, composing the model matrix of every joint whose
+/** Step 2 of the job: one pass over the joints, parents first, composing the model matrix of every joint whose
   * local matrix or any ancestor's was rebuilt. */
 OSGACTOR_HOT_PATH void composeModelMatrices(const ForwardKinematicsJob& job)
 {
@@ -357,6 +360,29 @@ OSGACTOR_HOT_PATH void composeModelMatrices(const ForwardKinematicsJob& job)
     }
 }
 
+/** Whether every DOF is within the fast sine and cosine's range (translations too: a check over the whole vector is
+  * cheaper than picking the angles out). */
+OSGACTOR_HOT_PATH bool withinFastRange(const double* dofs, unsigned numDofs)
+{
+    return withinFastSinCosRange(dofs, numDofs);
+}
+
+/** Step 1 for a pose with an angle beyond the fast sine and cosine's range (more than 1e6 radians): joint by
+  * joint, through the library's functions. */
+unsigned buildLocalMatricesExactly(const ForwardKinematicsJob& job)
+{
+    unsigned numRebuilt = 0;
+    for (unsigned joint = 0; joint < job.definition->getNumJoints(); ++joint)
+    {
+        if (!job.jointDirty[joint]) continue;
+        const JointKinematics& k = job.definition->getKinematics(joint);
+        buildJointMatrixDispatched(k, job.dofs, TrigInOrder::exact(k, job.dofs), job.local[joint]);
+        markRebuilt(job.jointDirty, job.localChanged, job.modelStale, joint);
+        ++numRebuilt;
+    }
+    return numRebuilt;
+}
+
 } // namespace
 
 glm::dmat4 multiplyAffine(const glm::dmat4& a, const glm::dmat4& b)
@@ -368,66 +394,24 @@ glm::dmat4 multiplyAffine(const glm::dmat4& a, const glm::dmat4& b)
 
 glm::dmat4 computeJointMatrix(const JointKinematics& k, const double* dofs)
 {
-    TrigInOrder trig;
-    for (unsigned r = 0; r < k.numRotations; ++r)
-    {
-        trig.sines[r] = std::sin(dofs[k.rotationDof[r]]);
-        trig.cosines[r] = std::cos(dofs[k.rotationDof[r]]);
-    }
     glm::dmat4 result;
-    buildJointMatrixDispatched(k, dofs, trig, &result[0][0]);
+    buildJointMatrixDispatched(k, dofs, TrigInOrder::exact(k, dofs), &result[0][0]);
     return result;
 }
 
 bool ForwardKinematicsJob::validate() const
 {
     if (!definition || !jointDirty || !local || !model || !localChanged || !modelStale || !modelChanged) return false;
-    return (dofs != nullptr && trigScratch != nullptr) || definition->getNumDofs() == 0;
+    return dofs != nullptr || definition->getNumDofs() == 0;
 }
 
 bool ForwardKinematicsJob::run()
 {
     numRecomputed = 0;
     if (!validate()) return false;
-    const unsigned numJoints = definition->getNumJoints();
-    const JointKinematics* kinematics = definition->getAllKinematics().data();
-
-    // 1. The sines and cosines of the dirty joints' angles in one batch, indexed by DOF. When most joints are dirty
-    //    (a clip playing) the batch is the DOF vector itself: no gathering, and the few translations cost a few
-    //    wasted lanes. Otherwise the dirty joints' angles are gathered, and the results scattered back.
-    const unsigned numDofs = definition->getNumDofs();
-    double* sines = trigScratch;
-    double* cosines = trigScratch + numDofs;
-    if (rebuildLocal && numDofs > 0)
-    {
-        unsigned numDirty = 0;
-        for (unsigned j = 0; j < numJoints; ++j) numDirty += jointDirty[j] != 0 ? 1u : 0u;
-        if (2 * numDirty >= numJoints)
-            sinCos(dofs, sines, cosines, numDofs);
-        else
-        {
-            double* angles = trigScratch + 2 * numDofs;
-            double* gatheredSines = angles + numDofs;
-            double* gatheredCosines = gatheredSines + numDofs;
-            unsigned numAngles = 0;
-            for (unsigned j = 0; j < numJoints; ++j)
-                if (jointDirty[j])
-                    for (unsigned r = 0; r < kinematics[j].numRotations; ++r)
-                        angles[numAngles++] = dofs[kinematics[j].rotationDof[r]];
-            sinCos(angles, gatheredSines, gatheredCosines, numAngles);
-            numAngles = 0;
-            for (unsigned j = 0; j < numJoints; ++j)
-                if (jointDirty[j])
-                    for (unsigned r = 0; r < kinematics[j].numRotations; ++r, ++numAngles)
-                    {
-                        sines[kinematics[j].rotationDof[r]] = gatheredSines[numAngles];
-                        cosines[kinematics[j].rotationDof[r]] = gatheredCosines[numAngles];
-                    }
-        }
-    }
-
-    // 2. Local matrices of dirty joints. 3. Model matrices below any change.
-    if (rebuildLocal) numRecomputed = buildLocalMatrices(*this, sines, cosines);
+    if (rebuildLocal)
+        numRecomputed = withinFastRange(dofs, definition->getNumDofs()) ? buildLocalMatrices(*this)
+                                                                                : buildLocalMatricesExactly(*this);
     if (computeModel) composeModelMatrices(*this);
     return true;
 }

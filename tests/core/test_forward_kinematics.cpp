@@ -8,6 +8,8 @@
 
 #include <glm/ext/scalar_constants.hpp>
 
+#include <algorithm>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -42,7 +44,6 @@ TEST(ForwardKinematicsJob, RefusesMissingBuffers)
     std::vector<std::uint8_t> dirty(1, 1), localChanged(1, 0), modelStale(1, 0), modelChanged(1, 0);
     std::vector<glm::dmat4> local(1), model(1);
     double* const localTargets[1] = {&local[0][0][0]};
-    std::vector<double> scratch(ForwardKinematicsJob::kTrigScratchPerDof);
 
     ForwardKinematicsJob job;
     EXPECT_FALSE(job.validate());
@@ -58,8 +59,6 @@ TEST(ForwardKinematicsJob, RefusesMissingBuffers)
     EXPECT_FALSE(job.run());
     EXPECT_EQ(dirty[0], 1) << "a refused run touches nothing";
     job.dofs = dofs.data();
-    EXPECT_FALSE(job.validate()) << "no scratch for the batched trigonometry";
-    job.trigScratch = scratch.data();
     job.model = nullptr;
     EXPECT_FALSE(job.validate());
     job.model = model.data();
@@ -226,6 +225,26 @@ TEST(SinCos, MatchesTheScalarFunctionsToAFewUlp)
     {
         EXPECT_NEAR(sines[i], std::sin(angles[i]), 1e-15) << angles[i];
         EXPECT_NEAR(cosines[i], std::cos(angles[i]), 1e-15) << angles[i];
+    }
+}
+
+TEST(SinCos, ATailOfOneToThreeAnglesMatchesTheFullColumns)
+{
+    // Four at a time, then the last one to three padded: every count must give the values a longer run gives.
+    const double angles[8] = {0.1, -2.0, 3.5, 7.0, -0.7, 1.2e3, 2.5e6, 4.0};
+    double fullSines[8], fullCosines[8];
+    sinCos(angles, fullSines, fullCosines, 8);
+    for (unsigned count = 1; count < 8; ++count)
+    {
+        double sines[8], cosines[8];
+        std::fill(std::begin(sines), std::end(sines), -9.0);
+        std::fill(std::begin(cosines), std::end(cosines), -9.0);
+        sinCos(angles, sines, cosines, count);
+        for (unsigned i = 0; i < 8; ++i)
+        {
+            EXPECT_EQ(sines[i], i < count ? fullSines[i] : -9.0) << "count " << count << ", angle " << i;
+            EXPECT_EQ(cosines[i], i < count ? fullCosines[i] : -9.0) << "count " << count << ", angle " << i;
+        }
     }
 }
 
