@@ -138,3 +138,18 @@ TEST(JointBatches, ABatchWritesOnlyItsDirtyJoints)
     }
     pose.ownLocalMatrices();
 }
+
+TEST(JointBatches, AnAngleBeyondTheFastRangeTakesTheLibraryFunctions)
+{
+    // 1e17 radians is far past the fast range reduction's reach (its quarter-turn count must stay below 2^51):
+    // computed there, the matrix would be wrong.
+    const ActorDefinitionPtr def = mixedDefinition();
+    ActorPose pose(def);
+    std::vector<double> dofs = randomDofs(*def, 3);
+    dofs[def->getFirstDof(2)] = 1e17;
+    ASSERT_EQ(pose.setDofRange(0, dofs.data(), def->getNumDofs()), 0u);
+    pose.updateMatrices();
+    for (unsigned j = 0; j < def->getNumJoints(); ++j)
+        EXPECT_TRUE(matricesNear(pose.getLocalMatrix(j), computeJointMatrix(def->getKinematics(j), dofs.data()), 1e-14))
+            << def->getJointName(j);
+}
