@@ -19,6 +19,8 @@ typedef double Column __attribute__((vector_size(32)));
 typedef double UnalignedColumn __attribute__((vector_size(32), aligned(8)));
 /** A column's bits, for sign and select tricks; also the type of a comparison of two columns. */
 typedef unsigned long long ColumnBits __attribute__((vector_size(32)));
+/** The same, signed: a lane is negative where its sign bit is set. */
+typedef long long ColumnSignedBits __attribute__((vector_size(32)));
 
 OSGACTOR_INLINE Column loadColumn(const double* p) { return *reinterpret_cast<const UnalignedColumn*>(p); }
 OSGACTOR_INLINE void storeColumn(double* p, Column c) { *reinterpret_cast<UnalignedColumn*>(p) = c; }

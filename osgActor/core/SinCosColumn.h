@@ -57,15 +57,17 @@ OSGACTOR_INLINE void sinCosColumnInFastRange(Column x, Column& sine, Column& cos
     for (int k = 4; k >= 0; --k) ps = ps * r2 + kSin[k];
     Column pc = r2 * kCos[7] + kCos[6];
     for (int k = 5; k >= 0; --k) pc = pc * r2 + kCos[k];
-    const ColumnBits s = reinterpret_cast<ColumnBits>(r + r * r2 * ps); // sin r
-    const ColumnBits c = reinterpret_cast<ColumnBits>(1.0 + r2 * pc);   // cos r
-    // x = r + q pi/2 with q = j mod 4: (sin, cos) of x is (s, c), (c, -s), (-s, -c), (-c, s).
-    const ColumnBits q = reinterpret_cast<ColumnBits>(shifted) & 3u;
-    const ColumnBits odd = 0u - (q & 1u); // every bit set where q is odd
-    const ColumnBits sinMagnitude = (c & odd) | (s & ~odd);
-    const ColumnBits cosMagnitude = (s & odd) | (c & ~odd);
-    sine = reinterpret_cast<Column>(sinMagnitude ^ ((q >> 1) << 63));
-    cosine = reinterpret_cast<Column>(cosMagnitude ^ (((q ^ (q >> 1)) & 1u) << 63));
+    const Column s = r + r * r2 * ps; // sin r
+    const Column c = 1.0 + r2 * pc;   // cos r
+    // x = r + q pi/2 with q = j mod 4, the low two bits of shifted: (sin, cos) of x is (s, c), (c, -s), (-s, -c),
+    // (-c, s). Shifted left by 62, q's bit 1 is the sign bit (sine negated for q = 2, 3) and bit 0 the one below it.
+    const ColumnBits q62 = reinterpret_cast<ColumnBits>(shifted) << 62;
+    const ColumnBits signBit = ColumnBits{} + (1ull << 63);
+    const auto odd = reinterpret_cast<ColumnSignedBits>(q62 << 1) < 0;
+    const Column sinMagnitude = odd ? c : s;
+    const Column cosMagnitude = odd ? s : c;
+    sine = reinterpret_cast<Column>(reinterpret_cast<ColumnBits>(sinMagnitude) ^ (q62 & signBit));
+    cosine = reinterpret_cast<Column>(reinterpret_cast<ColumnBits>(cosMagnitude) ^ ((q62 ^ (q62 << 1)) & signBit));
 }
 
 /** Whether every one of the count values is within the range of sinCosColumnInFastRange; false if any is NaN. */
