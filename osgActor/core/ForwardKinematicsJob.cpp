@@ -309,9 +309,11 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
     unsigned numRebuilt = 0;
     for (const JointBatch& batch : plan.batches)
     {
+        // Every lane is read, unused ones too (they repeat a joint), and the unused ones masked off after.
         unsigned lanes = 0;
-        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+        for (unsigned lane = 0; lane < JointBatch::kWidth; ++lane)
             lanes |= (jointDirty[batch.joints[lane]] != 0 ? 1u : 0u) << lane;
+        lanes &= batch.usedLanes;
         if (lanes == 0) continue;
         if ((lanes & (lanes - 1)) == 0)
         {
@@ -322,7 +324,7 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
         withRotationSequence(batch.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
             buildBatchMatrices<decltype(sequence)::value>(batch, kinematics, dofs, local, lanes);
         });
-        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+        for (unsigned lane = 0; lane < JointBatch::kWidth; ++lane)
             if (lanes >> lane & 1u) markRebuilt(jointDirty, localChanged, modelStale, batch.joints[lane]);
         numRebuilt += static_cast<unsigned>(__builtin_popcount(lanes));
     }
