@@ -239,22 +239,19 @@ OSGACTOR_INLINE void buildJointMatrixDispatched(const JointKinematics& k, const 
     });
 }
 
-/** Shuffle masks: lane indices into the 8 lanes of two Columns. */
-typedef long long ColumnLanes __attribute__((vector_size(32)));
-
 /** The four joints' own columns from one LaneVector3: result[l] = (v.x[l], v.y[l], v.z[l], 0), a 4x4 transpose
-  * with a zero row. */
+  * with a zero row. Shuffle indices count the lanes of both arguments, the second's from 4. */
 OSGACTOR_INLINE void transposeLanes(const LaneVector3& v, Column result[JointBatch::kWidth])
 {
     const Column zero = {0.0, 0.0, 0.0, 0.0};
-    const Column xy02 = __builtin_shuffle(v.x, v.y, ColumnLanes{0, 4, 2, 6});
-    const Column xy13 = __builtin_shuffle(v.x, v.y, ColumnLanes{1, 5, 3, 7});
-    const Column z02 = __builtin_shuffle(v.z, zero, ColumnLanes{0, 4, 2, 6});
-    const Column z13 = __builtin_shuffle(v.z, zero, ColumnLanes{1, 5, 3, 7});
-    result[0] = __builtin_shuffle(xy02, z02, ColumnLanes{0, 1, 4, 5});
-    result[1] = __builtin_shuffle(xy13, z13, ColumnLanes{0, 1, 4, 5});
-    result[2] = __builtin_shuffle(xy02, z02, ColumnLanes{2, 3, 6, 7});
-    result[3] = __builtin_shuffle(xy13, z13, ColumnLanes{2, 3, 6, 7});
+    const Column xy02 = __builtin_shufflevector(v.x, v.y, 0, 4, 2, 6);
+    const Column xy13 = __builtin_shufflevector(v.x, v.y, 1, 5, 3, 7);
+    const Column z02 = __builtin_shufflevector(v.z, zero, 0, 4, 2, 6);
+    const Column z13 = __builtin_shufflevector(v.z, zero, 1, 5, 3, 7);
+    result[0] = __builtin_shufflevector(xy02, z02, 0, 1, 4, 5);
+    result[1] = __builtin_shufflevector(xy13, z13, 0, 1, 4, 5);
+    result[2] = __builtin_shufflevector(xy02, z02, 2, 3, 6, 7);
+    result[3] = __builtin_shufflevector(xy13, z13, 2, 3, 6, 7);
 }
 
 /** Writes skl_m of the batch's joints whose bit is set in lanes (see JointBatch): the rotations of all four
