@@ -53,10 +53,13 @@ OSGACTOR_INLINE void sinCosColumnInFastRange(Column x, Column& sine, Column& cos
     const Column j = shifted - kRoundingShift; // the nearest multiple of pi/2
     const Column r = ((x - j * kHalfPi1) - j * kHalfPi2) - j * kHalfPi3;
     const Column r2 = r * r;
-    Column ps = r2 * kSin[6] + kSin[5];
-    for (int k = 4; k >= 0; --k) ps = ps * r2 + kSin[k];
-    Column pc = r2 * kCos[7] + kCos[6];
-    for (int k = 5; k >= 0; --k) pc = pc * r2 + kCos[k];
+    // Estrin's scheme: pairs of terms first, then pairs of pairs, so the chain of dependent multiply-adds is three
+    // deep instead of seven and three columns of angles overlap in the pipeline.
+    const Column r4 = r2 * r2, r8 = r4 * r4;
+    const Column ps = ((kSin[0] + kSin[1] * r2) + (kSin[2] + kSin[3] * r2) * r4) +
+                      ((kSin[4] + kSin[5] * r2) + kSin[6] * r4) * r8;
+    const Column pc = ((kCos[0] + kCos[1] * r2) + (kCos[2] + kCos[3] * r2) * r4) +
+                      ((kCos[4] + kCos[5] * r2) + (kCos[6] + kCos[7] * r2) * r4) * r8;
     const Column s = r + r * r2 * ps; // sin r
     const Column c = 1.0 + r2 * pc;   // cos r
     // x = r + q pi/2 with q = j mod 4, the low two bits of shifted: (sin, cos) of x is (s, c), (c, -s), (-s, -c),
