@@ -89,6 +89,33 @@ double bestAngle(const glm::dvec3& a, const glm::dvec3& pivot, const glm::dvec3&
     return arctangent2(sinTerm, cosTerm);
 }
 
+/** After chain DOF d turned by rotation (model space, about its pivot): the DOFs of the same joint still to come
+  * in the sweep ([first, d)) whose axes lie after it in the joint's product turn with it. Those are the rotations
+  * later in the product, and the slides of a joint that slides after it rotates. */
+void turnLaterAxesOfJoint(const IkChain& chain, unsigned first, unsigned d, const glm::dmat3& rotation,
+                          IkWorkspace& workspace)
+{
+    const IkChainDof& turned = chain.getDof(d);
+    for (unsigned other = d; other-- > first && chain.getDof(other).chainJoint == turned.chainJoint;)
+    {
+        const IkChainDof& dof = chain.getDof(other);
+        const bool after = isRotation(dof.type) ? dof.rotationSlot > turned.rotationSlot
+                                                : dof.translationMode == TranslationMode::AfterRotation;
+        if (after) workspace.axis[other] = rotation * workspace.axis[other];
+    }
+}
+
+/** After chain DOF d slid by offset (model space): a joint that slides before it rotates turns about a point the
+  * slide moved, so the pivots of its rotations still to come in the sweep move with it. */
+void moveLaterPivotsOfJoint(const IkChain& chain, unsigned first, unsigned d, const glm::dvec3& offset,
+                            IkWorkspace& workspace)
+{
+    const IkChainDof& slid = chain.getDof(d);
+    if (slid.translationMode != TranslationMode::BeforeRotation) return;
+    for (unsigned other = d; other-- > first && chain.getDof(other).chainJoint == slid.chainJoint;)
+        if (isRotation(chain.getDof(other).type)) workspace.pivot[other] += offset;
+}
+
 } // namespace
 
 void runCcdSweep(const IkChain& chain, const IkGoal& goal, const glm::dmat3& goalRotation, double positionWeight,
@@ -115,6 +142,7 @@ void runCcdSweep(const IkChain& chain, const IkGoal& goal, const glm::dmat3& goa
             const glm::dmat3 rotation = glm::mat3_cast(glm::angleAxis(turn, axis));
             effector = workspace.pivot[d] + rotation * (effector - workspace.pivot[d]);
             effectorRotation = rotation * effectorRotation;
+            turnLaterAxesOfJoint(chain, first, d, rotation, workspace);
         }
         else if (moveSlides && positionWeight > 0.0)
         {
@@ -123,7 +151,9 @@ void runCcdSweep(const IkChain& chain, const IkGoal& goal, const glm::dmat3& goa
             // A slide without limits toward a goal beyond the double range from here (the step overflows): stay.
             if (!std::isfinite(next)) continue;
             dofs[chainDof.dof] = next;
-            effector += axis * (next - current);
+            const glm::dvec3 offset = axis * (next - current);
+            effector += offset;
+            moveLaterPivotsOfJoint(chain, first, d, offset, workspace);
         }
     }
 }

@@ -147,6 +147,7 @@ IkChainBuildResult buildIkChain(const ActorDefinition& definition, const IkChain
             chainDof.type = definition.getDofType(d);
             for (std::uint8_t slot = 0; slot < kinematics.numRotations; ++slot)
                 if (kinematics.rotationDof[slot] == d) chainDof.rotationSlot = slot;
+            chainDof.translationMode = kinematics.translationMode;
             chainDof.weight = weight;
             chainDof.min = definition.getDofRangeMin(d); // the limits, within +-kMaxDofMagnitude
             chainDof.max = definition.getDofRangeMax(d);
