@@ -5,6 +5,7 @@
 #include <glm/ext/vector_double3.hpp>
 
 #include <charconv>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 
@@ -19,23 +20,81 @@ constexpr int kSignificantDigits = 12;
 
 namespace {
 
-/** Parses the whole word, finite or not; false when it is no number at all. Out of range counts as infinite. */
-bool parseAnyNumber(const std::string& word, double& value)
+/** Exact powers of ten up to 1e22, the largest a double holds exactly. */
+const double kPowersOfTen[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                               1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+/** Clinger's fast path: a decimal whose digits fit in 53 bits, scaled by at most 10^22, is one correctly rounded
+  * multiplication or division of two exact doubles, so the result equals strtod's. Mocap numbers ("-0.000000",
+  * "27.973049", ".0083333", "1e-014") nearly all take it; false sends the rest to std::from_chars. */
+bool parseDecimalFast(std::string_view token, double& value)
 {
-    if (word.empty()) return false;
-    const char* first = word.data();
-    const char* last = first + word.size();
-    if (*first == '+') ++first; // from_chars refuses a leading '+', people write one
-    const std::from_chars_result result = std::from_chars(first, last, value);
-    if (result.ptr != last) return false;
-    if (result.ec == std::errc::result_out_of_range) value = std::numeric_limits<double>::infinity();
-    else if (result.ec != std::errc()) return false;
+    const char* p = token.data();
+    const char* const end = p + token.size();
+    const bool negative = p != end && *p == '-';
+    if (negative) ++p;
+    std::uint64_t mantissa = 0;
+    int digits = 0;   // significant digits kept in mantissa
+    int exponent = 0; // power of ten to apply
+    bool any = false;
+    for (; p != end && *p >= '0' && *p <= '9'; ++p, any = true)
+    {
+        if (mantissa == 0 && *p == '0') continue; // leading zeros are not significant
+        if (++digits > 19) return false;
+        mantissa = mantissa * 10 + static_cast<unsigned>(*p - '0');
+    }
+    if (p != end && *p == '.')
+    {
+        for (++p; p != end && *p >= '0' && *p <= '9'; ++p, any = true)
+        {
+            --exponent;
+            if (mantissa == 0 && *p == '0') continue;
+            if (++digits > 19) return false;
+            mantissa = mantissa * 10 + static_cast<unsigned>(*p - '0');
+        }
+    }
+    if (!any) return false;
+    if (p != end && (*p == 'e' || *p == 'E'))
+    {
+        ++p;
+        const bool negativeExponent = p != end && *p == '-';
+        if (p != end && (*p == '-' || *p == '+')) ++p;
+        if (p == end) return false;
+        int written = 0;
+        for (; p != end && *p >= '0' && *p <= '9'; ++p)
+        {
+            if (written > 1000) return false;
+            written = written * 10 + (*p - '0');
+        }
+        exponent += negativeExponent ? -written : written;
+    }
+    if (p != end) return false;
+    if (mantissa > (std::uint64_t(1) << 53) || exponent < -22 || exponent > 22)
+        return mantissa == 0 ? (value = negative ? -0.0 : 0.0, true) : false;
+    const double m = static_cast<double>(mantissa);
+    value = exponent < 0 ? m / kPowersOfTen[-exponent] : m * kPowersOfTen[exponent];
+    if (negative) value = -value;
     return true;
 }
 
 } // namespace
 
-bool parseNumber(const std::string& word, double& value)
+bool parseAnyNumber(std::string_view word, double& value)
+{
+    if (!word.empty() && word.front() == '+') word.remove_prefix(1); // from_chars refuses a leading '+', people write one
+    if (word.empty()) return false;
+    if (parseDecimalFast(word, value)) return true;
+    const char* const last = word.data() + word.size();
+    const std::from_chars_result result = std::from_chars(word.data(), last, value);
+    if (result.ptr != last) return false;
+    if (result.ec == std::errc::result_out_of_range)
+        value = word.front() == '-' ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+    else if (result.ec != std::errc())
+        return false;
+    return true;
+}
+
+bool parseNumber(std::string_view word, double& value)
 {
     double parsed = 0.0;
     if (!parseAnyNumber(word, parsed) || !std::isfinite(parsed)) return false;
@@ -43,7 +102,7 @@ bool parseNumber(const std::string& word, double& value)
     return true;
 }
 
-bool isNonFiniteNumber(const std::string& word)
+bool isNonFiniteNumber(std::string_view word)
 {
     double parsed = 0.0;
     return parseAnyNumber(word, parsed) && !std::isfinite(parsed);

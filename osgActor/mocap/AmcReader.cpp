@@ -1,4 +1,5 @@
 #include <osgActor/mocap/AmcReader>
+#include <osgActor/io/ActorNumbers>
 #include <osgActor/mocap/TextLines>
 
 #include <osgActor/core/ClipBuilder>
@@ -78,7 +79,7 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
         for (std::size_t i = 0; i < layout.dofs.size(); ++i)
         {
             double value;
-            if (!parseNumberToken(t[i + 1], value))
+            if (!parseNumber(t[i + 1], value))
                 return failed("value " + std::to_string(i + 1) + " of bone '" + layout.bone + "' ('" +
                               std::string(t[i + 1]) + "') is not a finite number");
             if (layout.angular[i]) row[layout.dofs[i]] = value * angle;

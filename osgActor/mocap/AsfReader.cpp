@@ -1,4 +1,5 @@
 #include <osgActor/mocap/AsfReader>
+#include <osgActor/io/ActorNumbers>
 #include <osgActor/mocap/TextLines>
 
 #include <osgActor/core/ActorDefinitionBuilder>
@@ -99,7 +100,7 @@ bool AsfParser::readVector(const std::vector<std::string_view>& tokens, std::siz
 {
     if (tokens.size() < first + 3) return fail(std::string(what) + " needs three numbers");
     for (unsigned i = 0; i < 3; ++i)
-        if (!parseNumberToken(tokens[first + i], v[i]))
+        if (!parseNumber(tokens[first + i], v[i]))
             return fail(std::string(what) + ": '" + std::string(tokens[first + i]) + "' is not a finite number");
     return true;
 }
@@ -117,7 +118,7 @@ bool AsfParser::parseUnits()
         if (t.size() < 2) return fail("a unit needs a value");
         if (sameWord(t[0], "length"))
         {
-            if (!parseNumberToken(t[1], _result.lengthUnit) || !(_result.lengthUnit > 0.0))
+            if (!parseNumber(t[1], _result.lengthUnit) || !(_result.lengthUnit > 0.0))
                 return fail("the length unit must be a positive number");
         }
         else if (sameWord(t[0], "angle"))
@@ -203,7 +204,7 @@ bool AsfParser::parseLimits(AsfBone& bone)
             double value;
             if (sameWord(token, "inf") || sameWord(token, "+inf")) value = std::numeric_limits<double>::infinity();
             else if (sameWord(token, "-inf")) value = -std::numeric_limits<double>::infinity();
-            else if (!parseNumberToken(token, value))
+            else if (!parseNumber(token, value))
                 return fail("limit '" + std::string(token) + "' of '" + bone.name + "' is not a number");
             numbers.push_back(value);
         }
@@ -247,7 +248,7 @@ bool AsfParser::parseBone()
         }
         else if (sameWord(t[0], "length"))
         {
-            if (t.size() < 2 || !parseNumberToken(t[1], bone.length) || bone.length < 0.0)
+            if (t.size() < 2 || !parseNumber(t[1], bone.length) || bone.length < 0.0)
                 return fail("the length of '" + bone.name + "' must be a number >= 0");
         }
         else if (sameWord(t[0], "axis"))

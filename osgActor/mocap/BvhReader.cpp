@@ -1,4 +1,5 @@
 #include <osgActor/mocap/BvhReader>
+#include <osgActor/io/ActorNumbers>
 #include <osgActor/mocap/TextLines>
 
 #include <osgActor/core/ActorDefinitionBuilder>
@@ -79,7 +80,7 @@ bool BvhParser::readNumber(double& value, const char* what)
 {
     std::string_view token;
     if (!_text.nextToken(token)) return fail(std::string("the file ends where ") + what + " was expected");
-    if (!parseNumberToken(token, value))
+    if (!parseNumber(token, value))
         return fail(std::string("expected ") + what + ", found '" + std::string(token) + "'");
     return true;
 }
@@ -274,7 +275,7 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
         for (unsigned c = 0; c < numChannels; ++c)
         {
             double value;
-            if (!parseNumberToken(tokens[c], value))
+            if (!parseNumber(tokens[c], value))
                 return fail("value " + std::to_string(c + 1) + " of frame " + std::to_string(frame) + " ('" +
                             std::string(tokens[c]) + "') is not a finite number");
             row[columnDof[c]] = value * columnFactor[c];

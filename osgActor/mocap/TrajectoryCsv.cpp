@@ -1,3 +1,4 @@
+#include <osgActor/io/ActorNumbers>
 #include <osgActor/mocap/MocapImport>
 #include <osgActor/mocap/TextLines>
 #include <osgActor/mocap/TrajectoryCsv>
@@ -55,7 +56,7 @@ TrajectoryBuildResult readTrajectoryCsv(std::istream& in, const std::string& fil
             return failed(std::to_string(f.size()) + " fields; a point is time,x,y,z,heading");
         double values[5];
         bool numbers = true;
-        for (unsigned i = 0; i < 5 && numbers; ++i) numbers = parseNumberToken(f[i], values[i]);
+        for (unsigned i = 0; i < 5 && numbers; ++i) numbers = parseNumber(f[i], values[i]);
         if (!numbers && isFirst)
         {
             for (unsigned i = 0; i < 5; ++i)
@@ -63,7 +64,7 @@ TrajectoryBuildResult readTrajectoryCsv(std::istream& in, const std::string& fil
             continue;
         }
         for (unsigned i = 0; i < 5; ++i)
-            if (!parseNumberToken(f[i], values[i]))
+            if (!parseNumber(f[i], values[i]))
                 return failed(std::string(kColumns[i]) + " '" + std::string(f[i]) + "' is not a finite number");
         if (!keys.empty() && !(values[0] > keys.back().time))
             return failed("time " + std::string(f[0]) + " does not come after the line before");

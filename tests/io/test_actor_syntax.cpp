@@ -3,6 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <random>
 #include <sstream>
 
 using namespace osgActor;
@@ -162,4 +167,63 @@ TEST(ActorNumbers, RotationsReadAsAnAngleAboutAnAxisScaledToItsLargestComponent)
     EXPECT_EQ(formatNumber(again.axis[0]), "1");
     EXPECT_EQ(formatNumber(again.axis[1]), "-0.25");
     EXPECT_EQ(formatNumber(again.axis[2]), "0.7");
+}
+
+TEST(ParseNumber, RefusesWhatIsNotADecimalNumber)
+{
+    double value = 0.0;
+    for (const char* bad : {"", "+", "-", ".", "e5", "1e", "1e+", "--1", "1.2.3", "0x10", "1,5", "12a", "nan", "NaN",
+                            "inf", "-inf", "1e400", "-1e999"})
+        EXPECT_FALSE(parseNumber(bad, value)) << bad;
+}
+
+TEST(ParseNumber, ReadsTheFormsRealFilesUse)
+{
+    const std::pair<const char*, double> cases[] = {
+        {".0083333", 0.0083333}, {"-0.000000", -0.0},     {"1e-014", 1e-14},   {"9.27E-16", 9.27e-16},
+        {"+90", 90.0},           {"-.25", -0.25},         {"1.", 1.0},         {"007", 7.0},
+        {"27.973049", 27.973049}, {"-179.999999", -179.999999}, {"3.14159265358979323846", 3.14159265358979323846},
+        {"1e-300", 1e-300},      {"123456789012345678901234", 123456789012345678901234.0}};
+    for (const auto& c : cases)
+    {
+        double value = 1.0;
+        ASSERT_TRUE(parseNumber(c.first, value)) << c.first;
+        EXPECT_EQ(value, c.second) << c.first;
+    }
+}
+
+TEST(ParseNumber, AgreesWithStrtodToTheBit)
+{
+    std::mt19937_64 random(7);
+    std::uniform_real_distribution<double> mantissa(-1000.0, 1000.0);
+    std::uniform_int_distribution<int> digits(0, 17);
+    char text[64];
+    for (int i = 0; i < 20000; ++i)
+    {
+        std::snprintf(text, sizeof(text), "%.*f", digits(random), mantissa(random));
+        double value = 0.0;
+        ASSERT_TRUE(parseNumber(text, value)) << text;
+        EXPECT_EQ(value, std::strtod(text, nullptr)) << text;
+        std::snprintf(text, sizeof(text), "%.*e", digits(random), mantissa(random) * 1e-5);
+        ASSERT_TRUE(parseNumber(text, value)) << text;
+        EXPECT_EQ(value, std::strtod(text, nullptr)) << text;
+    }
+}
+
+TEST(ParseNumber, NonFiniteWordsAreNumbersButNotFiniteOnes)
+{
+    // Out of the double range reads as an infinity of its sign, so messages can say "not finite".
+    double value = 0.0;
+    ASSERT_TRUE(parseAnyNumber("1e999", value));
+    EXPECT_EQ(value, std::numeric_limits<double>::infinity());
+    ASSERT_TRUE(parseAnyNumber("-1e999", value));
+    EXPECT_EQ(value, -std::numeric_limits<double>::infinity());
+    ASSERT_TRUE(parseAnyNumber("nan", value));
+    EXPECT_TRUE(std::isnan(value));
+    for (const char* word : {"nan", "inf", "-inf", "1e999"})
+    {
+        EXPECT_TRUE(isNonFiniteNumber(word)) << word;
+        EXPECT_FALSE(parseNumber(word, value)) << word;
+    }
+    for (const char* word : {"12", "+1.5e3", "x", ""}) EXPECT_FALSE(isNonFiniteNumber(word)) << word;
 }
