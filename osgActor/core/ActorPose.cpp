@@ -71,8 +71,7 @@ unsigned ActorPose::setDofRange(unsigned firstDof, const double* values, unsigne
     const unsigned* const dofJoints = _dofJoints;
     std::uint8_t* const jointDirty = _jointDirty.data();
     std::uint64_t refused = 0, anyChanged = 0;
-    // In blocks, so the change flags stay in a small buffer on the stack (a joint split by a block's end is
-    // marked from both sides).
+    // In blocks, so the change flags stay in a small buffer on the stack.
     constexpr unsigned kBlock = 128;
     std::uint64_t changed[kBlock];
     for (unsigned begin = firstDof, end = firstDof + count; begin < end; begin += kBlock)

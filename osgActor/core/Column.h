@@ -25,6 +25,12 @@ typedef long long ColumnSignedBits __attribute__((vector_size(32)));
 OSGACTOR_INLINE Column loadColumn(const double* p) { return *reinterpret_cast<const UnalignedColumn*>(p); }
 OSGACTOR_INLINE void storeColumn(double* p, Column c) { *reinterpret_cast<UnalignedColumn*>(p) = c; }
 
+/** |c|, lane by lane: the sign bits cleared. */
+OSGACTOR_INLINE Column absColumn(Column c)
+{
+    return reinterpret_cast<Column>(reinterpret_cast<ColumnBits>(c) & ~(ColumnBits{} + (1ull << 63)));
+}
+
 } // namespace osgActor
 
 #endif

@@ -1,7 +1,7 @@
 // The per-frame hot path. Matrices are glm::dmat4 in memory (column-major, 16 doubles) but are handled here as raw
 // affine arrays: the bottom row of every joint matrix is (0 0 0 1), so a product is a 3x3 rotation product plus a
-// translation, not a full 4x4 product. This file is compiled with -O3 and its loop is built twice (AVX2+FMA and
-// the x86-64 baseline), the right one chosen when the library is loaded.
+// translation, not a full 4x4 product. This file is compiled with -O3 and its per-frame loops are built twice
+// (AVX2+FMA and the x86-64 baseline), the right ones chosen when the library is loaded.
 #include <osgActor/core/ForwardKinematicsJob>
 
 #include "Column.h"
@@ -310,7 +310,7 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
         unsigned lanes = 0;
         for (unsigned lane = 0; lane < JointBatch::kWidth; ++lane)
             lanes |= (jointDirty[batch.joints[lane]] != 0 ? 1u : 0u) << lane;
-        lanes &= batch.usedLanes;
+        lanes &= (1u << batch.numJoints) - 1u;
         if (lanes == 0) continue;
         if ((lanes & (lanes - 1)) == 0)
         {
@@ -410,7 +410,7 @@ bool ForwardKinematicsJob::run()
     if (!validate()) return false;
     if (rebuildLocal)
         numRecomputed = withinFastRange(dofs, definition->getNumDofs()) ? buildLocalMatrices(*this)
-                                                                                : buildLocalMatricesExactly(*this);
+                                                                        : buildLocalMatricesExactly(*this);
     if (computeModel) composeModelMatrices(*this);
     return true;
 }

@@ -32,7 +32,6 @@ JointBatchPlan planJointBatches(const std::vector<JointKinematics>& kinematics)
         }
         JointBatch& batch = plan.batches[static_cast<unsigned>(current)];
         const unsigned lane = batch.numJoints++;
-        batch.usedLanes = static_cast<std::uint8_t>(batch.usedLanes | 1u << lane);
         // Filling from lane to the end keeps every unused lane a copy of a real joint.
         for (unsigned l = lane; l < JointBatch::kWidth; ++l)
         {

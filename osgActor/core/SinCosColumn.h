@@ -77,13 +77,12 @@ OSGACTOR_INLINE void sinCosColumnInFastRange(Column x, Column& sine, Column& cos
 OSGACTOR_INLINE bool withinFastSinCosRange(const double* values, unsigned count)
 {
     // Four at a time: whether any magnitude is out of range (or NaN), as the bits of a comparison.
-    const ColumnBits signBit = ColumnBits{} + (1ull << 63);
     ColumnBits outside = ColumnBits{};
     unsigned i = 0;
     for (; i + 4 <= count; i += 4)
     {
-        const Column magnitude = reinterpret_cast<Column>(reinterpret_cast<ColumnBits>(loadColumn(values + i)) & ~signBit);
-        outside |= reinterpret_cast<ColumnBits>(!(magnitude <= sincos_detail::kLargestFastAngle));
+        const auto inside = absColumn(loadColumn(values + i)) <= sincos_detail::kLargestFastAngle;
+        outside |= reinterpret_cast<ColumnBits>(!inside);
     }
     bool within = (outside[0] | outside[1] | outside[2] | outside[3]) == 0;
     for (; i < count; ++i) within = within && std::fabs(values[i]) <= sincos_detail::kLargestFastAngle;
@@ -95,8 +94,7 @@ OSGACTOR_INLINE void sinCosColumn(Column x, Column& sine, Column& cosine)
 {
     using namespace sincos_detail;
     sinCosColumnInFastRange(x, sine, cosine);
-    const Column magnitude = reinterpret_cast<Column>(reinterpret_cast<ColumnBits>(x) & ~(ColumnBits{} + (1ull << 63)));
-    const auto large = magnitude > kLargestFastAngle;
+    const auto large = absColumn(x) > kLargestFastAngle;
     if (__builtin_expect((large[0] | large[1] | large[2] | large[3]) != 0, 0))
     {
         double xs[4], ss[4], cs[4];
