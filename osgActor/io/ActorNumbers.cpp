@@ -77,18 +77,56 @@ bool parseDecimalFast(std::string_view token, double& value)
     return true;
 }
 
+/** For a decimal word from_chars found out of range: whether it is too large (an overflow), not too small (an
+  * underflow). The decimal point of its first significant digit, shifted by the exponent, says which. */
+bool overflows(std::string_view word)
+{
+    std::size_t i = word.front() == '-' ? 1 : 0;
+    long position = 0; // the power of ten just above the first significant digit
+    bool significant = false;
+    for (; i < word.size() && word[i] >= '0' && word[i] <= '9'; ++i)
+        if (significant || word[i] != '0')
+        {
+            significant = true;
+            ++position;
+        }
+    if (i < word.size() && word[i] == '.')
+        for (++i; i < word.size() && word[i] >= '0' && word[i] <= '9'; ++i)
+        {
+            if (significant) continue;
+            if (word[i] != '0') significant = true;
+            else --position;
+        }
+    long exponent = 0;
+    if (i < word.size() && (word[i] == 'e' || word[i] == 'E'))
+    {
+        ++i;
+        const bool negative = i < word.size() && word[i] == '-';
+        if (i < word.size() && (word[i] == '-' || word[i] == '+')) ++i;
+        for (; i < word.size() && word[i] >= '0' && word[i] <= '9' && exponent < 100000; ++i)
+            exponent = exponent * 10 + (word[i] - '0');
+        if (negative) exponent = -exponent;
+    }
+    return position + exponent > 0;
+}
+
 } // namespace
 
 bool parseAnyNumber(std::string_view word, double& value)
 {
-    if (!word.empty() && word.front() == '+') word.remove_prefix(1); // from_chars refuses a leading '+', people write one
+    // from_chars refuses a leading '+'; people write one.
+    if (!word.empty() && word.front() == '+') word.remove_prefix(1);
     if (word.empty()) return false;
     if (parseDecimalFast(word, value)) return true;
     const char* const last = word.data() + word.size();
     const std::from_chars_result result = std::from_chars(word.data(), last, value);
     if (result.ptr != last) return false;
     if (result.ec == std::errc::result_out_of_range)
-        value = word.front() == '-' ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
+    {
+        // Beyond the double range reads as infinite, below it as zero (both of the word's sign).
+        const double magnitude = overflows(word) ? std::numeric_limits<double>::infinity() : 0.0;
+        value = word.front() == '-' ? -magnitude : magnitude;
+    }
     else if (result.ec != std::errc())
         return false;
     return true;

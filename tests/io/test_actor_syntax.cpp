@@ -225,5 +225,24 @@ TEST(ParseNumber, NonFiniteWordsAreNumbersButNotFiniteOnes)
         EXPECT_TRUE(isNonFiniteNumber(word)) << word;
         EXPECT_FALSE(parseNumber(word, value)) << word;
     }
-    for (const char* word : {"12", "+1.5e3", "x", ""}) EXPECT_FALSE(isNonFiniteNumber(word)) << word;
+    for (const char* word : {"12", "+1.5e3", "x", "", "1e-400"}) EXPECT_FALSE(isNonFiniteNumber(word)) << word;
+}
+
+TEST(ParseNumber, BelowTheDoubleRangeReadsAsZeroAboveItAsInfinity)
+{
+    // from_chars says "out of range" for both; the position of the first significant digit tells which.
+    const std::pair<const char*, double> cases[] = {
+        {"1e-400", 0.0},      {"-1e-400", -0.0},   {"0.0001e-330", 0.0}, {"123456e-410", 0.0},
+        {"1e400", HUGE_VAL},  {"-12.5e400", -HUGE_VAL}, {"0.001e312", HUGE_VAL}, {"00000.1e309", 1e308}};
+    for (const auto& c : cases)
+    {
+        double value = 7.0;
+        ASSERT_TRUE(parseAnyNumber(c.first, value)) << c.first;
+        EXPECT_EQ(value, c.second) << c.first;
+        EXPECT_EQ(std::signbit(value), std::signbit(c.second)) << c.first;
+    }
+    double value = 7.0;
+    EXPECT_TRUE(parseNumber("1e-400", value));
+    EXPECT_EQ(value, 0.0);
+    EXPECT_FALSE(parseNumber("1e400", value));
 }
