@@ -5,20 +5,28 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace osgActor {
 
 namespace {
 
-/** The vectorized half of ActorPose::setDofRange: setDof()'s clamp, NaN and infinity refusal and change test for
-  * count consecutive DOFs, without branches; changed[i] is 1 where DOF i took a new value, else 0 (64-bit, the
-  * width of the values, so the loop vectorizes without packing). Returns how many values were refused. */
-OSGACTOR_HOT_PATH std::uint64_t clampAndStoreDofs(const double* __restrict values, const double* __restrict mins,
-                                                  const double* __restrict maxs, double* __restrict dofs,
-                                                  std::uint64_t* __restrict changed, unsigned count)
+/** What clampAndStoreDofs found. */
+struct StoreCounts
 {
     std::uint64_t refused = 0;
+    std::uint64_t changed = 0;
+};
+
+/** The vectorized half of ActorPose::setDofRange: setDof()'s clamp, NaN and infinity refusal and change test for
+  * count consecutive DOFs, without branches; changed[i] is 1 where DOF i took a new value, else 0 (64-bit, the
+  * width of the values, so the loop vectorizes without packing). */
+OSGACTOR_HOT_PATH StoreCounts clampAndStoreDofs(const double* __restrict values, const double* __restrict mins,
+                                                const double* __restrict maxs, double* __restrict dofs,
+                                                std::uint64_t* __restrict changed, unsigned count)
+{
+    std::uint64_t refused = 0, numChanged = 0;
     for (unsigned i = 0; i < count; ++i)
     {
         const double value = values[i];
@@ -26,11 +34,34 @@ OSGACTOR_HOT_PATH std::uint64_t clampAndStoreDofs(const double* __restrict value
         const double clamped = std::min(std::max(value, mins[i]), maxs[i]);
         const double old = dofs[i];
         const double stored = finite ? clamped : old;
-        changed[i] = stored != old ? 1u : 0u;
+        const std::uint64_t dofChanged = stored != old ? 1u : 0u;
+        changed[i] = dofChanged;
         dofs[i] = stored;
         refused += finite ? 0u : 1u;
+        numChanged += dofChanged;
     }
-    return refused;
+    return {refused, numChanged};
+}
+
+/** jointDirty[j] |= 1 for every joint j in [first, last] with a DOF: a block whose DOFs all changed marks its joints
+  * eight at a time. DOFs are numbered joint by joint, so the joints between the first DOF's and the last DOF's have
+  * all their DOFs inside the block. (A skeleton has too few joints for the compiler's vector loop, which would run
+  * its scalar tail only.) */
+void markJointsWithDofs(const DofMask* dofMasks, std::uint8_t* jointDirty, unsigned first, unsigned last)
+{
+    // Per byte, a mask below 0x80 plus 0x7f reaches bit 7 exactly when the mask is non-zero, and never carries.
+    static_assert(kNumDofTypes < 8, "a DOF mask fits in 7 bits");
+    constexpr std::uint64_t kLow7 = 0x7f7f7f7f7f7f7f7full, kOnes = 0x0101010101010101ull;
+    unsigned j = first;
+    for (; j + 8 <= last + 1; j += 8)
+    {
+        std::uint64_t masks, dirty;
+        std::memcpy(&masks, dofMasks + j, 8);
+        std::memcpy(&dirty, jointDirty + j, 8);
+        dirty |= ((masks + kLow7) >> 7) & kOnes;
+        std::memcpy(jointDirty + j, &dirty, 8);
+    }
+    for (; j <= last; ++j) jointDirty[j] |= dofMasks[j] != 0 ? 1u : 0u;
 }
 
 } // namespace
@@ -43,6 +74,7 @@ ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(defi
     _dofMins = _definition->getDofRangeMins().data();
     _dofMaxs = _definition->getDofRangeMaxs().data();
     _dofJoints = _definition->getDofJoints().data();
+    _dofMasks = _definition->getDofMasks().data();
     _jointDirty.assign(numJoints, 1);
     _localChanged.assign(numJoints, 0);
     _modelChanged.assign(numJoints, 0);
@@ -77,17 +109,22 @@ unsigned ActorPose::setDofRange(unsigned firstDof, const double* values, unsigne
     for (unsigned begin = firstDof, end = firstDof + count; begin < end; begin += kBlock)
     {
         const unsigned blockEnd = std::min(begin + kBlock, end);
-        refused += clampAndStoreDofs(values + (begin - firstDof), _dofMins + begin, _dofMaxs + begin,
-                                     _dofs.data() + begin, changed, blockEnd - begin);
+        const StoreCounts counts = clampAndStoreDofs(values + (begin - firstDof), _dofMins + begin,
+                                                     _dofMaxs + begin, _dofs.data() + begin, changed, blockEnd - begin);
+        refused += counts.refused;
+        anyChanged |= counts.changed;
+        if (counts.changed == blockEnd - begin)
+        {
+            // A clip playing: every DOF moved.
+            markJointsWithDofs(_dofMasks, jointDirty, dofJoints[begin], dofJoints[blockEnd - 1]);
+            continue;
+        }
+        if (counts.changed == 0) continue;
         // Each DOF marks its joint: a joint's DOFs are consecutive, so its flag stays in a register-sized store
         // buffer, and this costs less than finding where each joint's DOFs start and end in the block.
 #pragma GCC unroll 4
         for (unsigned i = begin; i < blockEnd; ++i)
-        {
-            const std::uint64_t dofChanged = changed[i - begin];
-            jointDirty[dofJoints[i]] |= static_cast<std::uint8_t>(dofChanged);
-            anyChanged |= dofChanged;
-        }
+            jointDirty[dofJoints[i]] |= static_cast<std::uint8_t>(changed[i - begin]);
     }
     _anyDirty = _anyDirty || anyChanged != 0;
     return static_cast<unsigned>(refused);

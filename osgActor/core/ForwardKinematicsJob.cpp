@@ -275,6 +275,14 @@ OSGACTOR_INLINE void buildBatchMatrices(const JointBatch& batch, const JointKine
     }
 }
 
+/** Whether every one of count flags is non-zero: a few vector compares for a skeleton's worth. */
+OSGACTOR_INLINE bool allSet(const std::uint8_t* flags, unsigned count)
+{
+    std::uint8_t all = 1;
+    for (unsigned i = 0; i < count; ++i) all &= flags[i] != 0 ? 1u : 0u;
+    return all != 0;
+}
+
 /** The flags of a joint whose local matrix was just rebuilt. */
 OSGACTOR_INLINE void markRebuilt(std::uint8_t* jointDirty, std::uint8_t* localChanged, std::uint8_t* modelStale,
                                  unsigned joint)
@@ -293,6 +301,7 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
 {
     const JointBatchPlan& plan = job.definition->getJointBatches();
     const JointKinematics* const kinematics = job.definition->getAllKinematics().data();
+    const unsigned numJoints = job.definition->getNumJoints();
     const double* const dofs = job.dofs;
     std::uint8_t* const jointDirty = job.jointDirty;
     std::uint8_t* const localChanged = job.localChanged;
@@ -301,8 +310,24 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
     const auto buildOne = [&](unsigned joint) OSGACTOR_INLINE_LAMBDA {
         const JointKinematics& k = kinematics[joint];
         buildJointMatrixDispatched(k, dofs, TrigInOrder::inFastRange(k, dofs), local[joint]);
-        markRebuilt(jointDirty, localChanged, modelStale, joint);
     };
+    const auto buildBatch = [&](const JointBatch& batch, unsigned lanes) OSGACTOR_INLINE_LAMBDA {
+        withRotationSequence(batch.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
+            buildBatchMatrices<decltype(sequence)::value>(batch, kinematics, dofs, local, lanes);
+        });
+    };
+
+    if (allSet(jointDirty, numJoints))
+    {
+        // A clip playing moves every joint: no flag to test per joint, and the flags set in three sweeps after.
+        for (const JointBatch& batch : plan.batches) buildBatch(batch, (1u << batch.numJoints) - 1u);
+        for (const std::uint32_t joint : plan.singleJoints) buildOne(joint);
+        std::memset(jointDirty, 0, numJoints);
+        std::memset(localChanged, 1, numJoints);
+        std::memset(modelStale, 1, numJoints);
+        return numJoints;
+    }
+
     unsigned numRebuilt = 0;
     for (const JointBatch& batch : plan.batches)
     {
@@ -314,13 +339,13 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
         if (lanes == 0) continue;
         if ((lanes & (lanes - 1)) == 0)
         {
-            buildOne(batch.joints[__builtin_ctz(lanes)]);
+            const unsigned joint = batch.joints[__builtin_ctz(lanes)];
+            buildOne(joint);
+            markRebuilt(jointDirty, localChanged, modelStale, joint);
             ++numRebuilt;
             continue;
         }
-        withRotationSequence(batch.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
-            buildBatchMatrices<decltype(sequence)::value>(batch, kinematics, dofs, local, lanes);
-        });
+        buildBatch(batch, lanes);
         for (unsigned lane = 0; lane < JointBatch::kWidth; ++lane)
             if (lanes >> lane & 1u) markRebuilt(jointDirty, localChanged, modelStale, batch.joints[lane]);
         numRebuilt += static_cast<unsigned>(__builtin_popcount(lanes));
@@ -329,9 +354,20 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
         if (jointDirty[joint])
         {
             buildOne(joint);
+            markRebuilt(jointDirty, localChanged, modelStale, joint);
             ++numRebuilt;
         }
     return numRebuilt;
+}
+
+/** The model matrix of joint j from its parent's and its local one. */
+OSGACTOR_INLINE void composeModelMatrix(const int* parents, double* const* local, glm::dmat4* model, unsigned j)
+{
+    const int parent = parents[j];
+    if (parent >= 0)
+        multiplyAffineInto(&model[parent][0][0], local[j], &model[j][0][0]);
+    else
+        std::memcpy(&model[j][0][0], local[j], sizeof(glm::dmat4));
 }
 
 /** Step 2 of the job: one pass over the joints, parents first, composing the model matrix of every joint whose
@@ -344,6 +380,13 @@ OSGACTOR_HOT_PATH void composeModelMatrices(const ForwardKinematicsJob& job)
     std::uint8_t* const modelChanged = job.modelChanged;
     double* const* const local = job.local;
     glm::dmat4* const model = job.model;
+    if (allSet(modelStale, numJoints))
+    {
+        for (unsigned j = 0; j < numJoints; ++j) composeModelMatrix(parents, local, model, j);
+        std::memset(modelStale, 0, numJoints);
+        std::memset(modelChanged, 1, numJoints);
+        return;
+    }
     for (unsigned j = 0; j < numJoints; ++j)
     {
         const int parent = parents[j];
@@ -352,10 +395,7 @@ OSGACTOR_HOT_PATH void composeModelMatrices(const ForwardKinematicsJob& job)
         modelChanged[j] = moved ? 1 : 0;
         if (!moved) continue;
         modelStale[j] = 0;
-        if (parent >= 0)
-            multiplyAffineInto(&model[parent][0][0], local[j], &model[j][0][0]);
-        else
-            std::memcpy(&model[j][0][0], local[j], sizeof(glm::dmat4));
+        composeModelMatrix(parents, local, model, j);
     }
 }
 

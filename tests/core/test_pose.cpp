@@ -240,6 +240,38 @@ TEST(ActorPose, ALongRangeWriteMarksOnlyTheJointsThatChanged)
     EXPECT_EQ(pose.getDofs(), values);
 }
 
+TEST(ActorPose, ARangeWriteThatChangesEveryDofMarksExactlyTheJointsOwningThem)
+{
+    // 100 joints, every third one without a DOF (an end site), the others with 2 or 3: 168 DOFs. A write of which
+    // every value is new takes the all-changed path, eight joints a step; joints without a DOF between those
+    // written, and joints outside the range, stay clean. Two ranges: 165 DOFs (two 128-DOF blocks), and a short one.
+    ActorDefinitionBuilder b("comb");
+    b.addJoint("j0").dofs(kRotationDofs);
+    for (unsigned j = 1; j < 100; ++j)
+    {
+        auto joint = b.addJoint("j" + std::to_string(j), "j0");
+        if (j % 3 == 1) joint.dofs(Dof::RX | Dof::RZ);
+        else if (j % 3 == 2) joint.dofs(kRotationDofs);
+    }
+    ActorPose pose(b.build().definition);
+    const ActorDefinition& def = *pose.getDefinition();
+    for (const unsigned firstJoint : {1u, 40u})
+    {
+        pose.updateMatrices();
+        const unsigned lastJoint = firstJoint == 1 ? 98 : 44; // both have DOFs
+        const unsigned firstDof = def.getFirstDof(firstJoint), endDof = def.getFirstDof(lastJoint + 1);
+        std::vector<double> values(pose.getDofs().begin() + firstDof, pose.getDofs().begin() + endDof);
+        for (double& v : values) v += 0.125;
+        EXPECT_EQ(pose.setDofRange(firstDof, values.data(), endDof - firstDof), 0u);
+        for (unsigned j = 0; j < def.getNumJoints(); ++j)
+        {
+            const bool written = j >= firstJoint && j <= lastJoint && def.getNumJointDofs(j) > 0;
+            EXPECT_EQ(pose.isJointDirty(j), written) << "range from joint " << firstJoint << ", joint " << j;
+        }
+        EXPECT_EQ(pose.updateMatrices(), firstJoint == 1 ? 66u : 4u) << "joints rebuilt";
+    }
+}
+
 TEST(ActorPose, ResetRestoresDefaults)
 {
     ActorPose pose(makeArm());
