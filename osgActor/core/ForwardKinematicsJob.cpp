@@ -127,14 +127,17 @@ struct TrigInOrder
 {
     double sines[4];
     double cosines[4];
-    /** Computed together, one column for up to three angles; every angle within the fast range (see
-      * withinFastSinCosRange). */
-    static OSGACTOR_INLINE TrigInOrder inFastRange(const JointKinematics& k, const double* dofs)
+    /** Computed together, one column for up to three angles; right where every angle is within the fast range,
+      * which guard checks. */
+    static OSGACTOR_INLINE TrigInOrder inFastRange(const JointKinematics& k, const double* dofs,
+                                                   FastSinCosRangeGuard& guard)
     {
         double angles[4] = {0.0, 0.0, 0.0, 0.0};
         for (unsigned r = 0; r < k.numRotations; ++r) angles[r] = dofs[k.rotationDof[r]];
+        const Column x = loadColumn(angles);
+        guard.check(x);
         Column s, c;
-        sinCosColumnInFastRange(loadColumn(angles), s, c);
+        sinCosColumnInFastRange(x, s, c);
         TrigInOrder trig;
         storeColumn(trig.sines, s);
         storeColumn(trig.cosines, c);
@@ -156,19 +159,21 @@ struct TrigInOrder
 };
 
 /** A batch's sines and cosines in product order (Count rotations), one joint per lane: each rotation's angles are
-  * gathered from the DOF vector into one column. */
+  * gathered from the DOF vector into one column. Right where every angle is within the fast range, which guard
+  * checks. */
 template <unsigned Count>
 struct TrigByLane
 {
     Column sines[Count > 0 ? Count : 1];
     Column cosines[Count > 0 ? Count : 1];
-    OSGACTOR_INLINE TrigByLane(const JointBatch& batch, const double* dofs)
+    OSGACTOR_INLINE TrigByLane(const JointBatch& batch, const double* dofs, FastSinCosRangeGuard& guard)
     {
         for (unsigned r = 0; r < Count; ++r)
         {
             const std::uint32_t* dof = batch.angleDofs[r];
-            sinCosColumnInFastRange(Column{dofs[dof[0]], dofs[dof[1]], dofs[dof[2]], dofs[dof[3]]}, sines[r],
-                                    cosines[r]);
+            const Column angles = {dofs[dof[0]], dofs[dof[1]], dofs[dof[2]], dofs[dof[3]]};
+            guard.check(angles);
+            sinCosColumnInFastRange(angles, sines[r], cosines[r]);
         }
     }
     OSGACTOR_INLINE Column sine(unsigned r) const { return sines[r]; }
@@ -259,10 +264,10 @@ OSGACTOR_INLINE void transposeLanes(const LaneVector3& v, Column result[JointBat
   * have no translation DOF, so the last column is the offset's. */
 template <unsigned Sequence>
 OSGACTOR_INLINE void buildBatchMatrices(const JointBatch& batch, const JointKinematics* kinematics, const double* dofs,
-                                        double* const* local, unsigned lanes)
+                                        double* const* local, unsigned lanes, FastSinCosRangeGuard& guard)
 {
     Rotation3<LaneVector3> rotation;
-    composeRotation<Sequence>(rotation, TrigByLane<SequenceAxes<Sequence>::count>(batch, dofs));
+    composeRotation<Sequence>(rotation, TrigByLane<SequenceAxes<Sequence>::count>(batch, dofs, guard));
     Column columns[3][JointBatch::kWidth];
     for (unsigned col = 0; col < 3; ++col) transposeLanes(rotation.c[col], columns[col]);
     for (unsigned lane = 0; lane < JointBatch::kWidth; ++lane)
@@ -292,10 +297,12 @@ OSGACTOR_INLINE void markRebuilt(std::uint8_t* jointDirty, std::uint8_t* localCh
     modelStale[joint] = 1;
 }
 
+unsigned buildLocalMatricesExactly(const ForwardKinematicsJob& job);
+
 /** Step 1 of the job: the local matrices of the dirty joints, batch by batch (see JointBatch), then the joints built
   * one at a time. A batch with a single dirty joint builds it on its own, which is cheaper than four lanes. Returns
-  * how many local matrices it rebuilt. Every angle must be within the fast sine and cosine's range (see
-  * withinFastSinCosRange). Every buffer is read into a local first: the flags are bytes, which may alias
+  * how many local matrices it rebuilt. A pose with an angle beyond the fast sine and cosine's range goes to
+  * buildLocalMatricesExactly. Every buffer is read into a local first: the flags are bytes, which may alias
   * anything, so fields of the job would be reloaded after each flag store. */
 OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
 {
@@ -307,27 +314,33 @@ OSGACTOR_HOT_PATH unsigned buildLocalMatrices(const ForwardKinematicsJob& job)
     std::uint8_t* const localChanged = job.localChanged;
     std::uint8_t* const modelStale = job.modelStale;
     double* const* const local = job.local;
+    FastSinCosRangeGuard guard;
     const auto buildOne = [&](unsigned joint) OSGACTOR_INLINE_LAMBDA {
         const JointKinematics& k = kinematics[joint];
-        buildJointMatrixDispatched(k, dofs, TrigInOrder::inFastRange(k, dofs), local[joint]);
+        buildJointMatrixDispatched(k, dofs, TrigInOrder::inFastRange(k, dofs, guard), local[joint]);
     };
     const auto buildBatch = [&](const JointBatch& batch, unsigned lanes) OSGACTOR_INLINE_LAMBDA {
         withRotationSequence(batch.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
-            buildBatchMatrices<decltype(sequence)::value>(batch, kinematics, dofs, local, lanes);
+            buildBatchMatrices<decltype(sequence)::value>(batch, kinematics, dofs, local, lanes, guard);
         });
     };
 
     if (allSet(jointDirty, numJoints))
     {
-        // A clip playing moves every joint: no flag to test per joint, and the flags set in three sweeps after.
+        // A clip playing moves every joint: no flag to test per joint, and the flags set in three sweeps after. The
+        // angles' range is checked as they are gathered; no flag has changed yet if a redo is needed.
         for (const JointBatch& batch : plan.batches) buildBatch(batch, (1u << batch.numJoints) - 1u);
         for (const std::uint32_t joint : plan.singleJoints) buildOne(joint);
+        if (!guard.passed()) return buildLocalMatricesExactly(job);
         std::memset(jointDirty, 0, numJoints);
         std::memset(localChanged, 1, numJoints);
         std::memset(modelStale, 1, numJoints);
         return numJoints;
     }
 
+    // Some joints: flags change as joints are built, so the range is checked first, over the whole DOF vector
+    // (translations too: cheaper than picking the angles out).
+    if (!withinFastSinCosRange(dofs, job.definition->getNumDofs())) return buildLocalMatricesExactly(job);
     unsigned numRebuilt = 0;
     for (const JointBatch& batch : plan.batches)
     {
@@ -399,13 +412,6 @@ OSGACTOR_HOT_PATH void composeModelMatrices(const ForwardKinematicsJob& job)
     }
 }
 
-/** Whether every DOF is within the fast sine and cosine's range (translations too: a check over the whole vector is
-  * cheaper than picking the angles out). */
-OSGACTOR_HOT_PATH bool withinFastRange(const double* dofs, unsigned numDofs)
-{
-    return withinFastSinCosRange(dofs, numDofs);
-}
-
 /** Step 1 for a pose with an angle beyond the fast sine and cosine's range (more than 1e6 radians): joint by
   * joint, through the library's functions. */
 unsigned buildLocalMatricesExactly(const ForwardKinematicsJob& job)
@@ -449,8 +455,7 @@ bool ForwardKinematicsJob::run()
     numRecomputed = 0;
     if (!validate()) return false;
     if (rebuildLocal)
-        numRecomputed = withinFastRange(dofs, definition->getNumDofs()) ? buildLocalMatrices(*this)
-                                                                        : buildLocalMatricesExactly(*this);
+        numRecomputed = buildLocalMatrices(*this);
     if (computeModel) composeModelMatrices(*this);
     return true;
 }

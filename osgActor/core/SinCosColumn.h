@@ -89,6 +89,22 @@ OSGACTOR_INLINE bool withinFastSinCosRange(const double* values, unsigned count)
     return within;
 }
 
+/** Collects, column by column, whether any angle is beyond sinCosColumnInFastRange's range (or NaN): a caller that
+  * takes the fast path first and checks once after, redoing the rare large-angle case, skips a pass over the
+  * angles. */
+class FastSinCosRangeGuard
+{
+public:
+    OSGACTOR_INLINE void check(Column x)
+    {
+        _outside |= reinterpret_cast<ColumnBits>(!(absColumn(x) <= sincos_detail::kLargestFastAngle));
+    }
+    OSGACTOR_INLINE bool passed() const { return (_outside[0] | _outside[1] | _outside[2] | _outside[3]) == 0; }
+
+private:
+    ColumnBits _outside = ColumnBits{};
+};
+
 /** sine = sin(x), cosine = cos(x), lane by lane, to about an ulp; x must be finite. */
 OSGACTOR_INLINE void sinCosColumn(Column x, Column& sine, Column& cosine)
 {

@@ -142,14 +142,33 @@ TEST(JointBatches, ABatchWritesOnlyItsDirtyJoints)
 TEST(JointBatches, AnAngleBeyondTheFastRangeTakesTheLibraryFunctions)
 {
     // 1e17 radians is far past the fast range reduction's reach (its quarter-turn count must stay below 2^51):
-    // computed there, the matrix would be wrong.
+    // computed there, the matrix would be wrong. Each joint's first angle in turn, batched or not, both when every
+    // joint is rebuilt (the range checked as angles are gathered, then all redone) and when that joint alone is (the
+    // range checked first).
     const ActorDefinitionPtr def = mixedDefinition();
-    ActorPose pose(def);
-    std::vector<double> dofs = randomDofs(*def, 3);
-    dofs[def->getFirstDof(2)] = 1e17;
-    ASSERT_EQ(pose.setDofRange(0, dofs.data(), def->getNumDofs()), 0u);
-    pose.updateMatrices();
-    for (unsigned j = 0; j < def->getNumJoints(); ++j)
-        EXPECT_TRUE(matricesNear(pose.getLocalMatrix(j), computeJointMatrix(def->getKinematics(j), dofs.data()), 1e-14))
-            << def->getJointName(j);
+    for (unsigned joint = 0; joint < def->getNumJoints(); ++joint)
+    {
+        if (def->getNumJointDofs(joint) == 0) continue;
+        const unsigned angle = def->getFirstDof(joint);
+        ASSERT_TRUE(isRotation(def->getDofType(angle)));
+        std::vector<double> dofs = randomDofs(*def, 3);
+        ActorPose pose(def);
+        for (const bool everyJoint : {true, false})
+        {
+            if (!everyJoint)
+            {
+                pose.updateMatrices();
+                dofs[angle] = 0.5;
+                ASSERT_EQ(pose.setDofRange(0, dofs.data(), def->getNumDofs()), 0u);
+                ASSERT_EQ(pose.updateMatrices(), 1u);
+            }
+            dofs[angle] = everyJoint ? 1e17 : -3e17;
+            ASSERT_EQ(pose.setDofRange(0, dofs.data(), def->getNumDofs()), 0u);
+            EXPECT_EQ(pose.updateMatrices(), everyJoint ? def->getNumJoints() : 1u);
+            for (unsigned j = 0; j < def->getNumJoints(); ++j)
+                EXPECT_TRUE(matricesNear(pose.getLocalMatrix(j), computeJointMatrix(def->getKinematics(j), dofs.data()),
+                                         1e-14))
+                    << def->getJointName(joint) << " at " << dofs[angle] << ": " << def->getJointName(j);
+        }
+    }
 }
