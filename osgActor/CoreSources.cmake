@@ -6,6 +6,7 @@ set(OSGACTOR_CORE_HEADERS
     core/ActorDefinition
     core/ActorDefinitionBuilder
     core/ActorPose
+    core/AlignedAllocator
     core/Clip
     core/ClipBuilder
     core/ClipLibrary

@@ -37,7 +37,7 @@ bool LocalMatrices::redirect(const std::vector<double*>& targets)
         if (targets[j] != _targets[j]) std::memcpy(targets[j], _targets[j], sizeof(glm::dmat4));
     _targets = targets;
     _redirected = true;
-    std::vector<glm::dmat4>().swap(_own);
+    decltype(_own)().swap(_own);
     return true;
 }
 

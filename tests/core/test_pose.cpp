@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -270,6 +271,15 @@ TEST(ActorPose, ARangeWriteThatChangesEveryDofMarksExactlyTheJointsOwningThem)
         }
         EXPECT_EQ(pose.updateMatrices(), firstJoint == 1 ? 66u : 4u) << "joints rebuilt";
     }
+}
+
+TEST(ActorPose, MatrixArraysStartOnACacheLine)
+{
+    // So that no 32-byte column the FK loops load or store straddles two cache lines; copies too.
+    ActorPose pose(makeArm());
+    const ActorPose copy = pose;
+    for (const ActorPose* p : {static_cast<const ActorPose*>(&pose), &copy})
+        EXPECT_EQ(reinterpret_cast<std::uintptr_t>(&p->getModelMatrix(0)) % 64, 0u);
 }
 
 TEST(ActorPose, ResetRestoresDefaults)
