@@ -76,16 +76,39 @@ OSGACTOR_INLINE void postRotateAxis(Rotation3<Vector3>& m, Scalar s, Scalar c)
     m.c[j] = -s * ci + c * cj;
 }
 
-/** out = a * b for affine matrices stored as dmat4 (16 doubles, column-major; bottom rows 0 0 0 1); out may not
-  * alias a or b. Column by column: out's column k is a's columns weighted by b's column k, whose bottom element is
-  * known (0, or 1 for the translation), so each column costs three broadcasts and three multiply-adds. */
+/** The four columns of an affine matrix. */
+struct AffineColumns
+{
+    Column c[4];
+};
+
+OSGACTOR_INLINE AffineColumns loadAffine(const double* m)
+{
+    return {{loadColumn(m), loadColumn(m + 4), loadColumn(m + 8), loadColumn(m + 12)}};
+}
+
+OSGACTOR_INLINE void storeAffine(double* m, const AffineColumns& a)
+{
+    for (unsigned col = 0; col < 4; ++col) storeColumn(m + 4 * col, a.c[col]);
+}
+
+/** a * b for affine matrices, a as columns, b stored as dmat4 (16 doubles, column-major; bottom row 0 0 0 1).
+  * Column by column: out's column k is a's columns weighted by b's column k, whose bottom element is known (0, or 1
+  * for the translation), so each column costs three broadcasts and three multiply-adds. */
+OSGACTOR_INLINE AffineColumns multiplyAffineColumns(const AffineColumns& a, const double* __restrict b)
+{
+    AffineColumns out;
+    for (unsigned col = 0; col < 3; ++col)
+        out.c[col] = combineColumns(a.c[0], a.c[1], a.c[2], b[4 * col], b[4 * col + 1], b[4 * col + 2]);
+    out.c[3] = combineColumns(a.c[0], a.c[1], a.c[2], b[12], b[13], b[14]) + a.c[3];
+    return out;
+}
+
+/** out = a * b for affine matrices stored as dmat4 (16 doubles, column-major); out may not alias a or b. */
 OSGACTOR_INLINE void multiplyAffineInto(const double* __restrict a, const double* __restrict b,
                                         double* __restrict out)
 {
-    const Column a0 = loadColumn(a), a1 = loadColumn(a + 4), a2 = loadColumn(a + 8), a3 = loadColumn(a + 12);
-    for (unsigned col = 0; col < 3; ++col)
-        storeColumn(out + 4 * col, combineColumns(a0, a1, a2, b[4 * col], b[4 * col + 1], b[4 * col + 2]));
-    storeColumn(out + 12, combineColumns(a0, a1, a2, b[12], b[13], b[14]) + a3);
+    storeAffine(out, multiplyAffineColumns(loadAffine(a), b));
 }
 
 /** The axes of a rotation sequence (see rotationSequenceOf), decoded at compile time. */
@@ -395,7 +418,21 @@ OSGACTOR_HOT_PATH void composeModelMatrices(const ForwardKinematicsJob& job)
     glm::dmat4* const model = job.model;
     if (allSet(modelStale, numJoints))
     {
-        for (unsigned j = 0; j < numJoints; ++j) composeModelMatrix(parents, local, model, j);
+        // Joint after joint down a chain (the parent the joint just before), the parent's columns are still in
+        // registers: reading them back from the store just made would add the store-to-load latency to every link
+        // of the chain, which is what bounds this loop.
+        AffineColumns previous{};
+        for (unsigned j = 0; j < numJoints; ++j)
+        {
+            const int parent = parents[j];
+            if (parent < 0)
+                previous = loadAffine(local[j]);
+            else if (parent + 1 == static_cast<int>(j))
+                previous = multiplyAffineColumns(previous, local[j]);
+            else
+                previous = multiplyAffineColumns(loadAffine(&model[parent][0][0]), local[j]);
+            storeAffine(&model[j][0][0], previous);
+        }
         std::memset(modelStale, 0, numJoints);
         std::memset(modelChanged, 1, numJoints);
         return;

@@ -172,3 +172,30 @@ TEST(JointBatches, AnAngleBeyondTheFastRangeTakesTheLibraryFunctions)
         }
     }
 }
+
+TEST(JointBatches, ModelMatricesComposeAlongChainsAndBranches)
+{
+    // The model pass keeps a chain's last matrix in registers and reloads a branch's parent from memory: every
+    // joint's model matrix is its parent's times its local one, whichever way its parent was reached. Both when
+    // every joint moves and when one joint does (its descendants follow).
+    const ActorDefinitionPtr def = mixedDefinition();
+    ActorPose pose(def);
+    const auto expectComposed = [&](const char* when) {
+        for (unsigned j = 0; j < def->getNumJoints(); ++j)
+        {
+            const int parent = def->getParent(j);
+            const glm::dmat4 expected = parent < 0 ? pose.getLocalMatrix(j)
+                                                   : multiplyAffine(pose.getModelMatrix(static_cast<unsigned>(parent)),
+                                                                    pose.getLocalMatrix(j));
+            EXPECT_TRUE(matricesNear(pose.getModelMatrix(j), expected, 1e-15)) << when << ": " << def->getJointName(j);
+        }
+    };
+    std::vector<double> dofs = randomDofs(*def, 5);
+    ASSERT_EQ(pose.setDofRange(0, dofs.data(), def->getNumDofs()), 0u);
+    EXPECT_EQ(pose.updateMatrices(), def->getNumJoints());
+    expectComposed("every joint");
+    dofs[def->getFirstDof(1)] += 0.5; // spine: its chain and the right arm's branch move
+    ASSERT_EQ(pose.setDofRange(0, dofs.data(), def->getNumDofs()), 0u);
+    EXPECT_EQ(pose.updateMatrices(), 1u);
+    expectComposed("the spine");
+}
