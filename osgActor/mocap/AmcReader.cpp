@@ -33,7 +33,6 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
     const unsigned numDofs = def.getNumDofs();
     bool degrees = skeleton.degrees;
     std::vector<double> values;    // frame-major, numDofs per frame
-    std::vector<double> rootTranslation(3, 0.0);
     unsigned long numFrames = 0;
     unsigned linesInFrame = 0;
     unsigned long incompleteFrames = 0;
@@ -76,6 +75,7 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
         double* row = values.data() + (numFrames - 1) * numDofs;
         const double angle = degrees ? glm::pi<double>() / 180.0 : 1.0;
         bool hasTranslation = false;
+        glm::dvec3 translation(0.0); // file units and axes; a component the line leaves out is 0
         for (std::size_t i = 0; i < layout.dofs.size(); ++i)
         {
             double value;
@@ -85,15 +85,14 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
             if (layout.angular[i]) row[layout.dofs[i]] = value * angle;
             else
             {
-                rootTranslation[static_cast<unsigned>(layout.translationAxis[i])] = value;
+                translation[layout.translationAxis[i]] = value;
                 hasTranslation = true;
             }
         }
         if (hasTranslation)
         {
-            // Root translations act in the root's axis frame and model units.
-            const glm::dvec3 mapped =
-                skeleton.rootTranslationMap * glm::dvec3(rootTranslation[0], rootTranslation[1], rootTranslation[2]);
+            // Onto the joint's translation DOFs, in model units (see AsfAmcLayout::translationMap).
+            const glm::dvec3 mapped = layout.translationMap * translation;
             for (std::size_t i = 0; i < layout.dofs.size(); ++i)
                 if (!layout.angular[i]) row[layout.dofs[i]] = mapped[layout.translationAxis[i]];
         }

@@ -262,9 +262,12 @@ bool AsfParser::parseBone()
             for (std::size_t i = 1; i < t.size(); ++i)
             {
                 Dof dof;
-                if (!parseDof(std::string(t[i]), dof) || !isRotation(dof))
+                if (sameWord(t[i], "l"))
+                    return fail("dof 'l' (stretching) of '" + bone.name +
+                                "' is not supported (bones take rx, ry, rz, tx, ty, tz)");
+                if (!parseDof(std::string(t[i]), dof))
                     return fail("dof '" + std::string(t[i]) + "' of '" + bone.name +
-                                "' is not supported (bones take rx, ry, rz)");
+                                "' is not supported (bones take rx, ry, rz, tx, ty, tz)");
                 for (Dof seen : bone.dofs)
                     if (seen == dof) return fail("'" + bone.name + "' lists dof '" + std::string(t[i]) + "' twice");
                 bone.dofs.push_back(dof);
@@ -325,7 +328,8 @@ bool AsfParser::build()
         if (!_options.applyLimits || bone.mins.empty()) return true;
         for (std::size_t d = 0; d < bone.dofs.size(); ++d)
         {
-            const double lo = bone.mins[d] * angle, hi = bone.maxs[d] * angle;
+            const double unit = isRotation(bone.dofs[d]) ? angle : scale; // translations are lengths
+            const double lo = bone.mins[d] * unit, hi = bone.maxs[d] * unit;
             ref.limits(bone.dofs[d], lo, hi);
             ref.defaultValue(bone.dofs[d], std::min(std::max(0.0, lo), hi)); // rest pose within the limits
         }
@@ -341,7 +345,7 @@ bool AsfParser::build()
     for (Dof dof : _root.dofs) numRootTranslations += isRotation(dof) ? 0 : 1;
     if (numRootTranslations != 0 && numRootTranslations != 3 && rootAxis != glm::dmat3(1.0))
         return fail("a rotated root axis needs all of TX TY TZ or none");
-    _result.rootTranslationMap = glm::transpose(rootAxis) * scale;
+    const glm::dmat3 rootTranslationMap = glm::transpose(rootAxis) * scale;
 
     for (const AsfBone& bone : _bones)
     {
@@ -367,10 +371,11 @@ bool AsfParser::build()
     }
     _result.definition = built.definition;
 
-    auto addLayout = [&](const AsfBone& bone) {
+    auto addLayout = [&](const AsfBone& bone, const glm::dmat3& translationMap) {
         if (bone.dofs.empty()) return;
         AsfAmcLayout layout;
         layout.bone = bone.name;
+        layout.translationMap = translationMap;
         const unsigned joint = static_cast<unsigned>(built.definition->findJoint(bone.name));
         for (Dof dof : bone.dofs)
         {
@@ -380,8 +385,9 @@ bool AsfParser::build()
         }
         _result.layouts.push_back(layout);
     };
-    addLayout(_root);
-    for (const AsfBone& bone : _bones) addLayout(bone);
+    addLayout(_root, rootTranslationMap);
+    // A bone's translations are already in its axis frame, the frame of its joint.
+    for (const AsfBone& bone : _bones) addLayout(bone, glm::dmat3(scale));
     return true;
 }
 

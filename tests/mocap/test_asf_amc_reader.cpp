@@ -114,6 +114,8 @@ TEST(AsfReader, RefusesBrokenBones)
                    "length of 'femur'");
     expectAsfError(std::string(text).replace(text.find("dof rx rz"), 9, "dof rx rw"), "inline.asf:19: ",
                    "dof 'rw' of 'femur'");
+    expectAsfError(std::string(text).replace(text.find("dof rx rz"), 9, "dof rx l"), "inline.asf:19: ",
+                   "dof 'l' (stretching) of 'femur' is not supported");
     expectAsfError(std::string(text).replace(text.find("axis 0 0 90  XYZ"), 16, "axis 0 nan 90 XYZ"),
                    "inline.asf:18: ", "'nan'");
     expectAsfError(std::string(text).replace(text.find("femur tibia"), 11, "femur fibula"), "inline.asf:35: ",
@@ -200,6 +202,47 @@ TEST(AsfReader, ScalesAndTurnsYUpIntoZUp)
     EXPECT_TRUE(vectorsNear(origins[2], glm::dvec3(0.5, -1.5, 0.0), 1e-12));
 }
 
+TEST(AsfReader, TakesBoneTranslationsInTheBoneAxisFrameInLengthUnits)
+{
+    AsfImportOptions options = fileFrame();
+    options.applyLimits = true;
+    options.scale = 2.0;
+    const AsfImport scaled = readAsfFile(testData("sliding.asf"), options);
+    ASSERT_TRUE(scaled) << scaled.error;
+    const ActorDefinition& def = *scaled.definition;
+    const unsigned femur = static_cast<unsigned>(def.findJoint("femur"));
+    EXPECT_EQ(def.getDofMask(femur), Dof::RX | Dof::TY | Dof::RZ);
+    EXPECT_EQ(def.getTranslationMode(femur), TranslationMode::BeforeRotation);
+    // Limits follow each dof's unit: the translation's are lengths (times scale), the rotations' degrees.
+    const unsigned femurTy = static_cast<unsigned>(def.findDof("femur.ty"));
+    EXPECT_DOUBLE_EQ(def.getDofMin(femurTy), -1.0);
+    EXPECT_DOUBLE_EQ(def.getDofMax(femurTy), 1.0);
+    EXPECT_DOUBLE_EQ(def.getDofMax(static_cast<unsigned>(def.findDof("femur.rz"))), 170.0 * glm::pi<double>() / 180);
+
+    const AsfImport skeleton = readAsfFile(testData("sliding.asf"), fileFrame());
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    const MocapImport motion = readAmcFile(testData("sliding.amc"), skeleton);
+    ASSERT_TRUE(motion) << motion.error;
+    const unsigned tibia = static_cast<unsigned>(def.findJoint("tibia")), foot = static_cast<unsigned>(def.findJoint("foot"));
+    ActorPose pose(motion.definition);
+    // Frame 1: the femur points down 2 and is still. The tibia's (0.5, 0.25, 0) is in its axis frame, C = Rz(90):
+    // (-0.25, 0.5, 0) in the file's, so it starts at (0, -2, 0) + that and ends 3 lower.
+    std::vector<glm::dvec3> origins = posedOrigins(pose, *motion.clip, 0);
+    EXPECT_TRUE(vectorsNear(origins[tibia], glm::dvec3(-0.25, -1.5, 0), 1e-12));
+    EXPECT_TRUE(vectorsNear(origins[foot], glm::dvec3(-0.25, -4.5, 0), 1e-12));
+    // Frame 2: the femur turns 90 degrees about Z, so it ends at (2, 0, 0) and the tibia's translation turns with it
+    // (C = Rz(90) after Rz(90): (-0.5, -0.25, 0)). The tibia's own rx 90 (about its C's x, the file's y) does not move
+    // its start, only its end: W = Rz(90) Ry(90) takes (0, -3, 0) to (3, 0, 0).
+    origins = posedOrigins(pose, *motion.clip, 1);
+    EXPECT_TRUE(vectorsNear(origins[tibia], glm::dvec3(1.5, -0.25, 0), 1e-12));
+    EXPECT_TRUE(vectorsNear(origins[foot], glm::dvec3(4.5, -0.25, 0), 1e-12));
+    // The translations are lengths: scaled with the skeleton.
+    const MocapImport scaledMotion = readAmcFile(testData("sliding.amc"), scaled);
+    ASSERT_TRUE(scaledMotion) << scaledMotion.error;
+    ActorPose scaledPose(scaledMotion.definition);
+    EXPECT_TRUE(vectorsNear(posedOrigins(scaledPose, *scaledMotion.clip, 0)[tibia], glm::dvec3(-0.5, -3, 0), 1e-12));
+}
+
 // --- real files against the reference computation ---
 
 TEST(AsfAmc, MatchesTheReferenceOnCmuSubject11)
@@ -210,6 +253,11 @@ TEST(AsfAmc, MatchesTheReferenceOnCmuSubject11)
 TEST(AsfAmc, MatchesTheReferenceOnCharleston)
 {
     expectMatchesReference(sharedMocap("asfamc/charleston.asf"), sharedMocap("asfamc/charleston1.amc"));
+}
+
+TEST(AsfAmc, MatchesTheReferenceOnBonesThatTranslate)
+{
+    expectMatchesReference(testData("sliding.asf"), testData("sliding.amc"));
 }
 
 TEST(AsfAmc, ReadsSeveralMotionsAgainstOneSkeleton)
