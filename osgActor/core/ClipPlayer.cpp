@@ -358,13 +358,18 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
     const double clipTime = clipTimeAt(_playTime);
     if (_rootJoint < 0 && !_binding->runs.empty() && writesAtFullWeight())
     {
-        // The common case, one clip driving the skeleton it was made for: sample and write a run at a time.
+        // The common case, one clip driving the skeleton it was made for: sample and write a run at a time, through
+        // a buffer on the stack (a skeleton's run fits in one or two chunks; the thread's scratch buffer would cost a
+        // call to find the thread-local storage of a shared library).
+        constexpr unsigned kChunk = 128;
+        double values[kChunk];
         for (const ClipBinding::Run& run : _binding->runs)
-        {
-            double* values = drivenValuesScratch(run.count);
-            _clip->sampleRange(clipTime, _cursor, run.firstChannel, run.count, values);
-            target.pose.setDofRange(run.firstDof, values, run.count);
-        }
+            for (unsigned done = 0; done < run.count; done += kChunk)
+            {
+                const unsigned count = std::min(kChunk, run.count - done);
+                _clip->sampleRange(clipTime, _cursor, run.firstChannel + done, count, values);
+                target.pose.setDofRange(run.firstDof + done, values, count);
+            }
         return;
     }
     const std::vector<std::uint32_t>& driven = _binding->drivenChannels;

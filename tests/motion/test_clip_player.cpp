@@ -238,10 +238,11 @@ TEST(ClipPlayer, WritesRunsOfChannelsAsItWritesThemOneByOne)
 {
     // A clip made for the skeleton (channels in DOF order: one run, sampled and written in bulk) and the same
     // motion with its channels reversed (no run: channel by channel) must pose two actors alike, clamps, a wrap
-    // through 180 degrees and a selection that splits the run included.
+    // through 180 degrees and a selection that splits the run included. 50 joints: the whole run (150 DOFs) is
+    // longer than the player's sampling chunk.
     ActorDefinitionBuilder b("chain");
     b.addJoint("j0").dofs(kRotationDofs).limits(Dof::RY, -0.5, 0.5);
-    for (unsigned j = 1; j < 12; ++j)
+    for (unsigned j = 1; j < 50; ++j)
         b.addJoint("j" + std::to_string(j), "j" + std::to_string(j - 1)).offset(0, 0, 0.2).dofs(kRotationDofs);
     const ActorDefinitionPtr definition = b.build().definition;
     const unsigned numDofs = definition->getNumDofs();
