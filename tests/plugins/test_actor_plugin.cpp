@@ -90,10 +90,11 @@ TEST(ActorPlugin, TheInsectHasSixLegsOfThreeJointsWithFeetOnTheGround)
             const std::string tibia = std::string(side) + "_" + leg + "_tibia";
             const int joint = actor->getJointIndex(tibia);
             ASSERT_GE(joint, 0) << tibia;
-            // The foot: the tibia's end, 0.37 along its local X (or -X on the right).
+            // The foot: the tibia's end, 0.37 along its local X (or -X on the right), the centre of a round tip of
+            // radius 0.012 that touches the floor.
             const double sign = side[0] == 'l' ? 1.0 : -1.0;
             const osg::Vec3d foot = osg::Vec3d(0.37 * sign, 0, 0) * actor->getJointWorldMatrix(unsigned(joint));
-            EXPECT_NEAR(foot.z(), 0.0, 0.01) << tibia;
+            EXPECT_NEAR(foot.z(), 0.012, 0.0005) << tibia;
         }
 }
 

@@ -65,6 +65,10 @@ std::shared_ptr<TripodGaitController> findGait(const ActorNode& actor)
 }
 
 /** The tip of a leg's foot in world space, by the nodekit's own forward kinematics of the actor's pose. */
+/** How high the end of an insect leg's chain stands when the foot rests on the floor: the radius of the round tip
+  * around it (data/insect.actor, the cap of the tibia's capsule). */
+const double kFootTipRadius = 0.012;
+
 osg::Vec3d footWorld(const ActorNode& actor, const IkChain& leg)
 {
     return toOsg(leg.getEffectorOffset()) * actor.getJointWorldMatrix(leg.getEffectorJoint());
@@ -207,9 +211,9 @@ TEST(TripodGait, InsectFileHasALegChainPerLeg)
         ASSERT_TRUE(chain) << TripodGaitController::legChainName(leg);
         EXPECT_EQ(chain->getNumJoints(), 3u) << "coxa, femur, tibia";
         EXPECT_EQ(chain->getNumDofs(), 3u) << "swing, lift, knee: the coxa's tilt is held";
-        // In the rest pose the foot's tip (0.37 along the tibia) stands on the floor, z = 0 below the body.
+        // In the rest pose the foot's round tip (centred 0.37 along the tibia) touches the floor, z = 0.
         const osg::Vec3d foot = footWorld(*insect, *chain);
-        EXPECT_NEAR(foot.z(), 0.0, 0.005) << chain->getName();
+        EXPECT_NEAR(foot.z(), kFootTipRadius, 0.0005) << chain->getName();
     }
 }
 
@@ -239,7 +243,7 @@ TEST(TripodGait, FeetOnTheGroundStayPlantedByTheLegIkWhileTheBodyMoves)
         EXPECT_GE(track.stancesSeen, 4u) << name;
         EXPECT_LT(track.worstStanceSlip, 1e-4) << name << ": a planted foot slid (world units)";
         EXPECT_LT(track.highestStance - track.lowestStance, 1e-4) << name << ": feet stand on one ground";
-        EXPECT_NEAR(track.lowestStance, 0.0, 0.005) << name << ": on the floor";
+        EXPECT_NEAR(track.lowestStance, kFootTipRadius * 0.8, 0.0005) << name << ": on the floor";
         // Swings lift the foot by the step height (0.08 in the path's frame, scaled by 0.8) ...
         EXPECT_NEAR(track.lowestSwingPeak - track.lowestStance, 0.08 * 0.8, 0.005) << name;
         // ... and put it down one stride ahead: the body's travel in one cycle along +X.
@@ -369,8 +373,9 @@ TEST(ShowcaseFile, LoadsAndItsInsectKeepsItsFeetPlantedAllRoundItsPath)
         const char* name = TripodGaitController::kLegNames[leg];
         EXPECT_GT(tracks[leg].stancesSeen, 50u) << name;
         EXPECT_LT(tracks[leg].worstStanceSlip, 1e-4) << name << ": a planted foot slid (metres)";
-        EXPECT_NEAR(tracks[leg].lowestStance, 0.0, 0.005) << name;
-        EXPECT_LT(tracks[leg].highestStance, 0.005) << name;
+        // On the floor, in the showcase's frame scaled by 0.8.
+        EXPECT_NEAR(tracks[leg].lowestStance, kFootTipRadius * 0.8, 0.0005) << name;
+        EXPECT_LT(tracks[leg].highestStance, kFootTipRadius * 0.8 + 0.0005) << name;
         EXPECT_GT(tracks[leg].lowestSwingPeak, 0.05) << name << ": every swing lifts the foot";
     }
     // The humanoid walked its stored path too: once round its ellipse takes about 14 s: after `loop` seconds it is elsewhere.
