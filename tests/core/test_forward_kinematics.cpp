@@ -9,8 +9,10 @@
 #include <glm/ext/scalar_constants.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace osgActor;
@@ -200,6 +202,38 @@ TEST(ForwardKinematics, MovingAParentMovesItsChildrenButRecomputesOneJoint)
     pose.setDof(0, kQuarter);
     EXPECT_EQ(pose.updateMatrices(), 1u);
     EXPECT_TRUE(vectorsNear(glm::dvec3(pose.getModelMatrix(2)[3]), glm::dvec3(0, 2, 0), 1e-15));
+}
+
+TEST(ForwardKinematics, OneCleanJointAnywhereKeepsTheRebuildToTheDirtyOnes)
+{
+    // Every joint dirty takes a path without per-joint flag tests; a single clean joint, wherever it stands among
+    // the flags (the test reads them eight at a time, the last eight overlapping), must keep FK on the path that
+    // rebuilds only the dirty ones.
+    for (unsigned numJoints : {3u, 8u, 9u, 16u, 31u})
+    {
+        ActorDefinitionBuilder b;
+        b.addJoint("j0").dofs(dofBit(Dof::RZ));
+        for (unsigned j = 1; j < numJoints; ++j)
+            b.addJoint("j" + std::to_string(j), "j" + std::to_string(j - 1)).offset(1, 0, 0).dofs(dofBit(Dof::RZ));
+        const ActorDefinitionPtr definition = b.build().definition;
+        for (unsigned clean = 0; clean < numJoints; ++clean)
+        {
+            ActorPose pose(definition);
+            pose.updateMatrices();
+            for (unsigned j = 0; j < numJoints; ++j)
+                if (j != clean) pose.setDof(j, 0.1);
+            EXPECT_EQ(pose.updateMatrices(), numJoints - 1) << numJoints << " joints, joint " << clean << " clean";
+            // A chain of links 1 long, each turned 0.1 more but the clean one: the tip's model matrix says so.
+            double angle = 0.0;
+            glm::dvec3 tip(0.0);
+            for (unsigned j = 0; j < numJoints; ++j)
+            {
+                if (j > 0) tip += glm::dvec3(std::cos(angle), std::sin(angle), 0.0);
+                angle += j == clean ? 0.0 : 0.1;
+            }
+            EXPECT_TRUE(vectorsNear(glm::dvec3(pose.getModelMatrix(numJoints - 1)[3]), tip, 1e-12)) << clean;
+        }
+    }
 }
 
 // --- the batched trigonometry and the affine product the job is built on ---
