@@ -111,7 +111,8 @@ bool describeShape(const osg::Shape& shape, GeometryDescription& d)
         d.height = fromFloat(cone->getHeight());
         d.rotation = toGlm(cone->getRotation());
         // Rounded to float like the other positions, so the offset's round-off does not show in the file.
-        d.position = fromFloat(osg::Vec3(osg::Vec3d(cone->getCenter()) + coneCentreOffset(cone->getRotation(), d.height)));
+        d.position =
+            fromFloat(osg::Vec3(osg::Vec3d(cone->getCenter()) + coneCentreOffset(cone->getRotation(), d.height)));
     }
     else
     {
@@ -184,7 +185,8 @@ bool describeGeometryNode(const osg::Node& node, GeometryDescription& descriptio
     description = GeometryDescription();
     if (!describeShape(*drawable->getShape(), description)) return false;
     const osg::Vec4& color = drawable->getColor();
-    description.color = glm::dvec4(fromFloat(color.r()), fromFloat(color.g()), fromFloat(color.b()), fromFloat(color.a()));
+    description.color =
+        glm::dvec4(fromFloat(color.r()), fromFloat(color.g()), fromFloat(color.b()), fromFloat(color.a()));
     return true;
 }
 

@@ -66,8 +66,8 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
 
 ActorNode::ActorNode()
     : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _preTransformDirty(true),
-      _postTransformDirty(true), _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false), _numUpdatesRun(0),
-      _lastFrameNumber(kNoFrame)
+      _postTransformDirty(true), _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false),
+      _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
 {
     setDataVariance(osg::Object::DYNAMIC);
     setUpdateCallback(new ActorUpdateCallback);

@@ -124,7 +124,8 @@ void addClips(const ActorNode& actor, ActorDocument& document)
 
 void addIkChains(const ActorNode& actor, ActorDocument& document)
 {
-    for (const IkChainPtr& chain : actor.getIkChains()) document.ikChains.push_back(IkChainDocument{chain->getSpec(), 0});
+    for (const IkChainPtr& chain : actor.getIkChains())
+        document.ikChains.push_back(IkChainDocument{chain->getSpec(), 0});
 }
 
 ActorDocument makeDefinitionDocument(const ActorNode& actor)

@@ -29,7 +29,8 @@ double restPoseSize(const ActorDefinitionPtr& definition)
 
 osg::ref_ptr<osg::Geode> makeBall(double radius)
 {
-    osg::ref_ptr<osg::ShapeDrawable> ball = new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(), static_cast<float>(radius)));
+    osg::ref_ptr<osg::ShapeDrawable> ball =
+        new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(), static_cast<float>(radius)));
     ball->setColor(osg::Vec4(0.9f, 0.6f, 0.2f, 1.0f));
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
     geode->setName("joint ball");

@@ -59,7 +59,8 @@ struct Arguments
 
 bool endsWith(std::string text, const std::string& suffix)
 {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    std::transform(text.begin(), text.end(), text.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
     return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
@@ -223,7 +224,8 @@ int main(int argc, char** argv)
     if (args.dumpPositions)
     {
         if (!imported.clip) error = args.inputs[0] + ": the input holds no motion to dump";
-        else written = writePositionsCsv(out, imported.definition, *imported.clip, args.firstFrame, args.endFrame, error);
+        else written = writePositionsCsv(out, imported.definition, *imported.clip, args.firstFrame, args.endFrame,
+                                         error);
     }
     else if (toActor)
     {

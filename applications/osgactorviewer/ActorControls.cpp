@@ -258,7 +258,8 @@ std::string ActorControls::statusText() const
         }
         text << "clip: " << describeClip(*actor) << "\n";
     }
-    text << "time " << _clock.getTime() << " s  x" << _clock.getSpeed() << (_clock.isPlaying() ? "  playing" : "  paused")
+    text << "time " << _clock.getTime() << " s  x" << _clock.getSpeed()
+         << (_clock.isPlaying() ? "  playing" : "  paused")
          << "\n";
     text.precision(0);
     text << _framesPerSecond << " frames/s\n";

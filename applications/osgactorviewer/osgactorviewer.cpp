@@ -148,7 +148,8 @@ int main(int argc, char** argv)
     panel->resize(width, height);
 
     // Home: the scene from the front, a little above (as osgactorrender frames it), not edge-on to a floor.
-    const osgActorApps::CameraView home = osgActorApps::frameBoundingSphere(scene->getBound(), 30.0, double(width) / height);
+    const osgActorApps::CameraView home =
+        osgActorApps::frameBoundingSphere(scene->getBound(), 30.0, double(width) / height);
     manipulators->setAutoComputeHomePosition(false);
     manipulators->setHomePosition(home.eye, home.center, home.up);
     viewer.home();

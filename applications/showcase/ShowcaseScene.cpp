@@ -152,7 +152,8 @@ osg::ref_ptr<osg::Group> makeWanderingInsect(const std::string& file)
 {
     // The insect lives in a frame scaled down (a cockroach a metre long would be large even here); its path is
     // given in that frame.
-    osg::ref_ptr<osg::MatrixTransform> group = new osg::MatrixTransform(osg::Matrixd::scale(osg::Vec3d(1, 1, 1) * kInsectScale));
+    osg::ref_ptr<osg::MatrixTransform> group =
+        new osg::MatrixTransform(osg::Matrixd::scale(osg::Vec3d(1, 1, 1) * kInsectScale));
     group->setName("wandering insect");
     group->getOrCreateStateSet()->setMode(GL_RESCALE_NORMAL, osg::StateAttribute::ON);
     osg::ref_ptr<TripodGait> gait = new TripodGait;

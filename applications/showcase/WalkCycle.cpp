@@ -60,7 +60,8 @@ osgActor::ClipBuildResult makeWalkCycleClip(const osgActor::ActorDefinition& def
     }
     if (builder.getNumChannels() == 0)
     {
-        result.error = "walk cycle: actor '" + definition.getName() + "' has none of the DOFs of a walk (l_hip.rx, ...)";
+        result.error =
+            "walk cycle: actor '" + definition.getName() + "' has none of the DOFs of a walk (l_hip.rx, ...)";
         return result;
     }
     std::vector<double> frames;

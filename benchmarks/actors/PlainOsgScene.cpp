@@ -44,7 +44,8 @@ public:
     void operator()(osg::Node* node, osg::NodeVisitor* nv) override
     {
         const BenchClip& clip = humanoidClip();
-        const double frame = std::fmod(nv->getFrameStamp()->getSimulationTime(), clip.duration()) * clip.framesPerSecond;
+        const double frame =
+            std::fmod(nv->getFrameStamp()->getSimulationTime(), clip.duration()) * clip.framesPerSecond;
         const unsigned f0 = static_cast<unsigned>(frame);
         const unsigned f1 = std::min(f0 + 1, clip.numFrames - 1);
         const double alpha = frame - f0;

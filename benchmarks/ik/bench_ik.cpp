@@ -46,7 +46,8 @@ Problem makeProblem(ActorDefinitionPtr definition, const IkChainSpec& spec, bool
         {
             const double lo = std::max(problem.definition->getDofMin(d), -3.0);
             const double hi = std::min(problem.definition->getDofMax(d), 3.0);
-            dofs[d] = (d < problem.chain->getDof(0).dof) ? problem.rest[d] : std::uniform_real_distribution<double>(lo, hi)(random);
+            dofs[d] = (d < problem.chain->getDof(0).dof) ? problem.rest[d]
+                                                         : std::uniform_real_distribution<double>(lo, hi)(random);
         }
         pose.setDofs(dofs.data(), dofs.size());
         pose.updateMatrices();
@@ -128,7 +129,10 @@ Problem sevenJoints(IkSolverType solver)
     return makeProblem(test::makeSnakeActor(), spec("s0", "s6", solver, glm::dvec3(0.2, 0, 0)), false, false);
 }
 
-void BM_TwoBone_3Joints(benchmark::State& state) { runSolves<TwoBoneIkJob>(state, threeJoints(IkSolverType::TwoBone, true)); }
+void BM_TwoBone_3Joints(benchmark::State& state)
+{
+    runSolves<TwoBoneIkJob>(state, threeJoints(IkSolverType::TwoBone, true));
+}
 void BM_TwoBone_3Joints_GivenModels(benchmark::State& state)
 {
     runSolves<TwoBoneIkJob>(state, threeJoints(IkSolverType::TwoBone, true), true);
@@ -145,7 +149,10 @@ void BM_Ccd_7Joints(benchmark::State& state) { runSolves<CcdIkJob>(state, sevenJ
 void BM_Dls_2Joints(benchmark::State& state) { runSolves<DlsIkJob>(state, twoJoints(IkSolverType::Dls)); }
 void BM_Dls_3Joints(benchmark::State& state) { runSolves<DlsIkJob>(state, threeJoints(IkSolverType::Dls, false)); }
 void BM_Dls_7Joints(benchmark::State& state) { runSolves<DlsIkJob>(state, sevenJoints(IkSolverType::Dls)); }
-void BM_Dls_7Joints_GivenModels(benchmark::State& state) { runSolves<DlsIkJob>(state, sevenJoints(IkSolverType::Dls), true); }
+void BM_Dls_7Joints_GivenModels(benchmark::State& state)
+{
+    runSolves<DlsIkJob>(state, sevenJoints(IkSolverType::Dls), true);
+}
 void BM_Dls_7DofArm_Orientation(benchmark::State& state)
 {
     runSolves<DlsIkJob>(state, makeProblem(test::makeArmActor(),

@@ -117,8 +117,9 @@ void BM_ClipSampleUniform(benchmark::State& state)
         time += step;
         if (time > clip.getDuration()) time = 0.0;
     }
-    state.counters["ns_per_joint"] = benchmark::Counter(walk().definition->getNumJoints() * static_cast<double>(state.iterations()),
-                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["ns_per_joint"] =
+        benchmark::Counter(walk().definition->getNumJoints() * static_cast<double>(state.iterations()),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 /** The same motion as keyed cubic channels (one key per frame), sampled forwards with the cursor. */
@@ -144,8 +145,9 @@ void BM_ClipSampleKeyedCubic(benchmark::State& state)
         time += 1.0 / 97.0;
         if (time > clip->getDuration()) time = 0.0;
     }
-    state.counters["ns_per_joint"] = benchmark::Counter(walk().definition->getNumJoints() * static_cast<double>(state.iterations()),
-                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["ns_per_joint"] =
+        benchmark::Counter(walk().definition->getNumJoints() * static_cast<double>(state.iterations()),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 /** A ClipPlayer writing the pose and forward kinematics of every joint: the per-frame cost of a playing actor. */
@@ -163,8 +165,9 @@ void BM_ClipPlayerAndForwardKinematics(benchmark::State& state)
         pose.updateMatrices();
         benchmark::DoNotOptimize(pose.getModelMatrix(0));
     }
-    state.counters["ns_per_joint"] = benchmark::Counter(walk().definition->getNumJoints() * static_cast<double>(state.iterations()),
-                                                        benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+    state.counters["ns_per_joint"] =
+        benchmark::Counter(walk().definition->getNumJoints() * static_cast<double>(state.iterations()),
+                           benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 } // namespace

@@ -217,7 +217,8 @@ void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
     // The heading is measured on the root-local axis that lies flattest at clip time 0 (so its ground projection
     // is well defined), relative to its direction then.
     _clip->sample(0.0, _cursor, _sample.data());
-    for (std::uint32_t c : _rootJointChannels) _scratchDofs[static_cast<unsigned>(_binding->channelDof[c])] = _sample[c];
+    for (std::uint32_t c : _rootJointChannels)
+        _scratchDofs[static_cast<unsigned>(_binding->channelDof[c])] = _sample[c];
     const glm::dmat3 rotation0(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data()));
     double flattest = 2.0;
     for (unsigned axis = 0; axis < 3; ++axis)
@@ -250,7 +251,8 @@ void ClipPlayer::rootTravelFromSample(const ActorDefinition& definition, glm::dv
         if (_rootChannel[axis] >= 0) p[axis] = _sample[static_cast<unsigned>(_rootChannel[axis])];
     // The root's translation DOFs act before its rotation, in its offset frame: L = offset * T(p) * R.
     displacement = definition.getOffsetRotation(root) * p;
-    for (std::uint32_t c : _rootJointChannels) _scratchDofs[static_cast<unsigned>(_binding->channelDof[c])] = _sample[c];
+    for (std::uint32_t c : _rootJointChannels)
+        _scratchDofs[static_cast<unsigned>(_binding->channelDof[c])] = _sample[c];
     const glm::dvec3 forward =
         glm::dmat3(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data())) * _forwardAxis;
     heading = std::atan2(forward.y, forward.x) - _heading0;

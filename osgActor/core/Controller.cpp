@@ -12,7 +12,8 @@ namespace osgActor {
 glm::dmat4 computeActorMatrix(const ActorTransforms& t)
 {
     // Each transform turns a point, then places it: T * R.
-    const glm::dmat4 pre = glm::translate(glm::dmat4(1.0), t.preTranslation) * glm::mat4_cast(glm::normalize(t.preRotation));
+    const glm::dmat4 pre =
+        glm::translate(glm::dmat4(1.0), t.preTranslation) * glm::mat4_cast(glm::normalize(t.preRotation));
     const glm::dmat4 post =
         glm::translate(glm::dmat4(1.0), t.postTranslation) * glm::mat4_cast(glm::normalize(t.postRotation));
     return pre * post;

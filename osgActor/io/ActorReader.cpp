@@ -257,7 +257,8 @@ private:
             else return unknownKeyword(c, "in an ikchain");
             if (!ok) return false;
         }
-        if (chain.spec.rootJoint.empty()) return fail(statement.line, "IK chain '" + chain.spec.name + "' has no 'root'");
+        if (chain.spec.rootJoint.empty())
+            return fail(statement.line, "IK chain '" + chain.spec.name + "' has no 'root'");
         if (chain.spec.effectorJoint.empty())
             return fail(statement.line, "IK chain '" + chain.spec.name + "' has no 'effector'");
         document.ikChains.push_back(chain);

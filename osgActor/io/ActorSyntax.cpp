@@ -39,7 +39,8 @@ public:
                 break;
             }
             case TokenType::String:
-                return fail(_token.line, "a statement must start with a keyword, not the string \"" + _token.text + "\"");
+                return fail(_token.line,
+                            "a statement must start with a keyword, not the string \"" + _token.text + "\"");
             case TokenType::OpenBrace: return fail(_token.line, "'{' must follow a keyword");
             }
         }

@@ -36,11 +36,14 @@ SyntaxStatement rotationStatement(const std::string& keyword, const glm::dquat& 
                                numberArgument(a.axis[2])});
 }
 
-bool isZero(const glm::dvec3& v) { return formatNumber(v.x) == "0" && formatNumber(v.y) == "0" && formatNumber(v.z) == "0"; }
+bool isZero(const glm::dvec3& v)
+{
+    return formatNumber(v.x) == "0" && formatNumber(v.y) == "0" && formatNumber(v.z) == "0";
+}
 
 /** Appends "keyword x y z" and "keyword angle axis" lines where they differ from the identity. */
-void addPlacement(std::vector<SyntaxStatement>& out, const std::string& translationKeyword, const glm::dvec3& translation,
-                  const std::string& rotationKeyword, const glm::dquat& rotation)
+void addPlacement(std::vector<SyntaxStatement>& out, const std::string& translationKeyword,
+                  const glm::dvec3& translation, const std::string& rotationKeyword, const glm::dquat& rotation)
 {
     if (!isZero(translation)) out.push_back(vectorStatement(translationKeyword, translation));
     if (!isIdentityRotation(rotation)) out.push_back(rotationStatement(rotationKeyword, rotation));
@@ -151,7 +154,8 @@ SyntaxStatement ikChainStatement(const IkChainSpec& spec)
     s.children.push_back(statement("solver", {word(ikSolverName(spec.solver))}));
     if (spec.maxIterations != kDefaultIkIterations)
         s.children.push_back(statement("iterations", {word(std::to_string(spec.maxIterations))}));
-    if (spec.tolerance != kDefaultIkTolerance) s.children.push_back(statement("tolerance", {numberArgument(spec.tolerance)}));
+    if (spec.tolerance != kDefaultIkTolerance)
+        s.children.push_back(statement("tolerance", {numberArgument(spec.tolerance)}));
     for (const IkWeightSpec& w : spec.jointWeights)
         s.children.push_back(statement("joint_weight", {nameArgument(w.name), numberArgument(w.weight)}));
     for (const IkWeightSpec& w : spec.dofWeights)
@@ -167,7 +171,8 @@ constexpr unsigned kMaxNesting = 100;
 class JointTreeWriter
 {
 public:
-    explicit JointTreeWriter(const ActorDocument& document) : _document(document), _written(document.joints.size(), false)
+    explicit JointTreeWriter(const ActorDocument& document)
+        : _document(document), _written(document.joints.size(), false)
     {
         for (std::size_t j = 0; j < document.joints.size(); ++j) _byName.emplace(document.joints[j].spec.name, j);
         for (std::size_t j = 0; j < document.joints.size(); ++j)

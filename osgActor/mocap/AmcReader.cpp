@@ -70,8 +70,8 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
             return failed("unknown bone '" + std::string(t[0]) + "' (not a bone with dofs in the ASF skeleton)");
         const AsfAmcLayout& layout = *found->second;
         if (t.size() - 1 != layout.dofs.size())
-            return failed("bone '" + layout.bone + "' has " + std::to_string(t.size() - 1) + " values; its dof list has " +
-                          std::to_string(layout.dofs.size()));
+            return failed("bone '" + layout.bone + "' has " + std::to_string(t.size() - 1) +
+                          " values; its dof list has " + std::to_string(layout.dofs.size()));
         double* row = values.data() + (numFrames - 1) * numDofs;
         const double angle = degrees ? glm::pi<double>() / 180.0 : 1.0;
         bool hasTranslation = false;

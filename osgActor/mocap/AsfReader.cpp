@@ -151,8 +151,10 @@ bool AsfParser::parseRoot()
             {
                 // TX TY TZ RX RY RZ, any case.
                 const std::string_view token = t[i];
-                const char kind = token.empty() ? ' ' : static_cast<char>(std::toupper(static_cast<unsigned char>(token[0])));
-                const char axis = token.size() != 2 ? ' ' : static_cast<char>(std::toupper(static_cast<unsigned char>(token[1])));
+                const char kind =
+                    token.empty() ? ' ' : static_cast<char>(std::toupper(static_cast<unsigned char>(token[0])));
+                const char axis =
+                    token.size() != 2 ? ' ' : static_cast<char>(std::toupper(static_cast<unsigned char>(token[1])));
                 if ((kind != 'T' && kind != 'R') || axis < 'X' || axis > 'Z')
                     return fail("unknown root order token '" + std::string(token) + "'");
                 const Dof dof = static_cast<Dof>((kind == 'T' ? 3 : 0) + (axis - 'X'));
@@ -217,7 +219,8 @@ bool AsfParser::parseLimits(AsfBone& bone)
     {
         bone.mins[d] = numbers[2 * d];
         bone.maxs[d] = numbers[2 * d + 1];
-        if (bone.mins[d] > bone.maxs[d]) return fail("a limit of '" + bone.name + "' has its minimum above its maximum");
+        if (bone.mins[d] > bone.maxs[d])
+            return fail("a limit of '" + bone.name + "' has its minimum above its maximum");
     }
     return true;
 }
@@ -254,7 +257,8 @@ bool AsfParser::parseBone()
         else if (sameWord(t[0], "axis"))
         {
             if (!readVector(t, 1, bone.axisAngles, "the axis")) return false;
-            if (t.size() < 5 || !isAxisOrder(t[4])) return fail("the axis of '" + bone.name + "' needs an order like XYZ");
+            if (t.size() < 5 || !isAxisOrder(t[4]))
+                return fail("the axis of '" + bone.name + "' needs an order like XYZ");
             bone.axisOrder = std::string(t[4]);
         }
         else if (sameWord(t[0], "dof"))
@@ -358,7 +362,8 @@ bool AsfParser::build()
         const AsfBone& parent = belowRoot ? _root : _bones[_boneIndex[bone.parent]];
         const glm::dmat3 parentAxisInverse = glm::transpose(axisOf(parent));
         // The bone starts where its parent ends: in the parent joint's frame (W(p) C_p) that is C_p^-1 l_p d_p.
-        const glm::dvec3 start = belowRoot ? glm::dvec3(0.0) : parentAxisInverse * (parent.direction * parent.length * scale);
+        const glm::dvec3 start =
+            belowRoot ? glm::dvec3(0.0) : parentAxisInverse * (parent.direction * parent.length * scale);
         ActorDefinitionBuilder::JointRef ref = builder.addJoint(bone.name, bone.parent);
         ref.offset(start).rotation(glm::quat_cast(parentAxisInverse * axisOf(bone)));
         if (!addDofs(ref, bone)) return false;

@@ -284,7 +284,8 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
     }
     if (extraLines > 0)
         result.warnings.push_back(_text.fileName() + ": " + std::to_string(extraLines) +
-                                  " data lines beyond the header's Frames: " + std::to_string(numFrames) + " were ignored");
+                                  " data lines beyond the header's Frames: " + std::to_string(numFrames) +
+                                  " were ignored");
     if (frame < numFrames)
         result.warnings.push_back(_text.fileName() + ": the header declares " + std::to_string(numFrames) +
                                   " frames but the file holds " + std::to_string(frame) + "; kept those");

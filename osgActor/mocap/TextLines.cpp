@@ -8,7 +8,8 @@ namespace osgActor {
 TextLines::TextLines(std::istream& in, const std::string& fileName) : _fileName(fileName)
 {
     char buffer[1 << 16];
-    while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0) _text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)
+        _text.append(buffer, static_cast<std::size_t>(in.gcount()));
 }
 
 bool TextLines::nextLine()

@@ -25,7 +25,8 @@ std::vector<std::string_view> fields(std::string_view line)
     while (true)
     {
         const std::size_t comma = line.find(',', start);
-        result.push_back(trimmed(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+        result.push_back(
+            trimmed(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
         if (comma == std::string_view::npos) return result;
         start = comma + 1;
     }

@@ -20,7 +20,8 @@ sanitizer_configure() {
             fi
             compiler=(CXX=clang++)
             flags="-fsanitize=address,undefined -fno-sanitize-recover=all"
-            extra=(-DOSGACTOR_BUILD_FUZZERS=ON "-DCMAKE_CXX_FLAGS=-O0 -gline-tables-only -fno-omit-frame-pointer $flags")
+            extra=(-DOSGACTOR_BUILD_FUZZERS=ON
+                   "-DCMAKE_CXX_FLAGS=-O0 -gline-tables-only -fno-omit-frame-pointer $flags")
             ;;
         tsan)
             flags="-fsanitize=thread"

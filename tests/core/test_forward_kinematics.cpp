@@ -108,7 +108,8 @@ TEST(JointMatrix, EulerOrderXYZIsRxTimesRy)
     // Rx(90) * Ry(90) = [[0,0,1],[1,0,0],[0,1,0]] worked by hand row by row.
     ActorDefinitionBuilder b;
     b.addJoint("j").dofs(Dof::RX | Dof::RY);
-    EXPECT_TRUE(matricesNear(jointMatrix(b, {kQuarter, kQuarter}), fromRows(0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0), 1e-15));
+    EXPECT_TRUE(
+        matricesNear(jointMatrix(b, {kQuarter, kQuarter}), fromRows(0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0), 1e-15));
 }
 
 TEST(JointMatrix, EulerOrderYXZIsRyTimesRx)
@@ -116,7 +117,8 @@ TEST(JointMatrix, EulerOrderYXZIsRyTimesRx)
     // Ry(90) * Rx(90) = [[0,1,0],[0,0,-1],[-1,0,0]].
     ActorDefinitionBuilder b;
     b.addJoint("j").dofs(Dof::RX | Dof::RY).eulerOrder(EulerOrder::YXZ);
-    EXPECT_TRUE(matricesNear(jointMatrix(b, {kQuarter, kQuarter}), fromRows(0, 1, 0, 0, 0, 0, -1, 0, -1, 0, 0, 0), 1e-15));
+    EXPECT_TRUE(
+        matricesNear(jointMatrix(b, {kQuarter, kQuarter}), fromRows(0, 1, 0, 0, 0, 0, -1, 0, -1, 0, 0, 0), 1e-15));
 }
 
 TEST(JointMatrix, ThreeRotationsInEveryOrderMatchTheProductOfAxisMatrices)

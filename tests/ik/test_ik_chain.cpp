@@ -30,8 +30,10 @@ std::string refusal(const ActorDefinition& definition, const IkChainSpec& spec)
 TEST(IkChainBuild, RefusesUnknownJoints)
 {
     const ActorDefinitionPtr leg = makeLegActor();
-    EXPECT_TRUE(mentions(refusal(*leg, chainSpec("c", "thigh", "ankle", IkSolverType::Dls)), "no root joint named 'thigh'"));
-    EXPECT_TRUE(mentions(refusal(*leg, chainSpec("c", "hip", "foot", IkSolverType::Dls)), "no effector joint named 'foot'"));
+    EXPECT_TRUE(
+        mentions(refusal(*leg, chainSpec("c", "thigh", "ankle", IkSolverType::Dls)), "no root joint named 'thigh'"));
+    EXPECT_TRUE(
+        mentions(refusal(*leg, chainSpec("c", "hip", "foot", IkSolverType::Dls)), "no effector joint named 'foot'"));
 }
 
 TEST(IkChainBuild, RefusesAnEffectorNotBelowTheRoot)
@@ -108,10 +110,12 @@ TEST(IkChainBuild, RefusesATwoBoneChainThatIsNotALimb)
 {
     const ActorDefinitionPtr leg = makeLegActor();
     // Four joints.
-    EXPECT_TRUE(mentions(refusal(*leg, chainSpec("c", "pelvis", "ankle", IkSolverType::TwoBone)), "two-bone solver needs"));
+    EXPECT_TRUE(
+        mentions(refusal(*leg, chainSpec("c", "pelvis", "ankle", IkSolverType::TwoBone)), "two-bone solver needs"));
     // Two driven DOFs on the middle joint.
     const ActorDefinitionPtr arm = makeArmActor();
-    EXPECT_TRUE(mentions(refusal(*arm, chainSpec("c", "chest", "wrist", IkSolverType::TwoBone)), "two-bone solver needs"));
+    EXPECT_TRUE(
+        mentions(refusal(*arm, chainSpec("c", "chest", "wrist", IkSolverType::TwoBone)), "two-bone solver needs"));
     // A root without a driven rotation.
     IkChainSpec spec = chainSpec("leg", "hip", "ankle", IkSolverType::TwoBone);
     spec.jointWeights = {{"hip", 0.0}};

@@ -144,7 +144,8 @@ TEST(IkController, LeavesDofsOutsideItsSelectionAndBlendsByWeight)
 TEST(IkController, ConvertsWorldGoalsWithTheActorsWorldMatrix)
 {
     const ActorDefinitionPtr arm = makeArmActor();
-    const IkChainPtr chain = makeChain(*arm, chainSpec("arm", "shoulder", "wrist", IkSolverType::Dls, glm::dvec3(0.08, 0, 0)));
+    const IkChainPtr chain =
+        makeChain(*arm, chainSpec("arm", "shoulder", "wrist", IkSolverType::Dls, glm::dvec3(0.08, 0, 0)));
     std::mt19937 random(10);
     const std::vector<double> target = randomPose(*arm, random);
     const glm::dvec3 modelGoal = effectorPoint(arm, *chain, target);
@@ -177,7 +178,8 @@ TEST(IkController, ConvertsWorldGoalsWithTheActorsWorldMatrix)
     pose.updateMatrices();
     EXPECT_TRUE(vectorsNear(ik->getLastModelGoal().position, modelGoal, 1e-12));
     EXPECT_TRUE(vectorsNear(effectorOf(pose, *chain), modelGoal, 1e-4 * chain->getLength()));
-    EXPECT_LE(angleBetween(glm::quat_cast(glm::dmat3(pose.getModelMatrix(chain->getEffectorJoint()))), modelOrientation),
+    EXPECT_LE(angleBetween(glm::quat_cast(glm::dmat3(pose.getModelMatrix(chain->getEffectorJoint()))),
+                           modelOrientation),
               1e-4);
 }
 

@@ -80,7 +80,8 @@ TEST(IkChainFormat, RefusesBadSectionsWithFileAndLine)
               "t.actor:15: 'joint_weight' must not be negative");
     EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle; dof_weight knee.rx }\n"),
               "t.actor:15: 'dof_weight' takes 2 values, not 1");
-    EXPECT_EQ(chainError("    ikchain leg { root hip; root knee; effector ankle }\n"), "t.actor:15: 'root' is given twice");
+    EXPECT_EQ(chainError("    ikchain leg { root hip; root knee; effector ankle }\n"),
+              "t.actor:15: 'root' is given twice");
     EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle }\n    ikchain leg { root knee; effector toe }\n"),
               "t.actor:16: IK chain 'leg' is given twice (first at line 15)");
 }
@@ -91,11 +92,13 @@ TEST(IkChainFormat, ChecksChainsAgainstTheSkeleton)
               "t.actor:15: IK chain 'leg' of actor 'legged': no root joint named 'thigh'");
     EXPECT_EQ(chainError("    ikchain leg { root ankle; effector hip }\n"),
               "t.actor:15: IK chain 'leg' of actor 'legged': effector 'hip' is not below root 'ankle'");
-    EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle }\n\n    ikchain foot { root ankle; effector ankle }\n"),
+    EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle }\n\n"
+                         "    ikchain foot { root ankle; effector ankle }\n"),
               "t.actor:17: IK chain 'foot' of actor 'legged': effector 'ankle' is not below root 'ankle' (a chain "
               "needs at least one bone)");
     const std::string twoBone = chainError("    ikchain leg { root hip; effector toe; solver twobone }\n");
-    EXPECT_EQ(twoBone.rfind("t.actor:15: IK chain 'leg' of actor 'legged': the two-bone solver needs", 0), 0u) << twoBone;
+    EXPECT_EQ(twoBone.rfind("t.actor:15: IK chain 'leg' of actor 'legged': the two-bone solver needs", 0), 0u)
+        << twoBone;
     EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle; dof_weight hip.tx 1 }\n"),
               "t.actor:15: IK chain 'leg' of actor 'legged': DOF weight names 'hip.tx', not a DOF of the chain");
 }
@@ -141,7 +144,8 @@ TEST(IkChainFormat, ReadsWritesAndReadsBackTheSameChains)
 
     // Written back: only what differs from the defaults, and a fixed point.
     const std::string first = written(result.document);
-    EXPECT_NE(first.find("    ikchain \"whole leg\" {\n        root hip\n        effector toe\n        solver dls\n    }\n"),
+    EXPECT_NE(first.find("    ikchain \"whole leg\" {\n        root hip\n        effector toe\n"
+                         "        solver dls\n    }\n"),
               std::string::npos) << first;
     const ActorReadResult again = read(first);
     ASSERT_TRUE(again) << again.error;
@@ -173,7 +177,8 @@ TEST(IkChainFormat, ActorsCarryTheirChainsThroughSceneIO)
     EXPECT_EQ(copy->findIkChain("leg"), leg);
     EXPECT_FALSE(copy->addIkChain(leg)) << "the name is taken";
     EXPECT_FALSE(copy->addIkChain(IkChainPtr()));
-    const ActorReadResult other = read("osgactor 1\nactor other {\n joint a\n joint b { parent a; offset 1 0 0; dof rz }\n"
+    const ActorReadResult other = read("osgactor 1\nactor other {\n joint a\n"
+                                       " joint b { parent a; offset 1 0 0; dof rz }\n"
                                        " ikchain leg2 { root a; effector b }\n}\n");
     ASSERT_TRUE(other) << other.error;
     EXPECT_FALSE(copy->addIkChain(other.ikChains[0])) << "built for another skeleton";
@@ -199,7 +204,8 @@ TEST(IkChainFormat, ActorsCarryTheirChainsThroughSceneIO)
 TEST(IkChainFormat, ChainsSurviveEveryFormatThroughOsgDB)
 {
     const ActorReadResult result =
-        read(std::string(kLegActor) + "    ikchain leg { root hip; effector ankle; solver twobone; iterations 3 }\n}\n");
+        read(std::string(kLegActor) +
+             "    ikchain leg { root hip; effector ankle; solver twobone; iterations 3 }\n}\n");
     ASSERT_TRUE(result) << result.error;
     const ActorNodeResult made = createActorNode(result.document, result.definition, "t.actor", nullptr);
     ASSERT_TRUE(made.actor.valid()) << made.error;

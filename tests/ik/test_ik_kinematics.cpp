@@ -97,7 +97,8 @@ TEST(IkKinematics, RotationVectorMatchesAxisAndAngle)
 TEST(IkKinematics, ChainPoseMatchesTheActorsForwardKinematics)
 {
     const ActorDefinitionPtr mixed = makeMixedActor();
-    const IkChainPtr chain = makeChain(*mixed, chainSpec("c", "slider", "end", IkSolverType::Dls, glm::dvec3(0.1, 0.2, 0.3)));
+    const IkChainPtr chain =
+        makeChain(*mixed, chainSpec("c", "slider", "end", IkSolverType::Dls, glm::dvec3(0.1, 0.2, 0.3)));
     std::mt19937 random(2);
     IkWorkspace workspace;
     workspace.resize(*chain);
@@ -115,7 +116,8 @@ TEST(IkKinematics, ChainPoseMatchesTheActorsForwardKinematics)
 TEST(IkKinematics, JacobianMatchesFiniteDifferences)
 {
     const ActorDefinitionPtr mixed = makeMixedActor();
-    const IkChainPtr chain = makeChain(*mixed, chainSpec("c", "root", "end", IkSolverType::Dls, glm::dvec3(0.1, 0.2, 0.3)));
+    const IkChainPtr chain =
+        makeChain(*mixed, chainSpec("c", "root", "end", IkSolverType::Dls, glm::dvec3(0.1, 0.2, 0.3)));
     ASSERT_EQ(chain->getNumDofs(), mixed->getNumDofs()) << "every DOF of the actor is in the chain";
     std::mt19937 random(3);
     IkWorkspace workspace;

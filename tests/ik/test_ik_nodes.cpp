@@ -80,7 +80,8 @@ TEST(IkNodes, AWorldGoalIsReachedAndShownInTheSameFrame)
         const double tolerance = 1e-4 * scene.chain->getLength();
         EXPECT_TRUE(vec3Near(scene.actor->getJointWorldPosition(scene.chain->getEffectorJoint()), worldGoal, tolerance))
             << ikSolverName(solver);
-        EXPECT_TRUE(vec3Near(sceneGraphWorldPosition(*scene.actor, scene.chain->getEffectorJoint()), worldGoal, tolerance))
+        EXPECT_TRUE(
+            vec3Near(sceneGraphWorldPosition(*scene.actor, scene.chain->getEffectorJoint()), worldGoal, tolerance))
             << ikSolverName(solver) << ": the skeleton nodes were written after the solve, in the same update";
     }
 }
@@ -136,7 +137,8 @@ TEST(IkNodes, IkWritesOnTopOfAClipAndClonesSolveOnTheirOwn)
     public:
         void update(const ControllerContext& context, ControllerTarget& target) override
         {
-            for (unsigned d = 0; d < target.pose.getNumDofs(); ++d) writeDof(target.pose, d, 0.1 * std::sin(context.time + d));
+            for (unsigned d = 0; d < target.pose.getNumDofs(); ++d)
+                writeDof(target.pose, d, 0.1 * std::sin(context.time + d));
         }
         std::shared_ptr<Controller> cloneController() const override { return std::make_shared<Swing>(*this); }
     };
@@ -159,11 +161,13 @@ TEST(IkNodes, IkWritesOnTopOfAClipAndClonesSolveOnTheirOwn)
 
     runUpdate(*scene.root, 30);
     const double time = 30 / 60.0;
-    for (unsigned d = 0; d < 3; ++d) EXPECT_NEAR(scene.actor->getDof(d), 0.1 * std::sin(time + d), 1e-15) << "pelvis from the clip";
+    for (unsigned d = 0; d < 3; ++d)
+        EXPECT_NEAR(scene.actor->getDof(d), 0.1 * std::sin(time + d), 1e-15) << "pelvis from the clip";
     for (const char* name : {"ankle.rx", "ankle.ry", "ankle.rz"})
     {
         const unsigned d = static_cast<unsigned>(leg->findDof(name));
-        EXPECT_NEAR(scene.actor->getDof(d), 0.1 * std::sin(time + d), 1e-15) << name << " is outside the IK's selection";
+        EXPECT_NEAR(scene.actor->getDof(d), 0.1 * std::sin(time + d), 1e-15)
+            << name << " is outside the IK's selection";
     }
     const unsigned ankle = scene.chain->getEffectorJoint();
     const double tolerance = 1e-4 * scene.chain->getLength();

@@ -57,7 +57,9 @@ RandomTargetReport solveRandomTargets(const char* label, const ActorDefinitionPt
 
         auto combinedError = [&](const std::vector<double>& pose) {
             const double position = glm::length(effectorPoint(definition, *chain, pose) - goal.position) / length;
-            return position + (withOrientation ? angleBetween(effectorOrientation(definition, *chain, pose), goal.orientation) : 0.0);
+            return position + (withOrientation
+                                   ? angleBetween(effectorOrientation(definition, *chain, pose), goal.orientation)
+                                   : 0.0);
         };
         const double startError = combinedError(dofs);
         IkJob job = makeIkJob(*definition, *chain, goal, dofs, workspace);
@@ -84,7 +86,8 @@ RandomTargetReport solveRandomTargets(const char* label, const ActorDefinitionPt
               << std::fixed << std::setprecision(1) << 100.0 * report.rate() << "%), iterations mean "
               << std::setprecision(2) << report.meanIterations << " max " << report.maxIterations
               << ", worst position error " << std::scientific << std::setprecision(2) << report.worstPositionError
-              << " of the chain's length" << std::defaultfloat << ", " << report.worse << " ended worse than they started"
+              << " of the chain's length" << std::defaultfloat << ", " << report.worse
+              << " ended worse than they started"
               << std::endl;
     return report;
 }
@@ -242,7 +245,8 @@ TEST(TwoBoneIk, ReachesRandomTargetsWithOrientationAndEffectorOffset)
 {
     const ActorDefinitionPtr leg = makeLegActor();
     const IkChainPtr chain = legChain(leg, IkSolverType::TwoBone, glm::dvec3(0, -0.05, 0.12));
-    const RandomTargetReport report = solveRandomTargets("twobone leg to toe, pole + orientation", leg, chain, true, true);
+    const RandomTargetReport report =
+        solveRandomTargets("twobone leg to toe, pole + orientation", leg, chain, true, true);
     EXPECT_GE(report.rate(), 0.99);
 }
 
@@ -269,8 +273,9 @@ TEST(TwoBoneIk, ReachesRandomTargetsOnAnyJointLayout)
                        {"wrist.ty", 0.0}};
     const IkChainPtr chain = makeChain(*built.definition, spec);
     ASSERT_TRUE(chain->isTwoBoneLayout());
-    EXPECT_GE(solveRandomTargets("twobone, every layout, pole + orientation", built.definition, chain, true, true).rate(),
-              0.99);
+    EXPECT_GE(
+        solveRandomTargets("twobone, every layout, pole + orientation", built.definition, chain, true, true).rate(),
+        0.99);
     // Without an orientation goal the effector's rotations are held (they only carry the offset), so here they are
     // held where each target has them.
     spec.dofWeights.insert(spec.dofWeights.end(), {{"wrist.rx", 0.0}, {"wrist.ry", 0.0}, {"wrist.rz", 0.0}});
@@ -303,7 +308,8 @@ TEST(CcdIk, ReachesRandomTargetsOnALeg)
     const ActorDefinitionPtr leg = makeLegActor();
     IkChainSpec spec = chainSpec("leg", "hip", "ankle", IkSolverType::Ccd);
     spec.maxIterations = 200;
-    const RandomTargetReport report = solveRandomTargets("ccd leg (3 joints)", leg, makeChain(*leg, spec), false, false);
+    const RandomTargetReport report =
+        solveRandomTargets("ccd leg (3 joints)", leg, makeChain(*leg, spec), false, false);
     EXPECT_GE(report.rate(), 0.99);
 }
 
@@ -341,14 +347,16 @@ TEST(CcdIk, MeetsRandomOrientationGoalsOnASevenDofArm)
     const RandomTargetReport report = solveRandomTargets("ccd arm (7 DOFs), orientation", arm,
                                                          armChain(arm, IkSolverType::Ccd), true, false);
     EXPECT_EQ(report.worse, 0u);
-    EXPECT_GE(report.rate(), 0.97) << "a regression guard: 99.0% when written (43.5% of 200 before the sweep acceleration)";
+    EXPECT_GE(report.rate(), 0.97)
+        << "a regression guard: 99.0% when written (43.5% of 200 before the sweep acceleration)";
 }
 
 TEST(IkSolvers, NeverEndWorseThanTheyStart)
 {
     const ActorDefinitionPtr snake = makeSnakeActor();
     for (IkSolverType solver : {IkSolverType::Ccd, IkSolverType::Dls})
-        EXPECT_EQ(solveRandomTargets(ikSolverName(solver), snake, snakeChain(snake, solver), false, false, 7).worse, 0u);
+        EXPECT_EQ(solveRandomTargets(ikSolverName(solver), snake, snakeChain(snake, solver), false, false, 7).worse,
+                  0u);
 }
 
 // --- goals out of reach ---
@@ -422,7 +430,8 @@ TEST(IkSolvers, NeverLeaveTheLimitsNorWriteNaN)
             IkGoal goal;
             goal.position = glm::dvec3(coordinate(random), coordinate(random), coordinate(random));
             goal.hasOrientation = i % 2 == 0;
-            goal.orientation = glm::normalize(glm::dquat(coordinate(random), coordinate(random), coordinate(random), 1.0));
+            goal.orientation =
+                glm::normalize(glm::dquat(coordinate(random), coordinate(random), coordinate(random), 1.0));
             goal.hasPole = i % 3 == 0;
             goal.pole = glm::dvec3(coordinate(random), coordinate(random), coordinate(random));
             const IkJob job = solveOnce(leg, chain, goal, dofs, workspace);

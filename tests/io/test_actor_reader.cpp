@@ -73,7 +73,8 @@ TEST(ActorReader, RefusesDuplicateAndUnknownJointsAndCycles)
     EXPECT_EQ(readError(duplicate), "t.actor:6: actor 'a': joint name 'c' is used twice");
     const std::string unknown = "osgactor 1\nactor a {\n joint b\n joint c {\n  parent d\n }\n}";
     EXPECT_EQ(readError(unknown), "t.actor:4: actor 'a': joint 'c' names an unknown parent 'd'");
-    const std::string cycle = "osgactor 1\nactor a {\n joint r\n joint b {\n  parent c\n }\n joint c {\n  parent b\n }\n}";
+    const std::string cycle =
+        "osgactor 1\nactor a {\n joint r\n joint b {\n  parent c\n }\n joint c {\n  parent b\n }\n}";
     const std::string error = readError(cycle);
     EXPECT_EQ(error.rfind("t.actor:4: actor 'a': the joints form a parent cycle: ", 0), 0u) << error;
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  joint c {\n   parent b\n  }\n }\n}"),

@@ -127,7 +127,8 @@ TEST(ActorWriter, WritesOnlyWhatDiffersFromTheDefaultsInDegrees)
     box.position = glm::dvec3(0, 0, -0.15);
     box.color = glm::dvec4(0.8, 0.6, 0.4, 1.0);
     document.joints[1].geometry.push_back(box);
-    EXPECT_EQ(written(document), R"(# An osgActor actor (docs/actor-format.md): angles in degrees, lengths in model units.
+    EXPECT_EQ(written(document),
+              R"(# An osgActor actor (docs/actor-format.md): angles in degrees, lengths in model units.
 osgactor 1
 actor arm {
     joint shoulder {

@@ -19,9 +19,11 @@ using namespace osgActor::test;
 namespace {
 
 const char* const kSmallAsf = ":version 1.10\n:name small\n:units\n  mass 1.0\n  length 0.45\n  angle deg\n"
-                              ":root\n   order TX TY TZ RX RY RZ\n   axis XYZ\n   position 0 0 0\n   orientation 0 0 0\n"
+                              ":root\n   order TX TY TZ RX RY RZ\n   axis XYZ\n   position 0 0 0\n"
+                              "   orientation 0 0 0\n"
                               ":bonedata\n  begin\n     id 1\n     name femur\n     direction 0 -1 0\n     length 2\n"
-                              "     axis 0 0 90  XYZ\n    dof rx rz\n    limits (-160.0 20.0)\n           (-70.0 70.0)\n  end\n"
+                              "     axis 0 0 90  XYZ\n    dof rx rz\n    limits (-160.0 20.0)\n"
+                              "           (-70.0 70.0)\n  end\n"
                               "  begin\n     id 2\n     name tibia\n     direction 0 -1 0\n     length 3\n"
                               "     axis 0 0 0 XYZ\n    dof rx\n    limits (10.0 170.0)\n  end\n"
                               ":hierarchy\n  begin\n    root femur\n    femur tibia\n  end\n";
@@ -223,7 +225,8 @@ TEST(AsfReader, TakesBoneTranslationsInTheBoneAxisFrameInLengthUnits)
     ASSERT_TRUE(skeleton) << skeleton.error;
     const MocapImport motion = readAmcFile(testData("sliding.amc"), skeleton);
     ASSERT_TRUE(motion) << motion.error;
-    const unsigned tibia = static_cast<unsigned>(def.findJoint("tibia")), foot = static_cast<unsigned>(def.findJoint("foot"));
+    const unsigned tibia = static_cast<unsigned>(def.findJoint("tibia")),
+                   foot = static_cast<unsigned>(def.findJoint("foot"));
     ActorPose pose(motion.definition);
     // Frame 1: the femur points down 2 and is still. The tibia's (0.5, 0.25, 0) is in its axis frame, C = Rz(90):
     // (-0.25, 0.5, 0) in the file's, so it starts at (0, -2, 0) + that and ends 3 lower.

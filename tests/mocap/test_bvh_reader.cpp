@@ -35,7 +35,8 @@ void expectError(const std::string& text, const std::string& fileLine, const std
 }
 
 const char* const kTwoJoints = "HIERARCHY\n"
-                               "ROOT hips\n{\n  OFFSET 0 0 0\n  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
+                               "ROOT hips\n{\n  OFFSET 0 0 0\n"
+                               "  CHANNELS 6 Xposition Yposition Zposition Zrotation Xrotation Yrotation\n"
                                "  JOINT knee\n  {\n    OFFSET 0 -1 0\n    CHANNELS 1 Xrotation\n"
                                "    End Site\n    {\n      OFFSET 0 -1 0\n    }\n  }\n}\n"
                                "MOTION\nFrames: 2\nFrame Time: 0.5\n";
@@ -193,8 +194,10 @@ TEST(BvhReader, NamesEndSitesApartFromRealJoints)
 TEST(BvhReader, TakesQuirksOfRealFilesInItsStride)
 {
     // CRLF, tabs, trailing spaces, two rotation channels, position channels on a child, .0083 and 1e-014.
-    const std::string text = "HIERARCHY\r\nROOT\tpelvis\r\n{\r\n\tOFFSET\t1 2 3 \r\n\tCHANNELS 2 Yrotation Xrotation\r\n"
-                             "\tJOINT\tneck:1\r\n\t{\r\n\t\tOFFSET 0 .5 0\r\n\t\tCHANNELS 4 Xrotation Zposition Zrotation Yposition\r\n"
+    const std::string text = "HIERARCHY\r\nROOT\tpelvis\r\n{\r\n\tOFFSET\t1 2 3 \r\n"
+                             "\tCHANNELS 2 Yrotation Xrotation\r\n"
+                             "\tJOINT\tneck:1\r\n\t{\r\n\t\tOFFSET 0 .5 0\r\n"
+                             "\t\tCHANNELS 4 Xrotation Zposition Zrotation Yposition\r\n"
                              "\t\tEnd Site\r\n\t\t{\r\n\t\t\tOFFSET 0 1 0\r\n\t\t}\r\n\t}\r\n}\r\n"
                              "MOTION\r\nFrames:\t1\r\nFrame Time:\t.0083333\r\n90 1e-014 -0.000000 .5 +90 -.25 \r\n";
     const MocapImport result = readText(text, fileFrame());

@@ -35,7 +35,8 @@ TEST(MocapActor, RefusesMissingAndUnknownFilesAndAnAsfWithoutMotion)
 
     const std::filesystem::path folder = std::filesystem::path(OSGACTOR_TEST_BINARY_DIR) / "lonely";
     std::filesystem::create_directories(folder);
-    std::ofstream(folder / "stick.asf") << ":root\n order TX TY TZ RX RY RZ\n axis XYZ\n:bonedata\n:hierarchy\n begin\n end\n";
+    std::ofstream(folder / "stick.asf")
+        << ":root\n order TX TY TZ RX RY RZ\n axis XYZ\n:bonedata\n:hierarchy\n begin\n end\n";
     EXPECT_FALSE(readMocapActor((folder / "stick.asf").string(), MocapActorOptions(), error).valid());
     EXPECT_NE(error.find("no AMC motion given and none found beside it"), std::string::npos) << error;
 
@@ -75,7 +76,8 @@ TEST(MocapActor, PlaysABvhFileFromTheFrameStamp)
                                                            : bvh.joints[j].name;
             const int joint = actor->getJointIndex(name);
             ASSERT_GE(joint, 0) << name;
-            EXPECT_LT(distance(actor->getJointWorldPosition(static_cast<unsigned>(joint)), zUp(expected[j])), 1e-6 * size)
+            EXPECT_LT(distance(actor->getJointWorldPosition(static_cast<unsigned>(joint)), zUp(expected[j])),
+                      1e-6 * size)
                 << name << " at frame " << 2 * n;
         }
     }
@@ -101,7 +103,8 @@ TEST(MocapActor, PlaysAnAsfAmcPairFoundBesideEachOther)
         {
             const int joint = actor->getJointIndex(entry.first);
             ASSERT_GE(joint, 0) << entry.first;
-            EXPECT_LT(distance(actor->getJointWorldPosition(static_cast<unsigned>(joint)), zUp(entry.second)), 1e-6 * size)
+            EXPECT_LT(distance(actor->getJointWorldPosition(static_cast<unsigned>(joint)), zUp(entry.second)),
+                      1e-6 * size)
                 << entry.first;
         }
     }

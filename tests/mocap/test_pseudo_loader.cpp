@@ -35,14 +35,16 @@ osg::Vec3d zUp(const glm::dvec3& p) { return osg::Vec3d(p.x, -p.z, p.y); }
 
 TEST(MocapPseudoLoader, ReportsMissingAndBrokenFiles)
 {
-    EXPECT_EQ(readThroughOsgDB("/nonexistent/walk.bvh.actor").status(), osgDB::ReaderWriter::ReadResult::FILE_NOT_FOUND);
+    EXPECT_EQ(readThroughOsgDB("/nonexistent/walk.bvh.actor").status(),
+              osgDB::ReaderWriter::ReadResult::FILE_NOT_FOUND);
 
     const std::string broken = std::string(OSGACTOR_TEST_BINARY_DIR) + "/pseudo_broken.bvh";
     std::ofstream(broken) << "HIERARCHY\nROOT hips\n{\n  OFFSET 0 0 0\n  CHANNELS 1 Xrotation\n}\nMOTION\nFrames: 1\n"
                              "Frame Time: 0.1\n1 2\n";
     osgDB::ReaderWriter::ReadResult result = readThroughOsgDB(broken + ".actor");
     EXPECT_FALSE(result.validNode());
-    EXPECT_NE(result.message().find("pseudo_broken.bvh:10: frame 0 has 2 values"), std::string::npos) << result.message();
+    EXPECT_NE(result.message().find("pseudo_broken.bvh:10: frame 0 has 2 values"), std::string::npos)
+        << result.message();
 
     osgDB::ReaderWriter::ReadResult badOption = readThroughOsgDB(sharedMocap("bvh/tpose.bvh.actor"), "scale=big");
     EXPECT_FALSE(badOption.validNode());
@@ -69,7 +71,8 @@ TEST(MocapPseudoLoader, LoadsABvhFileAsAPlayingActor)
         if (bvh.joints[j].endSite) continue;
         const int joint = actor->getJointIndex(bvh.joints[j].name);
         ASSERT_GE(joint, 0);
-        EXPECT_LT((actor->getJointWorldPosition(static_cast<unsigned>(joint)) - zUp(expected[j])).length(), 1e-6 * size);
+        EXPECT_LT((actor->getJointWorldPosition(static_cast<unsigned>(joint)) - zUp(expected[j])).length(),
+                  1e-6 * size);
     }
 }
 
@@ -127,7 +130,8 @@ TEST(ActorFileClips, AnActorFileCarriesAndPlaysItsMotion)
             if (bvh.joints[j].endSite) continue;
             const unsigned joint = static_cast<unsigned>(actor->getJointIndex(bvh.joints[j].name));
             // The file keeps 12 significant digits.
-            EXPECT_LT((actor->getJointWorldPosition(joint) - zUp(expected[j])).length(), 1e-6 * size) << bvh.joints[j].name;
+            EXPECT_LT((actor->getJointWorldPosition(joint) - zUp(expected[j])).length(), 1e-6 * size)
+                << bvh.joints[j].name;
         }
     }
 }

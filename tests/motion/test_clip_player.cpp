@@ -58,7 +58,10 @@ struct Rig
         runControllers(controllers, context, target);
         pose.updateMatrices();
     }
-    double dof(const std::string& name) const { return pose.getDof(static_cast<unsigned>(pose.getDefinition()->findDof(name))); }
+    double dof(const std::string& name) const
+    {
+        return pose.getDof(static_cast<unsigned>(pose.getDefinition()->findDof(name)));
+    }
     /** A joint in the actor's parent frame: pretr_m * posttr_m * model. */
     glm::dmat4 world(unsigned joint) const
     {
@@ -199,7 +202,8 @@ TEST(ClipPlayer, CarriesTheRootPathOnAcrossLoops)
 
 TEST(ClipPlayer, PlaysInPlace)
 {
-    auto player = std::make_shared<ClipPlayer>(makeClip({{"hips.tx", {{0, 0}, {1, 2}}}, {"hips.tz", {{0, 1}, {1, 1.5}}}}));
+    auto player =
+        std::make_shared<ClipPlayer>(makeClip({{"hips.tx", {{0, 0}, {1, 2}}}, {"hips.tz", {{0, 1}, {1, 1.5}}}}));
     player->setRootMotion(RootMotion::InPlace);
     Rig rig(makeWalker());
     rig.transforms.preTranslation = glm::dvec3(5, 0, 0);
@@ -257,7 +261,8 @@ TEST(ClipPlayer, WritesRunsOfChannelsAsItWritesThemOneByOne)
     for (unsigned d = numDofs; d-- > 0;) reversed.addChannel(definition->getDofName(d));
     std::vector<double> reversedFrames(frames.size());
     for (unsigned f = 0; f < numFrames; ++f)
-        for (unsigned d = 0; d < numDofs; ++d) reversedFrames[f * numDofs + (numDofs - 1 - d)] = frames[f * numDofs + d];
+        for (unsigned d = 0; d < numDofs; ++d)
+            reversedFrames[f * numDofs + (numDofs - 1 - d)] = frames[f * numDofs + d];
     inOrder.setFrames(30.0, frames);
     reversed.setFrames(30.0, reversedFrames);
 

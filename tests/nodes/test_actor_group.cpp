@@ -18,7 +18,8 @@ public:
     explicit SwingController(double phase) : _phase(phase) {}
     void update(const ControllerContext& context, ControllerTarget& target) override
     {
-        for (unsigned d = 0; d < target.pose.getNumDofs(); ++d) writeDof(target.pose, d, std::sin(context.time + _phase + d));
+        for (unsigned d = 0; d < target.pose.getNumDofs(); ++d)
+            writeDof(target.pose, d, std::sin(context.time + _phase + d));
     }
     std::shared_ptr<Controller> cloneController() const override { return std::make_shared<SwingController>(*this); }
 

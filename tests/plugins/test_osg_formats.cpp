@@ -188,7 +188,8 @@ TEST(OsgFormatsBroken, ABrokenDefinitionInOsgtFailsTheRead)
     ASSERT_TRUE(osgDB::writeNodeFile(*scene, outFile("good.osgt")));
     const std::string good = readTextFile(outFile("good.osgt"));
     const std::string path =
-        writeTextFile("broken_definition.osgt", replaced(good, "\"        offset 0 0 0.95\"", "\"        ofset 0 0 0.95\""));
+        writeTextFile("broken_definition.osgt",
+                      replaced(good, "\"        offset 0 0 0.95\"", "\"        ofset 0 0 0.95\""));
     osgDB::ReaderWriter::ReadResult result = osgDB::Registry::instance()->readNode(path, nullptr);
     EXPECT_FALSE(result.validNode());
     EXPECT_NE(result.message().find("unknown keyword 'ofset' in a joint"), std::string::npos) << result.message();

@@ -102,13 +102,15 @@ osg::ref_ptr<osg::Image> readRgbImage(const std::string& file)
     failure << "image \"" << name << "\" does not match " << referenceFile << ": ";
     if (!difference.comparable) failure << difference.whyNotComparable;
     else
-        failure << std::fixed << std::setprecision(2) << difference.numDiffering << " of " << difference.numPixels << " pixels ("
+        failure << std::fixed << std::setprecision(2) << difference.numDiffering << " of " << difference.numPixels
+                << " pixels ("
                 << 100.0 * difference.differingFraction() << "%, at most " << 100.0 * maxFraction
                 << "% allowed) differ by more than " << threshold << " (largest difference "
                 << difference.maxChannelDifference << ")";
     failure << "; actual image: " << (writePng(actual, actualFile) ? actualFile : "(could not be written)");
     if (difference.diffImage)
-        failure << ", diff image: " << (writePng(*difference.diffImage, diffFile) ? diffFile : "(could not be written)");
+        failure << ", diff image: "
+                << (writePng(*difference.diffImage, diffFile) ? diffFile : "(could not be written)");
     return failure;
 }
 

@@ -40,7 +40,8 @@ inline osg::ref_ptr<osg::Geode> makeJointBall(float radius)
 
 /** A stick figure 1.7 units tall, standing on the origin, facing -Y (towards a camera on -Y), Z up:
   * pelvis (root, rz) 0.95 above the floor; chest; head; l/r_shoulder (rx, ry, rz) and l/r_elbow (rx); l/r_hip (rx,
-  * ry) and l/r_knee (rx), with a yellow ball on each limb joint. Left is +X. A positive shoulder.rx raises the arm backwards; negative, forwards; a
+  * ry) and l/r_knee (rx), with a yellow ball on each limb joint. Left is +X. A positive shoulder.rx raises the arm
+  * backwards; negative, forwards; a
   * shoulder.ry of -+1.57 raises the left / right arm sideways. */
 inline osg::ref_ptr<ActorNode> makeTestFigure()
 {
@@ -67,7 +68,8 @@ inline osg::ref_ptr<ActorNode> makeTestFigure()
     const osg::Vec4 shirt(0.2f, 0.6f, 0.9f, 1.0f);
     const osg::Vec4 trousers(0.25f, 0.3f, 0.35f, 1.0f);
     const osg::Vec4 leftMark(0.9f, 0.3f, 0.2f, 1.0f); // the left limbs are red, so mirror errors show
-    actor->getSkeletonNode("pelvis")->addChild(makePart(new osg::Box(osg::Vec3(0, 0, 0.2f), 0.32f, 0.16f, 0.5f), shirt));
+    actor->getSkeletonNode("pelvis")->addChild(
+        makePart(new osg::Box(osg::Vec3(0, 0, 0.2f), 0.32f, 0.16f, 0.5f), shirt));
     actor->getSkeletonNode("head")->addChild(makePart(new osg::Sphere(osg::Vec3(0, 0, 0.13f), 0.12f), skin));
     for (const char* side : {"l", "r"})
     {

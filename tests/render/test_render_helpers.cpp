@@ -98,7 +98,8 @@ TEST(ContactSheet, PlacesFramesRowByRowFromTheTopLeft)
     EXPECT_EQ(image.s(), 3 * (20 + m) + m);
     EXPECT_EQ(image.t(), 2 * (15 + m) + m);
 
-    for (unsigned i = 0; i < 5; ++i) ASSERT_TRUE(sheet.addFrame(i, *solidFrame(40, 30, static_cast<unsigned char>(50 * (i + 1)))));
+    for (unsigned i = 0; i < 5; ++i)
+        ASSERT_TRUE(sheet.addFrame(i, *solidFrame(40, 30, static_cast<unsigned char>(50 * (i + 1)))));
     // Image rows are bottom-first: the top row of tiles is at the highest y.
     const auto tileValue = [&](int column, int rowFromTop) {
         const int x = m + column * (20 + m) + 10;

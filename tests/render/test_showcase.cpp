@@ -120,7 +120,8 @@ std::vector<LegTrack> trackFeet(osg::Node& scene, const ActorNode& actor, double
                 track.lowestStance = std::min(track.lowestStance, foot.z());
                 track.highestStance = std::max(track.highestStance, foot.z());
             }
-            if (!inStance) swingPeak[leg] = inStance != wasInStance[leg] ? foot.z() : std::max(swingPeak[leg], foot.z());
+            if (!inStance)
+                swingPeak[leg] = inStance != wasInStance[leg] ? foot.z() : std::max(swingPeak[leg], foot.z());
             wasInStance[leg] = inStance;
         }
     }
@@ -131,7 +132,9 @@ std::vector<LegTrack> trackFeet(osg::Node& scene, const ActorNode& actor, double
 
 TEST(LoopTrajectory, RefusesWhatCannotBeWalked)
 {
-    const auto circle = [](double s) { return osg::Vec3d(std::cos(2.0 * osg::PI * s), std::sin(2.0 * osg::PI * s), 0); };
+    const auto circle = [](double s) {
+        return osg::Vec3d(std::cos(2.0 * osg::PI * s), std::sin(2.0 * osg::PI * s), 0);
+    };
     EXPECT_NE(makeLoopTrajectory("p", circle, 0.0).error.find("speed"), std::string::npos);
     EXPECT_NE(makeLoopTrajectory("p", circle, 1.0, -0.1).error.find("time between keys"), std::string::npos);
     EXPECT_NE(makeLoopTrajectory("p", [](double) { return osg::Vec3d(1, 2, 3); }, 1.0).error.find("no length"),
@@ -141,7 +144,8 @@ TEST(LoopTrajectory, RefusesWhatCannotBeWalked)
 TEST(LoopTrajectory, LoopsAtConstantSpeedFacingTheWayOfTravel)
 {
     const TrajectoryBuildResult built = makeLoopTrajectory(
-        "circle", [](double s) { return osg::Vec3d(2.0 * std::cos(2.0 * osg::PI * s), 2.0 * std::sin(2.0 * osg::PI * s), 0.0); },
+        "circle",
+        [](double s) { return osg::Vec3d(2.0 * std::cos(2.0 * osg::PI * s), 2.0 * std::sin(2.0 * osg::PI * s), 0.0); },
         0.5);
     ASSERT_TRUE(built) << built.error;
     const Trajectory& path = *built.trajectory;
@@ -378,6 +382,7 @@ TEST(ShowcaseFile, LoadsAndItsInsectKeepsItsFeetPlantedAllRoundItsPath)
         EXPECT_LT(tracks[leg].highestStance, kFootTipRadius * 0.8 + 0.0005) << name;
         EXPECT_GT(tracks[leg].lowestSwingPeak, 0.05) << name << ": every swing lifts the foot";
     }
-    // The humanoid walked its stored path too: once round its ellipse takes about 14 s: after `loop` seconds it is elsewhere.
+    // The humanoid walked its stored path too: once round its ellipse takes about 14 s: after `loop` seconds it is
+    // elsewhere.
     EXPECT_GT((humanoid.getPreTranslation() - humanoidStart).length(), 0.5);
 }

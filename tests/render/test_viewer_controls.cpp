@@ -44,7 +44,8 @@ protected:
     {
         const int wanted = figure->getJointIndex(name);
         ASSERT_GE(wanted, 0);
-        for (unsigned i = 0; i < figure->getNumSkeletonNodes() && controls->getSelectedJoint() != wanted; ++i) press('j');
+        for (unsigned i = 0; i < figure->getNumSkeletonNodes() && controls->getSelectedJoint() != wanted; ++i)
+            press('j');
         ASSERT_EQ(controls->getSelectedJoint(), wanted);
     }
 
@@ -145,7 +146,8 @@ TEST_F(ViewerControls, OverlayShowsSkeletonLinesAndAxes)
     press('k');
     figure->setDof("l_knee.rx", 1.0);
     overlay->rebuild();
-    const osg::Vec3Array* vertices = static_cast<const osg::Vec3Array*>(overlay->getDrawable(0)->asGeometry()->getVertexArray());
+    const osg::Vec3Array* vertices =
+        static_cast<const osg::Vec3Array*>(overlay->getDrawable(0)->asGeometry()->getVertexArray());
     const osg::Vec3d knee = figure->getJointWorldPosition(unsigned(figure->getJointIndex("l_knee")));
     bool found = false;
     for (const osg::Vec3& v : *vertices) found = found || (osg::Vec3d(v) - knee).length() < 1e-5;

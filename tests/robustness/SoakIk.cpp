@@ -76,7 +76,10 @@ glm::dvec3 randomDirection(std::mt19937& random)
     return length > 1e-9 ? v / length : glm::dvec3(1.0, 0.0, 0.0);
 }
 
-double uniform(std::mt19937& random, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(random); }
+double uniform(std::mt19937& random, double lo, double hi)
+{
+    return std::uniform_real_distribution<double>(lo, hi)(random);
+}
 
 } // namespace
 
@@ -277,7 +280,8 @@ void SoakIk::goalNodeAction(const std::vector<ActorNode*>& actors)
     case 0:
     case 1: // move one, sometimes to a NaN, infinite, singular or far matrix
         if (numNodes > 0)
-            static_cast<osg::MatrixTransform*>(_goalNodes->getChild(_random() % numNodes))->setMatrix(randomNodeMatrix());
+            static_cast<osg::MatrixTransform*>(_goalNodes->getChild(_random() % numNodes))
+                ->setMatrix(randomNodeMatrix());
         break;
     case 2: // a new node, or one from outside the scene back into it
         if (numNodes >= kMaxGoalNodes) break;

@@ -102,7 +102,8 @@ TEST(ErrorHandling, RefusedTransformsKeepTheOldOnes)
 
 TEST(ErrorHandling, HugeFiniteValuesNeverMakeAMatrixNonFinite)
 {
-    // Finite values at the end of the double range are taken (clamped), but a rotation mixing two of them (a translation
+    // Finite values at the end of the double range are taken (clamped), but a rotation mixing two of them (a
+    // translation
     // DOF without limits, a pre- and a post-translation) must not overflow a matrix to infinity or NaN.
     osg::ref_ptr<osg::Group> scene = new osg::Group;
     osg::ref_ptr<ActorNode> actor = readHumanoid();

@@ -71,7 +71,8 @@ TEST(ParserFindings, TrajectoryCsv)
     expectContractKept("trajectory_csv", contract::checkTrajectoryCsv);
 }
 
-// Found with the fuzz targets: BVH joints nest by recursion, and 100000 nested JOINTs overflowed the stack. Too big to keep
+// Found with the fuzz targets: BVH joints nest by recursion, and 100000 nested JOINTs overflowed the stack. Too big to
+// keep
 // as a file, so made here; the .actor syntax has the same bound.
 TEST(ParserFindings, DeepNestingIsAnErrorNotAStackOverflow)
 {

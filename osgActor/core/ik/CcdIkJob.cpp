@@ -236,7 +236,8 @@ bool CcdIkJob::run()
                     bestFactor = factor;
                 }
                 improved = bestFactor > 0.0;
-                if (improved && bestFactor != factor) proposePatternMove(c, start, end, bestFactor, ws.trialDofs.data());
+                if (improved && bestFactor != factor)
+                    proposePatternMove(c, start, end, bestFactor, ws.trialDofs.data());
                 if (!improved || bestFactor != factor) setPose(improved ? ws.trialDofs.data() : end);
             }
         }

@@ -83,7 +83,8 @@ IkChainBuildResult buildIkChain(const ActorDefinition& definition, const IkChain
     if (root < 0) return refuse("no root joint named " + quoted(spec.rootJoint));
     const int effector = definition.findJoint(spec.effectorJoint);
     if (effector < 0) return refuse("no effector joint named " + quoted(spec.effectorJoint));
-    std::vector<unsigned> joints = pathBetween(definition, static_cast<unsigned>(root), static_cast<unsigned>(effector));
+    std::vector<unsigned> joints =
+        pathBetween(definition, static_cast<unsigned>(root), static_cast<unsigned>(effector));
     if (joints.empty())
         return refuse("effector " + quoted(spec.effectorJoint) + " is not below root " + quoted(spec.rootJoint) +
                       (root == effector ? " (a chain needs at least one bone)" : ""));

@@ -62,7 +62,8 @@ bool alignFrames(const glm::dvec3& from, const glm::dvec3& fromSide, const glm::
     const double yScale = 1.0 / std::sqrt(fromY2 * toY2);
     const double zScale = xScale * yScale;
     for (unsigned column = 0; column < 3; ++column)
-        rotation[column] = to * (xScale * from[column]) + toY * (yScale * fromY[column]) + toZ * (zScale * fromZ[column]);
+        rotation[column] =
+            to * (xScale * from[column]) + toY * (yScale * fromY[column]) + toZ * (zScale * fromZ[column]);
     return true;
 }
 

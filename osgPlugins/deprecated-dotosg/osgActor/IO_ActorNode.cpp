@@ -87,7 +87,8 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
             valid = readExact(token.c_str(), values.back()) && valid;
         }
         if (valid) actor.setDofs(values);
-        else OSG_WARN << "osgActor: actor '" << actor.getName() << "' has a DOF value that is not a number" << std::endl;
+        else OSG_WARN << "osgActor: actor '" << actor.getName() << "' has a DOF value that is not a number"
+                      << std::endl;
         advanced = true;
     }
     osg::Vec3d translation;

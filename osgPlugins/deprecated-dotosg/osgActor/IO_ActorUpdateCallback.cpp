@@ -13,5 +13,6 @@ bool writeActorUpdateCallback(const osg::Object&, osgDB::Output&) { return true;
 } // namespace
 
 REGISTER_DOTOSGWRAPPER(osgActor_ActorUpdateCallback)
-(new osgActor::ActorUpdateCallback, "osgActor::ActorUpdateCallback", "Object NodeCallback osgActor::ActorUpdateCallback",
+(new osgActor::ActorUpdateCallback, "osgActor::ActorUpdateCallback",
+ "Object NodeCallback osgActor::ActorUpdateCallback",
  &readActorUpdateCallback, &writeActorUpdateCallback, osgDB::DotOsgWrapper::READ_AND_WRITE);

@@ -4,6 +4,7 @@
 #include <osgDB/ObjectWrapper>
 
 REGISTER_OBJECT_WRAPPER(osgActor_ActorUpdateCallback, new osgActor::ActorUpdateCallback,
-                        osgActor::ActorUpdateCallback, "osg::Object osg::Callback osg::NodeCallback osgActor::ActorUpdateCallback")
+                        osgActor::ActorUpdateCallback,
+                        "osg::Object osg::Callback osg::NodeCallback osgActor::ActorUpdateCallback")
 {
 }
