@@ -225,8 +225,9 @@ TEST(AsfReader, TakesBoneTranslationsInTheBoneAxisFrameInLengthUnits)
     ASSERT_TRUE(skeleton) << skeleton.error;
     const MocapImport motion = readAmcFile(testData("sliding.amc"), skeleton);
     ASSERT_TRUE(motion) << motion.error;
-    const unsigned tibia = static_cast<unsigned>(def.findJoint("tibia")),
-                   foot = static_cast<unsigned>(def.findJoint("foot"));
+    const ActorDefinition& motionDef = *motion.definition;
+    const unsigned tibia = static_cast<unsigned>(motionDef.findJoint("tibia")),
+                   foot = static_cast<unsigned>(motionDef.findJoint("foot"));
     ActorPose pose(motion.definition);
     // Frame 1: the femur points down 2 and is still. The tibia's (0.5, 0.25, 0) is in its axis frame, C = Rz(90):
     // (-0.25, 0.5, 0) in the file's, so it starts at (0, -2, 0) + that and ends 3 lower.
