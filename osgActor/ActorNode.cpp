@@ -67,7 +67,7 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
 ActorNode::ActorNode()
     : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _preTransformDirty(true),
       _postTransformDirty(true), _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false),
-      _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+      _boundMode(BOUND_FOLLOWS_POSE), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
 {
     setDataVariance(osg::Object::DYNAMIC);
     setUpdateCallback(new ActorUpdateCallback);
@@ -87,7 +87,7 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
       _actorMatrix(actor._actorMatrix), _preTransformDirty(actor._preTransformDirty),
       _postTransformDirty(actor._postTransformDirty), _boundsToPropagate(false),
       _actorMatrixWritten(actor._actorMatrixWritten),
-      _blocked(actor._blocked), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+      _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
 {
     for (const ControllerPtr& controller : actor._controllers)
         if (controller) _controllers.push_back(controller->cloneController());
@@ -185,6 +185,27 @@ void ActorNode::bindLocalMatricesToNodes()
     for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) targets.push_back(node->getMatrixStorageForActor());
     // Only fails on a count that does not match the definition, which both callers have ruled out.
     _pose.redirectLocalMatrices(targets);
+    applyBoundMode();
+}
+
+void ActorNode::setBoundMode(BoundMode mode)
+{
+    _boundMode = mode;
+    applyBoundMode();
+}
+
+void ActorNode::applyBoundMode()
+{
+    const ActorDefinition* def = getDefinition().get();
+    if (!def) return;
+    for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes)
+    {
+        // A joint that translates moves its subtree's centre; one with no DOF never moves, and its bound following
+        // the pose is then both exact and never dirtied.
+        const DofMask dofs = def->getDofMask(node->getJointIndex());
+        node->setBoundCoversRotations(_boundMode == BOUND_COVERS_ROTATIONS && (dofs & kRotationDofs) != 0 &&
+                                      (dofs & kTranslationDofs) == 0);
+    }
 }
 
 void ActorNode::releaseSkeletonNodes()
@@ -475,7 +496,10 @@ void ActorNode::computeFrame(double time)
 {
     // The skeleton nodes are written after the controllers and FK have run: start fetching them now.
     if (!_controllers.empty() || _pose.hasDirtyJoints())
-        for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) node->prefetchForMatrixWrite();
+    {
+        const bool boundsToo = _boundMode == BOUND_FOLLOWS_POSE;
+        for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) node->prefetchForMatrixWrite(boundsToo);
+    }
     runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
     _pose.updateLocalMatrices();
@@ -496,7 +520,9 @@ void ActorNode::writeJointMatrices()
     _pose.consumeChangedLocals([&](unsigned joint, const double* local) {
         if (joint >= numNodes) return;
         // Dirty the joint's bound and its ancestors' up to the first one already dirty (whose ancestors are too).
-        bool climb = nodes[joint]->setMatrixWithinActor(local);
+        SkeletonNode* node = nodes[joint].get();
+        bool climb = node->setMatrixWithinActor(local);
+        if (node->getBoundCoversRotations()) return; // its bound holds every rotation: no bound above changes
         for (int parent = parents[joint]; climb && parent >= 0; parent = parents[parent])
             climb = nodes[parent]->markBoundDirtyWithinActor();
         _boundsToPropagate = true;

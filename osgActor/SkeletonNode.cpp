@@ -2,6 +2,8 @@
 
 #include <osgUtil/IntersectionVisitor>
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdlib>
 #include <new>
@@ -40,7 +42,7 @@ void SkeletonNode::operator delete(void* node)
     if (node) std::free(static_cast<char*>(node) - placementPad());
 }
 
-SkeletonNode::SkeletonNode() : _jointIndex(0), _hidden(false)
+SkeletonNode::SkeletonNode() : _jointIndex(0), _hidden(false), _boundCoversRotations(false)
 {
     // The matrix changes from frame to frame: keep osgUtil::Optimizer from flattening it away.
     setDataVariance(osg::Object::DYNAMIC);
@@ -53,7 +55,8 @@ SkeletonNode::SkeletonNode(unsigned jointIndex, const std::string& jointName) : 
 }
 
 SkeletonNode::SkeletonNode(const SkeletonNode& node, const osg::CopyOp& copyop)
-    : osg::MatrixTransform(node, copyop), _jointIndex(node._jointIndex), _hidden(node._hidden)
+    : osg::MatrixTransform(node, copyop), _jointIndex(node._jointIndex), _hidden(node._hidden),
+      _boundCoversRotations(node._boundCoversRotations)
 {
 }
 
@@ -63,6 +66,30 @@ void SkeletonNode::traverse(osg::NodeVisitor& nv)
                     dynamic_cast<osgUtil::IntersectionVisitor*>(&nv) != nullptr))
         return;
     osg::MatrixTransform::traverse(nv);
+}
+
+osg::BoundingSphere SkeletonNode::computeBound() const
+{
+    if (!_boundCoversRotations || _referenceFrame != RELATIVE_RF) return osg::MatrixTransform::computeBound();
+    // The joint turns about its own origin, so a ball about that origin that holds every child's bound holds it in
+    // any rotation: its radius is the farthest reach of a child's sphere. Children are taken as osg::Group takes
+    // them: those with an absolute reference frame, and empty ones, do not count.
+    double reach = -1.0;
+    for (const osg::ref_ptr<osg::Node>& child : _children)
+    {
+        const osg::Transform* transform = child->asTransform();
+        if (transform && transform->getReferenceFrame() != RELATIVE_RF) continue;
+        const osg::BoundingSphere& bound = child->getBound();
+        if (bound.valid()) reach = std::max(reach, static_cast<double>(bound.center().length() + bound.radius()));
+    }
+    if (reach < 0.0) return osg::BoundingSphere();
+    // The actor writes rigid matrices; a scale a user set with setMatrix() widens the ball as it would widen
+    // osg::Transform's bound (the longest image of a unit axis).
+    double scale2 = 0.0;
+    for (int row = 0; row < 3; ++row)
+        scale2 = std::max(scale2, _matrix(row, 0) * _matrix(row, 0) + _matrix(row, 1) * _matrix(row, 1) +
+                                      _matrix(row, 2) * _matrix(row, 2));
+    return osg::BoundingSphere(_matrix.getTrans(), reach * std::sqrt(scale2));
 }
 
 } // namespace osgActor

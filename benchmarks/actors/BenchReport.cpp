@@ -105,8 +105,9 @@ void SummaryReporter::writeSummary()
     std::stable_sort(_results.begin(), _results.end(), [](const Result& a, const Result& b) {
         const auto key = [](const Result& r) {
             return std::make_tuple(rank(r.mode, {"update", "update_cull", "parallel", "memory"}), r.n,
-                                   rank(r.system, {"osgActor_all", "osgActor_quarter", "osgActor_idle", "osgAnimation",
-                                                   "plainOSG", "osgActor_1thread", "osgActor_2threads"}));
+                                   rank(r.system, {"osgActor_all", "osgActor_all_cover", "osgActor_quarter",
+                                                   "osgActor_idle", "osgAnimation", "plainOSG", "osgActor_1thread",
+                                                   "osgActor_2threads"}));
         };
         return key(a) < key(b);
     });
@@ -165,7 +166,8 @@ void SummaryReporter::writeSummary()
     {
         gp << "set title '" << mode << "'\nplot ";
         bool first = true;
-        for (const char* system : {"osgActor_all", "osgActor_quarter", "osgActor_idle", "osgAnimation", "plainOSG"})
+        for (const char* system :
+             {"osgActor_all", "osgActor_all_cover", "osgActor_quarter", "osgActor_idle", "osgAnimation", "plainOSG"})
         {
             data << "# " << mode << " " << system << "\n";
             for (const Result& r : _results)

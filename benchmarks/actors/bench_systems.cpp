@@ -13,8 +13,8 @@ namespace {
 
 using bench::Motion;
 
-enum class System { OsgActorAll, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg, OsgActor1Thread,
-                    OsgActor2Threads };
+enum class System { OsgActorAll, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg, OsgActorAllCover,
+                    OsgActor1Thread, OsgActor2Threads };
 
 osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors)
 {
@@ -25,6 +25,8 @@ osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors)
     case System::OsgActorIdle: return bench::makeOsgActorScene(numActors, Motion::Idle);
     case System::OsgAnimation: return bench::makeOsgAnimationScene(numActors);
     case System::PlainOsg: return bench::makePlainOsgScene(numActors);
+    case System::OsgActorAllCover:
+        return bench::makeOsgActorScene(numActors, Motion::All, 0, bench::Bounds::CoverRotations);
     case System::OsgActor1Thread: return bench::makeOsgActorScene(numActors, Motion::All, 1);
     case System::OsgActor2Threads: return bench::makeOsgActorScene(numActors, Motion::All, 2);
     }
@@ -70,15 +72,15 @@ void runSystem(benchmark::State& state, System system, bool withCull)
     if (withCull) state.counters["drawables"] = loop.lastDrawables();
 }
 
-const char* const kNames[] = {"osgActor_all", "osgActor_quarter", "osgActor_idle", "osgAnimation",
-                              "plainOSG",     "osgActor_1thread", "osgActor_2threads"};
+const char* const kNames[] = {"osgActor_all", "osgActor_quarter",   "osgActor_idle",    "osgAnimation",
+                              "plainOSG",     "osgActor_all_cover", "osgActor_1thread", "osgActor_2threads"};
 
 void registerAll()
 {
     // Interleaved: for each N and mode, every system in turn, so drift in machine load hits all of them alike.
     for (bool withCull : {false, true})
         for (int n : {1, 10, 100, 1000})
-            for (int s = 0; s < 5; ++s)
+            for (int s = 0; s < 6; ++s)
             {
                 const System system = static_cast<System>(s);
                 const std::string name = std::string(withCull ? "update_cull/" : "update/") + kNames[s];
@@ -87,7 +89,7 @@ void registerAll()
                 })->Arg(n)->Unit(benchmark::kMicrosecond);
             }
     // Many actors in an ActorGroup on one thread and on two: the update traversal, wall-clock time.
-    for (int s : {5, 6})
+    for (int s : {6, 7})
     {
         const System system = static_cast<System>(s);
         benchmark::RegisterBenchmark((std::string("parallel/") + kNames[s]).c_str(), [system](benchmark::State& state) {

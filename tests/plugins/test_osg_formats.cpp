@@ -27,6 +27,8 @@ osg::ref_ptr<osg::Group> makeScene(bool blocked)
     actor->setPostTranslation(osg::Vec3d(0, 0, 0.01));
     actor->setPostRotation(osg::Quat(0.1, osg::Vec3d(1, 0, 0)));
     actor->getSkeletonNode("r_elbow")->setHidden(true);
+    // The blocked scene also has the bound mode that is not the default (a default is not written at all).
+    if (blocked) actor->setBoundMode(ActorNode::BOUND_COVERS_ROTATIONS);
     runUpdate(*actor, 1);
     // The frame computed local matrices only; bring the model matrices up to date too, so that the blocked
     // original answers queries with the pose it shows (main's lazy model matrices; see the report).
@@ -61,10 +63,14 @@ void expectSameActor(const ActorNode& original, const ActorNode& back, const std
     EXPECT_EQ(back.getPostTranslation(), original.getPostTranslation()) << format;
     EXPECT_EQ(back.getPostRotation(), original.getPostRotation()) << format;
     EXPECT_EQ(back.getBlocked(), original.getBlocked()) << format;
+    EXPECT_EQ(back.getBoundMode(), original.getBoundMode()) << format;
     ASSERT_EQ(back.getNumSkeletonNodes(), original.getNumSkeletonNodes()) << format;
     for (unsigned j = 0; j < original.getNumSkeletonNodes(); ++j)
     {
         EXPECT_EQ(back.getSkeletonNode(j)->getHidden(), original.getSkeletonNode(j)->getHidden()) << format;
+        EXPECT_EQ(back.getSkeletonNode(j)->getBoundCoversRotations(),
+                  original.getSkeletonNode(j)->getBoundCoversRotations())
+            << format;
         EXPECT_EQ(back.getSkeletonNode(j)->getName(), original.getSkeletonNode(j)->getName()) << format;
         EXPECT_TRUE(vec3Near(back.getJointWorldPosition(j), original.getJointWorldPosition(j), 1e-11))
             << format << " joint " << original.getDefinition()->getJointName(j);

@@ -97,6 +97,16 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
     if (readQuat(fr, "PreRotation", rotation)) { actor.setPreRotation(rotation); advanced = true; }
     if (readVec3d(fr, "PostTranslation", translation)) { actor.setPostTranslation(translation); advanced = true; }
     if (readQuat(fr, "PostRotation", rotation)) { actor.setPostRotation(rotation); advanced = true; }
+    if (fr[0].matchWord("BoundMode"))
+    {
+        if (fr[1].matchWord("COVERS_ROTATIONS")) actor.setBoundMode(osgActor::ActorNode::BOUND_COVERS_ROTATIONS);
+        else if (fr[1].matchWord("FOLLOWS_POSE")) actor.setBoundMode(osgActor::ActorNode::BOUND_FOLLOWS_POSE);
+        else
+            OSG_WARN << "osgActor: actor '" << actor.getName() << "' has an unknown BoundMode '"
+                     << (fr[1].getStr() ? fr[1].getStr() : "") << "' (FOLLOWS_POSE kept)" << std::endl;
+        fr += 2;
+        advanced = true;
+    }
     if (fr[0].matchWord("Blocked"))
     {
         // Posed before it is frozen, so a blocked actor read back shows its pose.
@@ -146,6 +156,10 @@ bool writeActorNode(const osg::Object& object, osgDB::Output& fw)
                 << std::endl;
     fw.indent() << "PostRotation " << exact(postRotation.x()) << " " << exact(postRotation.y()) << " "
                 << exact(postRotation.z()) << " " << exact(postRotation.w()) << std::endl;
+    fw.indent() << "BoundMode "
+                << (actor.getBoundMode() == osgActor::ActorNode::BOUND_COVERS_ROTATIONS ? "COVERS_ROTATIONS"
+                                                                                     : "FOLLOWS_POSE")
+                << std::endl;
     fw.indent() << "Blocked " << (actor.getBlocked() ? "TRUE" : "FALSE") << std::endl;
     return true;
 }

@@ -214,5 +214,9 @@ REGISTER_OBJECT_WRAPPER(osgActor_ActorNode, new osgActor::ActorNode, osgActor::A
     ADD_USER_SERIALIZER(PreRotation);
     ADD_USER_SERIALIZER(PostTranslation);
     ADD_USER_SERIALIZER(PostRotation);
+    BEGIN_ENUM_SERIALIZER(BoundMode, BOUND_FOLLOWS_POSE);
+        ADD_ENUM_VALUE(BOUND_FOLLOWS_POSE);
+        ADD_ENUM_VALUE(BOUND_COVERS_ROTATIONS);
+    END_ENUM_SERIALIZER();
     ADD_USER_SERIALIZER(Blocked); // last: it poses the actor before freezing it
 }
