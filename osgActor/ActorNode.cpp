@@ -62,6 +62,16 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
     return true;
 }
 
+/** Writes a changed joint's matrix into its skeleton node, and dirties its bound and its ancestors' up to the first
+  * one already dirty (whose ancestors are too). */
+inline void writeDirtyingBounds(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint,
+                                const double* local)
+{
+    bool climb = nodes[joint]->setMatrixWithinActor(local);
+    for (int parent = parents[joint]; climb && parent >= 0; parent = parents[parent])
+        climb = nodes[parent]->markBoundDirtyWithinActor();
+}
+
 } // namespace
 
 ActorNode::ActorNode()
@@ -497,8 +507,11 @@ void ActorNode::computeFrame(double time)
     // The skeleton nodes are written after the controllers and FK have run: start fetching them now.
     if (!_controllers.empty() || _pose.hasDirtyJoints())
     {
-        const bool boundsToo = _boundMode == BOUND_FOLLOWS_POSE;
-        for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) node->prefetchForMatrixWrite(boundsToo);
+        // Two loops, so that neither tests the mode per node.
+        if (_boundMode == BOUND_FOLLOWS_POSE)
+            for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) node->prefetchForMatrixWrite(true);
+        else
+            for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) node->prefetchForMatrixWrite(false);
     }
     runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
@@ -513,20 +526,49 @@ void ActorNode::writeSceneGraph()
 
 void ActorNode::writeJointMatrices()
 {
-    const ActorDefinition* definition = getDefinition().get();
-    const int* parents = definition ? definition->getParents().data() : nullptr;
+    if (_boundMode == BOUND_COVERS_ROTATIONS)
+    {
+        writeJointMatricesKeepingBalls();
+        return;
+    }
+    const int* parents = parentsOrNull();
     const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
     const std::size_t numNodes = _skeletonNodes.size();
+    bool dirtied = false; // a local, not the member, inside the loop: it then stays in a register
     _pose.consumeChangedLocals([&](unsigned joint, const double* local) {
         if (joint >= numNodes) return;
-        // Dirty the joint's bound and its ancestors' up to the first one already dirty (whose ancestors are too).
-        SkeletonNode* node = nodes[joint].get();
-        bool climb = node->setMatrixWithinActor(local);
-        if (node->getBoundCoversRotations()) return; // its bound holds every rotation: no bound above changes
-        for (int parent = parents[joint]; climb && parent >= 0; parent = parents[parent])
-            climb = nodes[parent]->markBoundDirtyWithinActor();
-        _boundsToPropagate = true;
+        writeDirtyingBounds(parents, nodes, joint, local);
+        dirtied = true;
     });
+    if (dirtied) _boundsToPropagate = true;
+}
+
+void ActorNode::writeJointMatricesKeepingBalls()
+{
+    const int* parents = parentsOrNull();
+    const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
+    const std::size_t numNodes = _skeletonNodes.size();
+    bool dirtied = false;
+    _pose.consumeChangedLocals([&](unsigned joint, const double* local) {
+        if (joint >= numNodes) return;
+        // A ball that holds every rotation of the joint does not change as it turns: no bound to dirty, here or
+        // above. (The flag shares a cache line with the inverse's flag, which is written anyway.)
+        SkeletonNode* node = nodes[joint].get();
+        if (node->getBoundCoversRotations())
+        {
+            node->setMatrixKeepingBoundWithinActor(local);
+            return;
+        }
+        writeDirtyingBounds(parents, nodes, joint, local);
+        dirtied = true;
+    });
+    if (dirtied) _boundsToPropagate = true;
+}
+
+const int* ActorNode::parentsOrNull() const
+{
+    const ActorDefinition* definition = getDefinition().get();
+    return definition ? definition->getParents().data() : nullptr;
 }
 
 void ActorNode::writeActorMatrix()
