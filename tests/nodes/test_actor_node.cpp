@@ -80,6 +80,47 @@ TEST(ActorNode, BuildsOneSkeletonNodePerJointNestedLikeTheBody)
     EXPECT_NE(dynamic_cast<ActorUpdateCallback*>(actor->getUpdateCallback()), nullptr);
 }
 
+namespace {
+
+/** A user's actor class: the shared callback must still find the ActorNode in it. */
+class DerivedActor : public ActorNode
+{
+public:
+    using ActorNode::ActorNode;
+};
+
+} // namespace
+
+TEST(ActorNode, TheUpdateCallbackDrivesSubclassesAndLeavesOtherNodesAlone)
+{
+    osg::ref_ptr<DerivedActor> derived = new DerivedActor(makePlanarArm());
+    ASSERT_TRUE(derived->setDof("upper.rz", kQuarter));
+    runUpdate(*derived, 1);
+    EXPECT_EQ(derived->getNumUpdatesRun(), 1u);
+    EXPECT_TRUE(vec3Near(osg::Vec3d(1, 0, 0) * derived->getSkeletonNode(1u)->getMatrix(), osg::Vec3d(1, 1, 0), 1e-15));
+
+    // On a node that is no actor it only passes the traversal on (to a child's callback here).
+    struct Counting : osg::NodeCallback
+    {
+        void operator()(osg::Node* node, osg::NodeVisitor* nv) override
+        {
+            ++count;
+            traverse(node, nv);
+        }
+        int count = 0;
+    };
+    osg::ref_ptr<osg::Group> group = new osg::Group;
+    group->setUpdateCallback(new ActorUpdateCallback);
+    osg::ref_ptr<osg::Group> child = new osg::Group;
+    osg::ref_ptr<Counting> counting = new Counting;
+    child->setUpdateCallback(counting.get());
+    group->addChild(child.get());
+    runUpdate(*group, 1);
+    EXPECT_EQ(counting->count, 1);
+    osg::ref_ptr<ActorUpdateCallback> callback = new ActorUpdateCallback;
+    (*callback)(nullptr, nullptr); // nothing to drive, and no crash
+}
+
 TEST(ActorNode, AFreshActorIsPosedBeforeItsFirstFrame)
 {
     osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
