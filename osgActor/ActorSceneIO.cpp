@@ -175,6 +175,7 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
     // show and answer with its default pose until unblocked.
     actor->updatePose();
     actor->update(nullptr);
+    actor->setBoundMode(document.boundsCoverRotations ? ActorNode::BOUND_COVERS_ROTATIONS : ActorNode::BOUND_FOLLOWS_POSE);
     actor->setBlocked(document.blocked);
     result.actor = actor;
     return result;
@@ -191,6 +192,7 @@ ActorDocument extractActorDocument(const ActorNode& actor)
     document.postTranslation = toGlm(actor.getPostTranslation());
     document.postRotation = toGlm(actor.getPostRotation());
     document.blocked = actor.getBlocked();
+    document.boundsCoverRotations = actor.getBoundMode() == ActorNode::BOUND_COVERS_ROTATIONS;
 
     for (unsigned dof = 0; dof < definition->getNumDofs(); ++dof)
     {

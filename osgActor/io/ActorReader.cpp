@@ -186,6 +186,7 @@ private:
             else if (k == "post_translation") ok = once(seen, s) && vector3(s, document.postTranslation);
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
+            else if (k == "bounds") ok = once(seen, s) && readBounds(s, document.boundsCoverRotations);
             else if (k == "clip")
             {
                 // Read once the definition is built: channels are checked against its DOFs.
@@ -316,6 +317,16 @@ private:
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         if (parseEulerOrder(s.arguments.front().text, order)) return true;
         return fail(s.line, "'" + s.arguments.front().text + "' is not an Euler order (XYZ, XZY, YXZ, YZX, ZXY, ZYX)");
+    }
+
+    bool readBounds(const SyntaxStatement& s, bool& coverRotations)
+    {
+        if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
+        const std::string& word = s.arguments.front().text;
+        if (word == "follows_pose") coverRotations = false;
+        else if (word == "covers_rotations") coverRotations = true;
+        else return fail(s.line, "'" + word + "' is not a bound mode (follows_pose, covers_rotations)");
+        return true;
     }
 
     bool readTranslationMode(const SyntaxStatement& s, TranslationMode& mode)

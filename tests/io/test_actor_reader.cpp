@@ -65,6 +65,8 @@ TEST(ActorReader, RefusesUnknownKeywordsWhereverTheyAre)
               "t.actor:4: 'blob' is not a shape (box, sphere, capsule, cylinder, cone)");
     EXPECT_EQ(readError("osgactor 1\nactor a {\n joint b {\n  euler XYX\n }\n}"),
               "t.actor:4: 'XYX' is not an Euler order (XYZ, XZY, YXZ, YZX, ZXY, ZYX)");
+    EXPECT_EQ(readError("osgactor 1\nactor a {\n bounds tight\n joint b\n}"),
+              "t.actor:3: 'tight' is not a bound mode (follows_pose, covers_rotations)");
 }
 
 TEST(ActorReader, RefusesDuplicateAndUnknownJointsAndCycles)

@@ -2,13 +2,16 @@
 // subtree in every rotation, so turning it dirties no bound; joints that translate keep bounds that follow the pose.
 #include "NodeTestUtil"
 
+#include <osgActor/ActorSceneIO>
 #include <osgActor/SkeletonNode>
+#include <osgActor/io/ActorReader>
 
 #include <osg/io_utils>
 #include <osgUtil/IntersectionVisitor>
 #include <osgUtil/LineSegmentIntersector>
 
 #include <cmath>
+#include <sstream>
 #include <random>
 
 using namespace osgActor;
@@ -188,3 +191,19 @@ TEST(BoundMode, CopiesKeepTheMode)
     EXPECT_TRUE(copy->getSkeletonNode(0u)->getBoundCoversRotations());
     EXPECT_TRUE(sphereNear(copy->getBound(), osg::Vec3d(0, 0, 0), 2.6));
 }
+
+TEST(BoundMode, AnActorFileSaysWhichAndSoDoesTheDocumentOfAnActor)
+{
+    std::istringstream text("osgactor 1\nactor arm {\n  bounds covers_rotations\n  joint base { dof rz }\n}\n");
+    const ActorReadResult read = readActor(text, "arm.actor");
+    ASSERT_TRUE(read) << read.error;
+    EXPECT_TRUE(read.document.boundsCoverRotations);
+    const ActorNodeResult made = createActorNode(read.document, read.definition, "arm.actor", nullptr);
+    ASSERT_TRUE(made.actor.valid()) << made.error;
+    EXPECT_EQ(made.actor->getBoundMode(), ActorNode::BOUND_COVERS_ROTATIONS);
+    EXPECT_TRUE(made.actor->getSkeletonNode(0u)->getBoundCoversRotations());
+    EXPECT_TRUE(extractActorDocument(*made.actor).boundsCoverRotations);
+    made.actor->setBoundMode(ActorNode::BOUND_FOLLOWS_POSE);
+    EXPECT_FALSE(extractActorDocument(*made.actor).boundsCoverRotations);
+}
+
