@@ -62,6 +62,8 @@ TEST(ActorGroup, ParallelUpdateGivesTheSamePosesAsSerialUpdate)
     {
         osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
         actor->addController(std::make_shared<SwingController>(0.1 * a));
+        // Half of them write their nodes the covering way (no bounds dirtied): that path runs on the workers too.
+        if (a % 2) actor->setBoundMode(ActorNode::BOUND_COVERS_ROTATIONS);
         parallel->addChild(actor.get());
         serial->addChild(osg::clone(actor.get(), osg::CopyOp::SHALLOW_COPY));
     }
