@@ -64,12 +64,19 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
 
 /** Writes a changed joint's matrix into its skeleton node, and dirties its bound and its ancestors' up to the first
   * one already dirty (whose ancestors are too). */
+/** Dirties the bounds of a joint's ancestors, up to the first one already dirty (whose ancestors are too). */
+inline void dirtyBoundsAbove(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint)
+{
+    for (int parent = parents[joint]; parent >= 0 && nodes[parent]->markBoundDirtyWithinActor();
+         parent = parents[parent])
+    {
+    }
+}
+
 inline void writeDirtyingBounds(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint,
                                 const double* local)
 {
-    bool climb = nodes[joint]->setMatrixWithinActor(local);
-    for (int parent = parents[joint]; climb && parent >= 0; parent = parents[parent])
-        climb = nodes[parent]->markBoundDirtyWithinActor();
+    if (nodes[joint]->setMatrixWithinActor(local)) dirtyBoundsAbove(parents, nodes, joint);
 }
 
 } // namespace
@@ -213,8 +220,10 @@ void ActorNode::applyBoundMode()
         // A joint that translates moves its subtree's centre; one with no DOF never moves, and its bound following
         // the pose is then both exact and never dirtied.
         const DofMask dofs = def->getDofMask(node->getJointIndex());
-        node->setBoundCoversRotations(_boundMode == BOUND_COVERS_ROTATIONS && (dofs & kRotationDofs) != 0 &&
-                                      (dofs & kTranslationDofs) == 0);
+        const bool covers =
+            _boundMode == BOUND_COVERS_ROTATIONS && (dofs & kRotationDofs) != 0 && (dofs & kTranslationDofs) == 0;
+        if (covers != node->getBoundCoversRotations())
+            node->setBoundCoversRotations(covers, toOsg(def->getOffsetTranslation(node->getJointIndex())));
     }
 }
 
@@ -554,12 +563,9 @@ void ActorNode::writeJointMatricesKeepingBalls()
         // A ball that holds every rotation of the joint does not change as it turns: no bound to dirty, here or
         // above. (The flag shares a cache line with the inverse's flag, which is written anyway.)
         SkeletonNode* node = nodes[joint].get();
-        if (node->getBoundCoversRotations())
-        {
-            node->setMatrixKeepingBoundWithinActor(local);
-            return;
-        }
-        writeDirtyingBounds(parents, nodes, joint, local);
+        if (!node->getBoundCoversRotations()) writeDirtyingBounds(parents, nodes, joint, local);
+        else if (node->setMatrixKeepingBallWithinActor(local)) dirtyBoundsAbove(parents, nodes, joint);
+        else return;
         dirtied = true;
     });
     if (dirtied) _boundsToPropagate = true;

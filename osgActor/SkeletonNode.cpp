@@ -42,7 +42,7 @@ void SkeletonNode::operator delete(void* node)
     if (node) std::free(static_cast<char*>(node) - placementPad());
 }
 
-SkeletonNode::SkeletonNode() : _jointIndex(0), _hidden(false), _boundCoversRotations(false)
+SkeletonNode::SkeletonNode() : _jointIndex(0), _hidden(false), _boundCoversRotations(false), _ballOffCentre(false)
 {
     // The matrix changes from frame to frame: keep osgUtil::Optimizer from flattening it away.
     setDataVariance(osg::Object::DYNAMIC);
@@ -56,7 +56,8 @@ SkeletonNode::SkeletonNode(unsigned jointIndex, const std::string& jointName) : 
 
 SkeletonNode::SkeletonNode(const SkeletonNode& node, const osg::CopyOp& copyop)
     : osg::MatrixTransform(node, copyop), _jointIndex(node._jointIndex), _hidden(node._hidden),
-      _boundCoversRotations(node._boundCoversRotations)
+      _boundCoversRotations(node._boundCoversRotations), _ballOffCentre(node._ballOffCentre),
+      _jointCentre(node._jointCentre)
 {
 }
 
@@ -80,8 +81,12 @@ osg::BoundingSphere SkeletonNode::computeBound() const
         const osg::Transform* transform = child->asTransform();
         if (transform && transform->getReferenceFrame() != RELATIVE_RF) continue;
         const osg::BoundingSphere& bound = child->getBound();
-        if (bound.valid()) reach = std::max(reach, static_cast<double>(bound.center().length() + bound.radius()));
+        if (bound.valid()) reach = std::max(reach, osg::Vec3d(bound.center()).length() + bound.radius());
     }
+    // About the centre the matrix shows; if that is not the joint's (a matrix set by hand), the actor's next
+    // write, which puts it back, must make a new ball.
+    const osg::Vec3d centre = _matrix.getTrans();
+    _ballOffCentre = centre != _jointCentre;
     if (reach < 0.0) return osg::BoundingSphere();
     // The actor writes rigid matrices; a scale a user set with setMatrix() widens the ball as it would widen
     // osg::Transform's bound (the longest image of a unit axis).
@@ -89,7 +94,7 @@ osg::BoundingSphere SkeletonNode::computeBound() const
     for (int row = 0; row < 3; ++row)
         scale2 = std::max(scale2, _matrix(row, 0) * _matrix(row, 0) + _matrix(row, 1) * _matrix(row, 1) +
                                       _matrix(row, 2) * _matrix(row, 2));
-    return osg::BoundingSphere(_matrix.getTrans(), reach * std::sqrt(scale2));
+    return osg::BoundingSphere(centre, reach * std::sqrt(scale2));
 }
 
 } // namespace osgActor

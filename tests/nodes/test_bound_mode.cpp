@@ -127,6 +127,29 @@ TEST(BoundMode, TurningJointsRecomputesNoBoundYetTheBallHoldsEveryPose)
     EXPECT_EQ(counters[2]->count, before + 5);
 }
 
+TEST(BoundMode, AJointWhoseOffsetAlsoTurnsKeepsItsBallToo)
+{
+    // An offset with a rotation (as ASF bone axes give) still keeps the joint's centre where it is.
+    ActorDefinitionBuilder b("tilted");
+    b.addJoint("base").dofs(Dof::RX | Dof::RZ);
+    b.addJoint("arm", "base").offset(1, 0.5, -0.25).rotation(0.7, 0.3, -0.5, 0.8).dofs(Dof::RX | Dof::RY);
+    b.addJoint("hand", "arm").offset(1, 0, 0);
+    const BuildResult built = b.build();
+    ASSERT_TRUE(built) << built.error;
+    osg::ref_ptr<ActorNode> actor = new ActorNode(built.definition);
+    actor->getSkeletonNode(2u)->addChild(makeHand().get());
+    actor->setBoundMode(ActorNode::BOUND_COVERS_ROTATIONS);
+    CountingBound* arm = countBounds(*actor->getSkeletonNode(1u));
+    EXPECT_TRUE(sphereNear(actor->getSkeletonNode(1u)->getBound(), osg::Vec3d(1, 0.5, -0.25), 1.1));
+    for (unsigned frame = 1; frame <= 5; ++frame)
+    {
+        ASSERT_TRUE(actor->setDofs({0.3 * frame, -0.2 * frame, 0.5 * frame, 0.1 * frame}));
+        runUpdate(*actor, frame);
+        actor->getBound();
+    }
+    EXPECT_EQ(arm->count, 1);
+}
+
 TEST(BoundMode, AJointThatTranslatesKeepsABoundThatFollowsIt)
 {
     // A slider (tx, rz) carrying an arm (rz) 1 along X, with a hand 1 further.
@@ -181,6 +204,20 @@ TEST(BoundMode, ABallWidensWithAScaleAUserSets)
     SkeletonNode* lower = actor->getSkeletonNode(2u);
     lower->setMatrix(osg::Matrixd::scale(2, 2, 2) * osg::Matrixd::translate(1, 0, 0));
     EXPECT_TRUE(sphereNear(lower->getBound(), osg::Vec3d(1, 0, 0), 1.2));
+}
+
+TEST(BoundMode, ABallFollowsItsJointsCentreWhereverAMatrixSetByHandPutIt)
+{
+    osg::ref_ptr<ActorNode> actor = makeCoveredArm();
+    SkeletonNode* lower = actor->getSkeletonNode(2u);
+    lower->setMatrix(osg::Matrixd::translate(5, 0, 0)); // by hand: the actor's next write of this joint undoes it
+    EXPECT_TRUE(sphereNear(lower->getBound(), osg::Vec3d(5, 0, 0), 0.6));
+    // upper reaches 5 + 0.6 from its centre, which is 1 from base's: 6.6.
+    EXPECT_TRUE(sphereNear(actor->getBound(), osg::Vec3d(0, 0, 0), 6.6));
+    ASSERT_TRUE(actor->setDof("lower.rz", 0.5));
+    runUpdate(*actor, 1);
+    EXPECT_TRUE(sphereNear(lower->getBound(), osg::Vec3d(1, 0, 0), 0.6)) << "the centre moved back: a new ball";
+    EXPECT_TRUE(sphereNear(actor->getBound(), osg::Vec3d(0, 0, 0), 2.6)) << "and new ones above it";
 }
 
 TEST(BoundMode, CopiesKeepTheMode)
