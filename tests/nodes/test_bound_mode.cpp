@@ -55,6 +55,18 @@ osg::ref_ptr<ActorNode> makeCoveredArm()
     return actor;
 }
 
+/** The actor a builder of three joints describes, with a hand on the third, its bounds covering rotations. */
+osg::ref_ptr<ActorNode> makeCoveredActor(ActorDefinitionBuilder& builder)
+{
+    const BuildResult built = builder.build();
+    EXPECT_TRUE(built) << built.error;
+    if (!built) return nullptr;
+    osg::ref_ptr<ActorNode> actor = new ActorNode(built.definition);
+    actor->getSkeletonNode(2u)->addChild(makeHand().get());
+    actor->setBoundMode(ActorNode::BOUND_COVERS_ROTATIONS);
+    return actor;
+}
+
 ::testing::AssertionResult sphereNear(const osg::BoundingSphere& actual, const osg::Vec3d& centre, double radius)
 {
     // Bounding spheres are single precision in Debian's OSG.
@@ -134,11 +146,8 @@ TEST(BoundMode, AJointWhoseOffsetAlsoTurnsKeepsItsBallToo)
     b.addJoint("base").dofs(Dof::RX | Dof::RZ);
     b.addJoint("arm", "base").offset(1, 0.5, -0.25).rotation(0.7, 0.3, -0.5, 0.8).dofs(Dof::RX | Dof::RY);
     b.addJoint("hand", "arm").offset(1, 0, 0);
-    const BuildResult built = b.build();
-    ASSERT_TRUE(built) << built.error;
-    osg::ref_ptr<ActorNode> actor = new ActorNode(built.definition);
-    actor->getSkeletonNode(2u)->addChild(makeHand().get());
-    actor->setBoundMode(ActorNode::BOUND_COVERS_ROTATIONS);
+    osg::ref_ptr<ActorNode> actor = makeCoveredActor(b);
+    ASSERT_TRUE(actor.valid());
     CountingBound* arm = countBounds(*actor->getSkeletonNode(1u));
     EXPECT_TRUE(sphereNear(actor->getSkeletonNode(1u)->getBound(), osg::Vec3d(1, 0.5, -0.25), 1.1));
     for (unsigned frame = 1; frame <= 5; ++frame)
@@ -157,11 +166,8 @@ TEST(BoundMode, AJointThatTranslatesKeepsABoundThatFollowsIt)
     b.addJoint("carriage").dofs(Dof::TX | Dof::RZ);
     b.addJoint("arm", "carriage").offset(1, 0, 0).dofs(dofBit(Dof::RZ));
     b.addJoint("hand", "arm").offset(1, 0, 0);
-    const BuildResult built = b.build();
-    ASSERT_TRUE(built) << built.error;
-    osg::ref_ptr<ActorNode> actor = new ActorNode(built.definition);
-    actor->getSkeletonNode(2u)->addChild(makeHand().get());
-    actor->setBoundMode(ActorNode::BOUND_COVERS_ROTATIONS);
+    osg::ref_ptr<ActorNode> actor = makeCoveredActor(b);
+    ASSERT_TRUE(actor.valid());
     EXPECT_FALSE(actor->getSkeletonNode(0u)->getBoundCoversRotations());
     EXPECT_TRUE(actor->getSkeletonNode(1u)->getBoundCoversRotations());
     CountingBound* carriage = countBounds(*actor->getSkeletonNode(0u));
