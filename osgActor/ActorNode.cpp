@@ -62,17 +62,14 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
     return true;
 }
 
-/** Writes a changed joint's matrix into its skeleton node, and dirties its bound and its ancestors' up to the first
-  * one already dirty (whose ancestors are too). */
 /** Dirties the bounds of a joint's ancestors, up to the first one already dirty (whose ancestors are too). */
 inline void dirtyBoundsAbove(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint)
 {
-    for (int parent = parents[joint]; parent >= 0 && nodes[parent]->markBoundDirtyWithinActor();
-         parent = parents[parent])
-    {
-    }
+    int parent = parents[joint];
+    while (parent >= 0 && nodes[parent]->markBoundDirtyWithinActor()) parent = parents[parent];
 }
 
+/** Writes a changed joint's matrix into its skeleton node, and dirties its bound and its ancestors'. */
 inline void writeDirtyingBounds(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint,
                                 const double* local)
 {
@@ -220,10 +217,10 @@ void ActorNode::applyBoundMode()
         // A joint that translates moves its subtree's centre; one with no DOF never moves, and its bound following
         // the pose is then both exact and never dirtied.
         const DofMask dofs = def->getDofMask(node->getJointIndex());
+        // Set on every node, changed or not: a new definition bound to the same nodes may move a joint's centre.
         const bool covers =
             _boundMode == BOUND_COVERS_ROTATIONS && (dofs & kRotationDofs) != 0 && (dofs & kTranslationDofs) == 0;
-        if (covers != node->getBoundCoversRotations())
-            node->setBoundCoversRotations(covers, toOsg(def->getOffsetTranslation(node->getJointIndex())));
+        node->setBoundCoversRotations(covers, toOsg(def->getOffsetTranslation(node->getJointIndex())));
     }
 }
 

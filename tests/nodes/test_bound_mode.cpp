@@ -226,6 +226,32 @@ TEST(BoundMode, ABallFollowsItsJointsCentreWhereverAMatrixSetByHandPutIt)
     EXPECT_TRUE(sphereNear(actor->getBound(), osg::Vec3d(0, 0, 0), 2.6)) << "and new ones above it";
 }
 
+TEST(BoundMode, ANewDefinitionBoundToTheSameNodesMovesTheBallsCentre)
+{
+    osg::ref_ptr<ActorNode> actor = makeCoveredArm();
+    // The same joints, lower now 2 along X from upper.
+    ActorDefinitionBuilder b("longer arm");
+    b.addJoint("base").dofs(dofBit(Dof::RZ));
+    b.addJoint("upper", "base").offset(1, 0, 0).dofs(dofBit(Dof::RZ));
+    b.addJoint("lower", "upper").offset(2, 0, 0).dofs(dofBit(Dof::RZ));
+    b.addJoint("tip", "lower").offset(0.5, 0, 0);
+    const BuildResult built = b.build();
+    ASSERT_TRUE(built) << built.error;
+    ASSERT_TRUE(actor->setDefinition(built.definition, ActorNode::BIND_EXISTING_SKELETON_NODES));
+    runUpdate(*actor, 1);
+    SkeletonNode* lower = actor->getSkeletonNode(2u);
+    CountingBound* counter = countBounds(*lower);
+    EXPECT_TRUE(sphereNear(lower->getBound(), osg::Vec3d(2, 0, 0), 0.6));
+    // Turning it from now on keeps that ball: the node knows its new centre.
+    for (unsigned frame = 2; frame <= 5; ++frame)
+    {
+        ASSERT_TRUE(actor->setDof("lower.rz", 0.2 * frame));
+        runUpdate(*actor, frame);
+        lower->getBound();
+    }
+    EXPECT_EQ(counter->count, 1);
+}
+
 TEST(BoundMode, CopiesKeepTheMode)
 {
     osg::ref_ptr<ActorNode> actor = makeCoveredArm();
