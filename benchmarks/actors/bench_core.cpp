@@ -1,9 +1,9 @@
 // The pose alone, no scene graph: a ClipPlayer sampling the clip into the DOF vector, and forward kinematics to
 // model space, per joint (what ozz-animation's sampling and local-to-model jobs do).
 #include "BenchHumanoid"
+#include "PoseCrowd"
 
 #include <osgActor/core/ActorPose>
-#include <osgActor/core/ClipPlayer>
 
 #include <benchmark/benchmark.h>
 
@@ -22,32 +22,13 @@ void countJoints(benchmark::State& state, unsigned numActors, const osgActor::Ac
 void BM_CorePoseSampleAndFK(benchmark::State& state)
 {
     const unsigned numActors = static_cast<unsigned>(state.range(0));
-    const osgActor::ActorDefinitionPtr def = bench::humanoidDefinition();
-    std::vector<osgActor::ActorPose> poses(numActors, osgActor::ActorPose(def));
-    std::vector<osgActor::ActorTransforms> transforms(numActors);
-    std::vector<std::vector<osgActor::ControllerPtr>> players(numActors);
-    for (unsigned a = 0; a < numActors; ++a)
-    {
-        auto player = std::make_shared<osgActor::ClipPlayer>(bench::humanoidOsgActorClip());
-        player->setPlayMode(osgActor::PlayMode::Loop);
-        player->seek(0.01 * a);
-        player->play();
-        players[a].push_back(player);
-    }
-    osgActor::ControllerContext context;
-    context.deltaTime = 1.0 / 60.0;
+    bench::PoseCrowd crowd(numActors);
     for (auto _ : state)
     {
-        context.time += context.deltaTime;
-        for (unsigned a = 0; a < numActors; ++a)
-        {
-            osgActor::ControllerTarget target{poses[a], transforms[a]};
-            osgActor::runControllers(players[a], context, target);
-            poses[a].updateMatrices(); // local and model matrices, as ozz-animation's sampling + local-to-model
-        }
+        crowd.frame();
         benchmark::ClobberMemory();
     }
-    countJoints(state, numActors, *def);
+    countJoints(state, numActors, *bench::humanoidDefinition());
 }
 BENCHMARK(BM_CorePoseSampleAndFK)->Arg(1)->Arg(1000);
 
