@@ -3,6 +3,7 @@
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/GlmOsg>
 #include <osgActor/io/ActorSyntax>
+#include <osgActor/mocap/BvhReader>
 
 #include <osg/Notify>
 #include <osg/ValueObject>
@@ -76,6 +77,78 @@ bool attachGeometry(SkeletonNode& node, const JointDocument& joint, const std::s
     return true;
 }
 
+/** Why a clip read from a motion-capture file would not move the actor as it moved the file's own skeleton, or
+  * empty when it would: each channel must name a DOF of the actor, on a joint that turns in the same Euler order
+  * (a rotation) or slides in the same translation mode (a translation) as in the file, so that every value means the
+  * same motion. Bone lengths may differ. */
+std::string mismatchWithActor(const MocapImport& imported, const ActorDefinition& actor)
+{
+    const ActorDefinition& file = *imported.definition;
+    for (unsigned c = 0; c < imported.clip->getNumChannels(); ++c)
+    {
+        const std::string& target = imported.clip->getChannel(c).target;
+        const int dof = actor.findDof(target);
+        const int fileDof = file.findDof(target);
+        if (dof < 0 || fileDof < 0) return "its channel '" + target + "' names no DOF of the actor";
+        const unsigned joint = actor.getDofJoint(static_cast<unsigned>(dof));
+        const unsigned fileJoint = file.getDofJoint(static_cast<unsigned>(fileDof));
+        const std::string& name = actor.getJointName(joint);
+        if (isRotation(actor.getDofType(static_cast<unsigned>(dof))))
+        {
+            if (actor.getEulerOrder(joint) != file.getEulerOrder(fileJoint))
+                return "joint '" + name + "' turns in " + eulerOrderName(file.getEulerOrder(fileJoint)) +
+                       " order in the file and in " + eulerOrderName(actor.getEulerOrder(joint)) + " order here";
+        }
+        else if (actor.getTranslationMode(joint) != file.getTranslationMode(fileJoint))
+        {
+            return "joint '" + name + "' translates " +
+                   (file.getTranslationMode(fileJoint) == TranslationMode::BeforeRotation ? "before" : "after") +
+                   " its rotation in the file and not here";
+        }
+    }
+    return std::string();
+}
+
+/** Reads the clips of the document whose motion is in a file (ClipDocument::file), found like model files (next
+  * to the .actor file first); false and an error naming the .actor file and the clip's line when one cannot be read
+  * or would not drive the actor. */
+bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& actor, const std::string& fileName,
+                   const osgDB::Options* options, std::string& error)
+{
+    for (ClipDocument& clip : clips)
+    {
+        if (clip.file.empty() || clip.clip) continue;
+        const std::string prefix = where(fileName, clip.line) + "clip '" + clip.fileClipName + "': ";
+        const std::string path = osgDB::findDataFile(clip.file, options);
+        if (path.empty())
+        {
+            error = prefix + "cannot find the motion file '" + clip.file + "'";
+            return false;
+        }
+        BvhImportOptions importOptions;
+        importOptions.name = clip.fileClipName;
+        const MocapImport imported = readBvhFile(path, importOptions);
+        if (!imported)
+        {
+            error = prefix + imported.error;
+            return false;
+        }
+        if (!imported.clip)
+        {
+            error = prefix + "'" + path + "' holds no motion";
+            return false;
+        }
+        const std::string mismatch = mismatchWithActor(imported, actor);
+        if (!mismatch.empty())
+        {
+            error = prefix + "'" + path + "' does not fit the actor: " + mismatch;
+            return false;
+        }
+        clip.clip = imported.clip;
+    }
+    return true;
+}
+
 std::string sectionsText(const std::vector<SyntaxStatement>& sections)
 {
     std::ostringstream text;
@@ -91,6 +164,13 @@ void applyClips(ActorNode& actor, const ActorDocument& document)
     ClipLibraryPtr library = std::make_shared<ClipLibrary>();
     for (const ClipDocument& clip : document.clips)
     {
+        if (!clip.clip)
+        {
+            // Only createActorNode() reads clip files; an embedded document (.osgt, .osg) carries its clips whole.
+            OSG_WARN << "osgActor: clip '" << clip.fileClipName << "' (file '" << clip.file
+                     << "') was not read; the actor has it not" << std::endl;
+            continue;
+        }
         library->addClip(clip.clip);
         if (!clip.play) continue;
         auto player = std::make_shared<ClipPlayer>(clip.clip);
@@ -166,7 +246,9 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         applyJointState(*actor, static_cast<unsigned>(index), joint);
         if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
-    applyClips(*actor, document);
+    ActorDocument withClipFilesRead = document;
+    if (!readClipFiles(withClipFilesRead.clips, *definition, fileName, local.get(), result.error)) return result;
+    applyClips(*actor, withClipFilesRead);
     std::vector<IkChainPtr> chains;
     if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
     for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));

@@ -232,7 +232,12 @@ int main(int argc, char** argv)
         ActorDocument document = makeDocument(*imported.definition);
         document.name = imported.definition->getName();
         if (imported.clip) // the motion, played in a loop when the file is loaded
-            document.clips.push_back(ClipDocument{imported.clip, 0, true, PlayMode::Loop});
+        {
+            ClipDocument clip;
+            clip.clip = imported.clip;
+            clip.play = true;
+            document.clips.push_back(clip);
+        }
         writeActor(out, document);
         written = static_cast<bool>(out);
         if (!written) error = args.output + ": cannot write the file";

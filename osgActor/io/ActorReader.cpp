@@ -4,12 +4,24 @@
 
 #include <glm/ext/scalar_constants.hpp>
 
+#include <cctype>
 #include <cmath>
 #include <set>
 
 namespace osgActor {
 
 namespace {
+
+/** The path's last extension with its dot, in lower case ("walk.BVH" gives ".bvh"); empty when it has none. */
+std::string lowerExtensionOf(const std::string& path)
+{
+    const std::size_t dot = path.find_last_of('.');
+    const std::size_t slash = path.find_last_of("/\\");
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return std::string();
+    std::string extension = path.substr(dot);
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return extension;
+}
 
 constexpr double kRadiansPerDegree = glm::pi<double>() / 180.0;
 
@@ -50,8 +62,8 @@ public:
             ClipDocument clip;
             clip.line = statement->line;
             if (!readClip(*statement, definition, clip)) return false;
-            if (!names.insert(clip.clip->getName()).second)
-                return fail(statement->line, "clip '" + clip.clip->getName() + "' is given twice");
+            const std::string& name = clip.clip ? clip.clip->getName() : clip.fileClipName;
+            if (!names.insert(name).second) return fail(statement->line, "clip '" + name + "' is given twice");
             document.clips.push_back(clip);
         }
         return true;
@@ -550,7 +562,8 @@ private:
         return true;
     }
 
-    /** "clip name { channel ... }" (keys) or "clip name { frame_rate ...; channels ...; frame ... }" (frames). */
+    /** "clip name { channel ... }" (keys), "clip name { frame_rate ...; channels ...; frame ... }" (frames), or
+      * "clip name { file "walk.bvh" }" (read later, see ClipDocument::file). */
     bool readClip(const SyntaxStatement& s, const ActorDefinition& definition, ClipDocument& clip)
     {
         if (!expectArguments(s, 1)) return false;
@@ -568,12 +581,28 @@ private:
                 clip.play = true;
                 continue;
             }
+            if (c.keyword == "file")
+            {
+                if (!once(seen, c) || !expectNoBlock(c) || !expectArguments(c, 1)) return false;
+                clip.file = c.arguments.front().text;
+                if (lowerExtensionOf(clip.file) != ".bvh")
+                    return fail(c.line, "'" + clip.file + "': a clip's file must be motion capture in BVH (.bvh)");
+                continue;
+            }
             const bool isChannel = c.keyword == "channel";
             if (!isChannel && c.keyword != "frame_rate" && c.keyword != "channels" && c.keyword != "frame")
                 return unknownKeyword(c, "in a clip");
             keyed = keyed || isChannel;
             uniform = uniform || !isChannel;
             if (keyed && uniform) return fail(c.line, "a clip has either 'channel' blocks or frames, not both");
+        }
+        if (!clip.file.empty())
+        {
+            if (keyed || uniform)
+                return fail(s.line, "clip '" + s.arguments.front().text +
+                                        "' reads its motion from a file, so it has no channels or frames of its own");
+            clip.fileClipName = s.arguments.front().text;
+            return true;
         }
         if (keyed)
         {

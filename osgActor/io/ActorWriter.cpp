@@ -104,14 +104,20 @@ const char* interpolationName(Interpolation interpolation)
     return "linear";
 }
 
-/** A clip as channel blocks of keys, or as a frame rate, a channel list and one line per frame; "play" first when
-  * the actor plays it. */
+/** A clip as channel blocks of keys, as a frame rate, a channel list and one line per frame, or as the file it is
+  * read from; "play" first when the actor plays it. */
 SyntaxStatement clipStatement(const ClipDocument& document)
 {
-    const Clip& clip = *document.clip;
-    SyntaxStatement s = statement("clip", {nameArgument(clip.getName())});
+    const std::string& name = document.clip ? document.clip->getName() : document.fileClipName;
+    SyntaxStatement s = statement("clip", {nameArgument(name)});
     s.hasBlock = true;
     if (document.play) s.children.push_back(statement("play", {word(playModeName(document.playMode))}));
+    if (!document.file.empty())
+    {
+        s.children.push_back(statement("file", {SyntaxArgument{document.file, true, 0}}));
+        return s;
+    }
+    const Clip& clip = *document.clip;
     auto unit = [&](unsigned channel) { return clip.getChannel(channel).angular ? kDegreesPerRadian : 1.0; };
     if (clip.isUniform())
     {
@@ -241,7 +247,7 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     if (document.boundsCoverRotations) actor.children.push_back(statement("bounds", {word("covers_rotations")}));
     JointTreeWriter(document).write(actor.children);
     for (const ClipDocument& clip : document.clips)
-        if (clip.clip) actor.children.push_back(clipStatement(clip));
+        if (clip.clip || !clip.file.empty()) actor.children.push_back(clipStatement(clip));
     for (const IkChainDocument& chain : document.ikChains) actor.children.push_back(ikChainStatement(chain.spec));
     for (const SyntaxStatement& section : document.sections) actor.children.push_back(section);
     file.push_back(std::move(actor));

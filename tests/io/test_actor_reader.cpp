@@ -1,4 +1,5 @@
 #include <osgActor/io/ActorReader>
+#include <osgActor/io/ActorWriter>
 
 #include <gtest/gtest.h>
 
@@ -244,6 +245,36 @@ TEST(ActorReader, RefusesBadClips)
     EXPECT_EQ(readError(kClipActor + " clip w { channel b.rz { key 0 1 } }\n clip w { channel b.rz { key 0 1 } }\n}\n"),
               "t.actor:8: clip 'w' is given twice");
     EXPECT_EQ(readError(kClipActor + " clip w {\n  key 0 1\n }\n}\n"), "t.actor:8: unknown keyword 'key' in a clip");
+    EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"walk.bvh\"\n  channel b.rz { key 0 1 }\n }\n}\n"),
+              "t.actor:7: clip 'w' reads its motion from a file, so it has no channels or frames of its own");
+    EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"walk.amc\"\n }\n}\n"),
+              "t.actor:8: 'walk.amc': a clip's file must be motion capture in BVH (.bvh)");
+    EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"a.bvh\"\n  file \"b.bvh\"\n }\n}\n").rfind("t.actor:9: ", 0), 0u);
+    EXPECT_EQ(readError(kClipActor + " clip w { file \"a.bvh\" }\n clip w { file \"b.bvh\" }\n}\n"),
+              "t.actor:8: clip 'w' is given twice");
+}
+
+TEST(ActorReader, LeavesAClipFileForTheSceneLoaderAndWritesItBack)
+{
+    const ActorReadResult result = read(kClipActor + " clip walk {\n  play pingpong\n  file \"motion/Walk.BVH\"\n }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    ASSERT_EQ(result.document.clips.size(), 1u);
+    const ClipDocument& clip = result.document.clips[0];
+    EXPECT_EQ(clip.clip, nullptr) << "read when the actor is made, where files are found";
+    EXPECT_EQ(clip.file, "motion/Walk.BVH");
+    EXPECT_EQ(clip.fileClipName, "walk");
+    EXPECT_EQ(clip.line, 7);
+    EXPECT_TRUE(clip.play);
+    EXPECT_EQ(clip.playMode, PlayMode::PingPong);
+
+    std::ostringstream written;
+    writeActor(written, result.document);
+    EXPECT_NE(written.str().find("clip walk {\n        play pingpong\n        file \"motion/Walk.BVH\"\n    }"),
+              std::string::npos)
+        << written.str();
+    const ActorReadResult again = read(written.str());
+    ASSERT_TRUE(again) << again.error;
+    EXPECT_EQ(again.document.clips.at(0).file, "motion/Walk.BVH");
 }
 
 TEST(ActorReader, ReadsKeyedClipsInDegreesAndSeconds)

@@ -80,7 +80,9 @@ ActorDocument makeRichDocument()
     {
         const ClipBuildResult clip = builder->build();
         EXPECT_TRUE(clip) << clip.error;
-        document.clips.push_back(ClipDocument{clip.clip, 0});
+        ClipDocument clipDocument;
+        clipDocument.clip = clip.clip;
+        document.clips.push_back(clipDocument);
     }
     return document;
 }

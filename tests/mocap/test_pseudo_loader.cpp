@@ -2,6 +2,7 @@
 #include "ReferenceMocap"
 
 #include <osgActor/ActorNode>
+#include <osgActor/ActorSceneIO>
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/io/ActorDocument>
 #include <osgActor/io/ActorWriter>
@@ -10,12 +11,14 @@
 #include <osg/FrameStamp>
 #include <osgUtil/UpdateVisitor>
 
+#include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
 
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <sstream>
 
 using namespace osgActor;
 using namespace osgActor::test;
@@ -30,6 +33,62 @@ osgDB::ReaderWriter::ReadResult readThroughOsgDB(const std::string& file, const 
 }
 
 osg::Vec3d zUp(const glm::dvec3& p) { return osg::Vec3d(p.x, -p.z, p.y); }
+
+/** Updates the actor from the frame stamp at frames 0 and 5 (60 Hz), and checks every joint against the reference
+  * reading of 12_03.bvh (120 Hz: update frame n is file frame 2n). */
+void expectToPlay12_03(ActorNode& actor)
+{
+    const reference::Bvh bvh = reference::readBvh(sharedMocap("bvh/12_03.bvh"));
+    const double size = extent(reference::bvhPositions(bvh, 0));
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(&actor);
+    for (unsigned n : {0u, 5u})
+    {
+        osg::ref_ptr<osgUtil::UpdateVisitor> visitor = new osgUtil::UpdateVisitor;
+        osg::ref_ptr<osg::FrameStamp> stamp = new osg::FrameStamp;
+        stamp->setFrameNumber(n);
+        stamp->setSimulationTime(n / 60.0);
+        visitor->setFrameStamp(stamp.get());
+        root->accept(*visitor);
+        const std::vector<glm::dvec3> expected = reference::bvhPositions(bvh, 2 * n);
+        for (std::size_t j = 0; j < bvh.joints.size(); ++j)
+        {
+            if (bvh.joints[j].endSite) continue;
+            const unsigned joint = static_cast<unsigned>(actor.getJointIndex(bvh.joints[j].name));
+            // The file keeps 12 significant digits.
+            EXPECT_LT((actor.getJointWorldPosition(joint) - zUp(expected[j])).length(), 1e-6 * size)
+                << bvh.joints[j].name << " at update frame " << n;
+        }
+    }
+}
+
+/** Writes, in its own folder, 12_03.bvh's skeleton as a .actor file whose clip "walk" (played in a loop) refers to
+  * the file by fileReference, with a copy of the file beside it; returns the .actor file's path. edit changes the
+  * document first. */
+template <class Edit>
+std::string writeActorWithClipFile(const std::string& folderName, const std::string& fileReference, Edit edit)
+{
+    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
+    EXPECT_TRUE(imported) << imported.error;
+    ActorDocument document = makeDocument(*imported.definition);
+    ClipDocument clip;
+    clip.file = fileReference;
+    clip.fileClipName = "walk";
+    clip.play = true;
+    document.clips.push_back(clip);
+    edit(document);
+    const std::string folder = std::string(OSGACTOR_TEST_BINARY_DIR) + "/" + folderName;
+    osgDB::makeDirectory(folder + "/motion");
+    {
+        std::ifstream in(sharedMocap("bvh/12_03.bvh"), std::ios::binary);
+        std::ofstream out(folder + "/motion/12_03.bvh", std::ios::binary);
+        out << in.rdbuf();
+    }
+    const std::string path = folder + "/walker.actor";
+    std::ofstream out(path);
+    writeActor(out, document);
+    return path;
+}
 
 } // namespace
 
@@ -97,7 +156,10 @@ TEST(ActorFileClips, AnActorFileCarriesAndPlaysItsMotion)
     ASSERT_TRUE(imported) << imported.error;
     ActorDocument document = makeDocument(*imported.definition);
     document.name = "walker";
-    document.clips.push_back(ClipDocument{imported.clip, 0, true, PlayMode::Loop});
+    ClipDocument clip;
+    clip.clip = imported.clip;
+    clip.play = true;
+    document.clips.push_back(clip);
     const std::string path = std::string(OSGACTOR_TEST_BINARY_DIR) + "/walker.actor";
     {
         std::ofstream out(path);
@@ -111,29 +173,7 @@ TEST(ActorFileClips, AnActorFileCarriesAndPlaysItsMotion)
     EXPECT_TRUE(actor->getClipLibrary()->getClip("12_03"));
     ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("12_03")));
 
-    // Played from the frame stamp: frame n of the update is clip frame 2n of this 120 Hz file.
-    const reference::Bvh bvh = reference::readBvh(sharedMocap("bvh/12_03.bvh"));
-    const double size = extent(reference::bvhPositions(bvh, 0));
-    osg::ref_ptr<osg::Group> root = new osg::Group;
-    root->addChild(actor.get());
-    for (unsigned n : {0u, 5u})
-    {
-        osg::ref_ptr<osgUtil::UpdateVisitor> visitor = new osgUtil::UpdateVisitor;
-        osg::ref_ptr<osg::FrameStamp> stamp = new osg::FrameStamp;
-        stamp->setFrameNumber(n);
-        stamp->setSimulationTime(n / 60.0);
-        visitor->setFrameStamp(stamp.get());
-        root->accept(*visitor);
-        const std::vector<glm::dvec3> expected = reference::bvhPositions(bvh, 2 * n);
-        for (std::size_t j = 0; j < bvh.joints.size(); ++j)
-        {
-            if (bvh.joints[j].endSite) continue;
-            const unsigned joint = static_cast<unsigned>(actor->getJointIndex(bvh.joints[j].name));
-            // The file keeps 12 significant digits.
-            EXPECT_LT((actor->getJointWorldPosition(joint) - zUp(expected[j])).length(), 1e-6 * size)
-                << bvh.joints[j].name;
-        }
-    }
+    expectToPlay12_03(*actor);
 }
 
 TEST(ActorFileClips, ABrokenClipSectionFailsTheRead)
@@ -144,4 +184,61 @@ TEST(ActorFileClips, ABrokenClipSectionFailsTheRead)
     osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
     EXPECT_FALSE(read.validNode());
     EXPECT_NE(read.message().find("broken_clip.actor:8: "), std::string::npos) << read.message();
+}
+
+TEST(ActorFileClips, AClipReadFromABvhFileBesideTheActorFilePlaysTheFile)
+{
+    const std::string path = writeActorWithClipFile("clip_file", "motion/12_03.bvh", [](ActorDocument&) {});
+    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
+    ASSERT_TRUE(read.validNode()) << read.message();
+    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(read.getNode());
+    ASSERT_TRUE(actor.valid());
+    ASSERT_TRUE(actor->getClipLibrary());
+    const ClipPtr clip = actor->getClipLibrary()->getClip("walk");
+    ASSERT_TRUE(clip) << "named as in the .actor file, not after the motion file";
+    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
+    EXPECT_EQ(clip->getNumFrames(), imported.clip->getNumFrames());
+    ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("walk")));
+    expectToPlay12_03(*actor);
+
+    // The actor holds the motion, not where it came from: written out, the clip is frames.
+    std::ostringstream written;
+    writeActor(written, extractActorDocument(*actor));
+    EXPECT_NE(written.str().find("clip walk {\n        play loop\n        frame_rate 120"), std::string::npos);
+    EXPECT_EQ(written.str().find("file \""), std::string::npos);
+}
+
+TEST(ActorFileClips, AClipFileMissingOrNotFittingTheActorFailsTheReadAtItsLine)
+{
+    const auto clipLine = [](const std::string& path) {
+        std::ifstream in(path);
+        std::string line;
+        for (int number = 1; std::getline(in, line); ++number)
+            if (line.find("clip walk") != std::string::npos) return number;
+        return 0;
+    };
+
+    const std::string missing = writeActorWithClipFile("clip_file_missing", "motion/nowhere.bvh", [](ActorDocument&) {});
+    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(missing);
+    EXPECT_FALSE(read.validNode());
+    EXPECT_NE(read.message().find("walker.actor:" + std::to_string(clipLine(missing)) +
+                                  ": clip 'walk': cannot find the motion file 'motion/nowhere.bvh'"),
+              std::string::npos)
+        << read.message();
+
+    // The file's LeftUpLeg turns in ZYX order (12_03.bvh's channels); the actor's, given another order, would read
+    // the same three angles as another rotation.
+    const std::string misfit = writeActorWithClipFile("clip_file_misfit", "motion/12_03.bvh", [](ActorDocument& d) {
+        for (JointDocument& joint : d.joints)
+            if (joint.spec.name == "LeftUpLeg") joint.spec.eulerOrder = EulerOrder::XYZ;
+    });
+    read = readThroughOsgDB(misfit);
+    EXPECT_FALSE(read.validNode());
+    EXPECT_NE(read.message().find("walker.actor:" + std::to_string(clipLine(misfit)) + ": clip 'walk': "),
+              std::string::npos)
+        << read.message();
+    EXPECT_NE(read.message().find("does not fit the actor: joint 'LeftUpLeg' turns in ZYX order in the file and in "
+                                  "XYZ order here"),
+              std::string::npos)
+        << read.message();
 }
