@@ -118,7 +118,7 @@ bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& acto
     for (ClipDocument& clip : clips)
     {
         if (clip.file.empty() || clip.clip) continue;
-        const std::string prefix = where(fileName, clip.line) + "clip '" + clip.fileClipName + "': ";
+        const std::string prefix = where(fileName, clip.line) + "clip '" + clip.name() + "': ";
         const std::string path = osgDB::findDataFile(clip.file, options);
         if (path.empty())
         {
@@ -167,8 +167,8 @@ void applyClips(ActorNode& actor, const ActorDocument& document)
         if (!clip.clip)
         {
             // Only createActorNode() reads clip files; an embedded document (.osgt, .osg) carries its clips whole.
-            OSG_WARN << "osgActor: clip '" << clip.fileClipName << "' (file '" << clip.file
-                     << "') was not read; the actor has it not" << std::endl;
+            OSG_WARN << "osgActor: clip '" << clip.name() << "' (file '" << clip.file
+                     << "') was not read, so the actor lacks it" << std::endl;
             continue;
         }
         library->addClip(clip.clip);

@@ -62,8 +62,8 @@ public:
             ClipDocument clip;
             clip.line = statement->line;
             if (!readClip(*statement, definition, clip)) return false;
-            const std::string& name = clip.clip ? clip.clip->getName() : clip.fileClipName;
-            if (!names.insert(name).second) return fail(statement->line, "clip '" + name + "' is given twice");
+            if (!names.insert(clip.name()).second)
+                return fail(statement->line, "clip '" + clip.name() + "' is given twice");
             document.clips.push_back(clip);
         }
         return true;

@@ -108,8 +108,7 @@ const char* interpolationName(Interpolation interpolation)
   * read from; "play" first when the actor plays it. */
 SyntaxStatement clipStatement(const ClipDocument& document)
 {
-    const std::string& name = document.clip ? document.clip->getName() : document.fileClipName;
-    SyntaxStatement s = statement("clip", {nameArgument(name)});
+    SyntaxStatement s = statement("clip", {nameArgument(document.name())});
     s.hasBlock = true;
     if (document.play) s.children.push_back(statement("play", {word(playModeName(document.playMode))}));
     if (!document.file.empty())

@@ -242,3 +242,25 @@ TEST(ActorFileClips, AClipFileMissingOrNotFittingTheActorFailsTheReadAtItsLine)
               std::string::npos)
         << read.message();
 }
+
+TEST(ActorFileClips, ApplyingAnUnreadClipFileLeavesTheClipOutInsteadOfCrashing)
+{
+    // Only createActorNode() reads clip files; applyClips() gets such a clip from a hand-edited embedded document.
+    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
+    ASSERT_TRUE(imported) << imported.error;
+    ActorDocument document;
+    ClipDocument unread;
+    unread.file = "walk.bvh";
+    unread.fileClipName = "walk";
+    unread.play = true;
+    document.clips.push_back(unread);
+    ClipDocument read;
+    read.clip = imported.clip;
+    document.clips.push_back(read);
+    osg::ref_ptr<ActorNode> actor = new ActorNode(imported.definition);
+    applyClips(*actor, document);
+    ASSERT_TRUE(actor->getClipLibrary());
+    EXPECT_FALSE(actor->getClipLibrary()->getClip("walk"));
+    EXPECT_TRUE(actor->getClipLibrary()->getClip("12_03"));
+    EXPECT_FALSE(actor->findController("walk"));
+}
