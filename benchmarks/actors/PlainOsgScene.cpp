@@ -25,8 +25,6 @@ osg::Quat eulerXYZ(const double* angles)
     return osg::Quat(angles[2], osg::Z_AXIS) * osg::Quat(angles[1], osg::Y_AXIS) * osg::Quat(angles[0], osg::X_AXIS);
 }
 
-unsigned jointsPerActor() { return static_cast<unsigned>(humanoidJoints().size()); }
-
 namespace {
 
 /** The clip of one joint as quaternion keys, as a plain OSG application would store it. */

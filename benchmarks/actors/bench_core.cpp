@@ -1,6 +1,7 @@
 // The pose alone, no scene graph: a ClipPlayer sampling the clip into the DOF vector, and forward kinematics to
 // model space, per joint (what ozz-animation's sampling and local-to-model jobs do).
 #include "BenchHumanoid"
+#include "NsPerJoint"
 #include "PoseCrowd"
 
 #include <osgActor/core/ActorPose>
@@ -11,14 +12,6 @@
 
 namespace {
 
-/** Reports the run's time per joint of numActors humanoids. */
-void countJoints(benchmark::State& state, unsigned numActors, const osgActor::ActorDefinition& def)
-{
-    const double joints = static_cast<double>(numActors) * def.getNumJoints();
-    state.counters["ns_per_joint"] =
-        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-}
-
 void BM_CorePoseSampleAndFK(benchmark::State& state)
 {
     const unsigned numActors = static_cast<unsigned>(state.range(0));
@@ -28,7 +21,7 @@ void BM_CorePoseSampleAndFK(benchmark::State& state)
         crowd.frame();
         benchmark::ClobberMemory();
     }
-    countJoints(state, numActors, *bench::humanoidDefinition());
+    bench::reportNsPerJoint(state, numActors);
 }
 BENCHMARK(BM_CorePoseSampleAndFK)->Arg(1)->Arg(1000);
 
@@ -46,7 +39,7 @@ void BM_CoreFKOnly(benchmark::State& state)
         }
         benchmark::ClobberMemory();
     }
-    countJoints(state, numActors, *def);
+    bench::reportNsPerJoint(state, numActors);
 }
 BENCHMARK(BM_CoreFKOnly)->Arg(1)->Arg(1000);
 

@@ -4,6 +4,7 @@
 // package, so this benchmark is built only where CMake finds an installed ozz (OSGACTOR_OZZ_ROOT, see
 // docs/performance.md).
 #include "BenchHumanoid"
+#include "NsPerJoint"
 #include "PoseCrowd"
 
 #include <osgActor/core/ActorPose>
@@ -134,13 +135,6 @@ const OzzHumanoid& ozzHumanoid(bool optimized = false)
     return optimized ? decimated : humanoid;
 }
 
-void countJoints(benchmark::State& state, unsigned numActors)
-{
-    const double joints = static_cast<double>(numActors) * bench::humanoidJoints().size();
-    state.counters["ns_per_joint"] =
-        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
-}
-
 /** One ozz instance: its sampling context and its local (SoA) and model transforms. */
 struct OzzInstance
 {
@@ -232,7 +226,7 @@ void BM_PoseAlone_ozz(benchmark::State& state, bool optimized)
             }
         benchmark::ClobberMemory();
     }
-    countJoints(state, numActors);
+    bench::reportNsPerJoint(state, numActors);
 }
 
 void BM_PoseAlone_osgActor(benchmark::State& state)
@@ -245,7 +239,7 @@ void BM_PoseAlone_osgActor(benchmark::State& state)
         crowd.frame();
         benchmark::ClobberMemory();
     }
-    countJoints(state, numActors);
+    bench::reportNsPerJoint(state, numActors);
 }
 
 /** The console output, then per N the ratio of osgActor's time to ozz's, with every key frame and decimated

@@ -3,6 +3,7 @@
 // Reported per joint; the summary at the end gives each result's ratio to osgAnimation at the same N and mode.
 #include "BenchReport"
 #include "FrameLoop"
+#include "NsPerJoint"
 #include "PeerScenes"
 
 #include <benchmark/benchmark.h>
@@ -66,9 +67,7 @@ void runSystem(benchmark::State& state, System system, bool withCull)
         return;
     }
     for (auto _ : state) loop.frame();
-    const double joints = static_cast<double>(numActors) * bench::jointsPerActor();
-    state.counters["ns_per_joint"] =
-        benchmark::Counter(joints, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    bench::reportNsPerJoint(state, numActors);
     if (withCull) state.counters["drawables"] = loop.lastDrawables();
 }
 
