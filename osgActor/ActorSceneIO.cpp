@@ -3,7 +3,7 @@
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/GlmOsg>
 #include <osgActor/io/ActorSyntax>
-#include <osgActor/mocap/BvhReader>
+#include <osgActor/mocap/MotionFile>
 
 #include <osg/Notify>
 #include <osg/ValueObject>
@@ -125,14 +125,23 @@ bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& acto
             error = prefix + "cannot find the motion file '" + clip.file + "'";
             return false;
         }
-        BvhImportOptions importOptions;
-        importOptions.name = clip.fileClipName;
-        const MocapImport imported = readBvhFile(path, importOptions);
+        MotionFileOptions motionOptions = clip.fileOptions;
+        if (!motionOptions.skeletonFile.empty())
+        {
+            motionOptions.skeletonFile = osgDB::findDataFile(clip.fileOptions.skeletonFile, options);
+            if (motionOptions.skeletonFile.empty())
+            {
+                error = prefix + "cannot find the skeleton file '" + clip.fileOptions.skeletonFile + "'";
+                return false;
+            }
+        }
+        const MocapImport imported = readMotionFile(path, motionOptions);
         if (!imported)
         {
             error = prefix + imported.error;
             return false;
         }
+        for (const std::string& warning : imported.warnings) OSG_WARN << "osgActor: " << warning << std::endl;
         if (!imported.clip)
         {
             error = prefix + "'" + path + "' holds no motion";

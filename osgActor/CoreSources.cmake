@@ -83,6 +83,7 @@ set(OSGACTOR_MOCAP_HEADERS
     mocap/BvhReader
     mocap/BvhWriter
     mocap/MocapImport
+    mocap/MotionFile
     mocap/PositionsCsv
     mocap/TextLines
     mocap/TrajectoryCsv)
@@ -92,6 +93,7 @@ set(OSGACTOR_MOCAP_SOURCES
     mocap/BvhReader.cpp
     mocap/BvhWriter.cpp
     mocap/MocapImport.cpp
+    mocap/MotionFile.cpp
     mocap/PositionsCsv.cpp
     mocap/TextLines.cpp
     mocap/TrajectoryCsv.cpp)

@@ -1,12 +1,10 @@
 #include <osgActor/MocapActor>
 #include <osgActor/StickFigure>
-#include <osgActor/mocap/AmcReader>
-#include <osgActor/mocap/BvhReader>
+#include <osgActor/mocap/MotionFile>
 
 #include <osg/Notify>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -16,50 +14,32 @@ namespace osgActor {
 
 namespace {
 
-std::string lowerExtension(const std::string& path)
-{
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return extension;
-}
-
+/** Reads a BVH file, or an ASF skeleton with its AMC motion (named in the options or found beside it). */
 MocapImport importFile(const std::string& path, const MocapActorOptions& options)
 {
-    const std::string extension = lowerExtension(path);
-    if (extension == ".bvh")
-    {
-        BvhImportOptions bvh;
-        bvh.scale = options.scale;
-        bvh.fileUpAxis = options.fileUpAxis;
-        bvh.dropFirstFrame = options.dropFirstFrame;
-        bvh.absoluteRootPosition = options.absoluteRootPosition;
-        return readBvhFile(path, bvh);
-    }
+    MotionFileOptions motion;
+    motion.scale = options.scale;
+    motion.fileUpAxis = options.fileUpAxis;
+    motion.dropFirstFrame = options.dropFirstFrame;
+    motion.absoluteRootPosition = options.absoluteRootPosition;
+    motion.applyAsfLimits = options.applyAsfLimits;
+    motion.amcFrameRate = options.amcFrameRate;
+    const std::string extension = lowerExtensionOf(path);
+    if (extension == ".bvh") return readMotionFile(path, motion);
     MocapImport failed;
     if (extension != ".asf")
     {
         failed.error = path + ": not a motion-capture file (expected .bvh or .asf)";
         return failed;
     }
-    AsfImportOptions asf;
-    asf.scale = options.scale;
-    asf.fileUpAxis = options.fileUpAxis;
-    asf.frameRate = options.amcFrameRate;
-    asf.applyLimits = options.applyAsfLimits;
-    const AsfImport skeleton = readAsfFile(path, asf);
-    if (!skeleton)
-    {
-        failed.error = skeleton.error;
-        return failed;
-    }
+    motion.skeletonFile = path;
     const std::string amc = options.amcFile.empty() ? findAmcBeside(path) : options.amcFile;
     if (amc.empty())
     {
         failed.error = path + ": no AMC motion given and none found beside it";
         return failed;
     }
-    return readAmcFile(amc, skeleton);
+    return readMotionFile(amc, motion);
 }
 
 } // namespace
@@ -132,7 +112,7 @@ std::string findAmcBeside(const std::string& asfPath)
     for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
     {
         const std::string name = it->path().filename().string();
-        if (name.size() > base.size() && name.compare(0, base.size(), base) == 0 && lowerExtension(name) == ".amc")
+        if (name.size() > base.size() && name.compare(0, base.size(), base) == 0 && lowerExtensionOf(name) == ".amc")
             candidates.push_back(it->path().string());
     }
     std::sort(candidates.begin(), candidates.end());

@@ -1,27 +1,16 @@
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/io/ActorNumbers>
 #include <osgActor/io/ActorReader>
+#include <osgActor/mocap/MotionFile>
 
 #include <glm/ext/scalar_constants.hpp>
 
-#include <cctype>
 #include <cmath>
 #include <set>
 
 namespace osgActor {
 
 namespace {
-
-/** The path's last extension with its dot, in lower case ("walk.BVH" gives ".bvh"); empty when it has none. */
-std::string lowerExtensionOf(const std::string& path)
-{
-    const std::size_t dot = path.find_last_of('.');
-    const std::size_t slash = path.find_last_of("/\\");
-    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return std::string();
-    std::string extension = path.substr(dot);
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return extension;
-}
 
 constexpr double kRadiansPerDegree = glm::pi<double>() / 180.0;
 
@@ -562,6 +551,59 @@ private:
         return true;
     }
 
+    /** "file "walk.bvh" [{ options }]" or "file "walk.amc" { skeleton "walk.asf" [options] }": where a clip's
+      * motion is, and how to read it (MotionFileOptions). An option that does nothing for the file's format is an
+      * error, so that a file never seems to say more than it does. */
+    bool readClipFile(const SyntaxStatement& s, ClipDocument& clip)
+    {
+        if (!expectArguments(s, 1)) return false;
+        clip.file = s.arguments.front().text;
+        const std::string extension = lowerExtensionOf(clip.file);
+        const bool amc = extension == ".amc";
+        if (!amc && extension != ".bvh")
+            return fail(s.line, "'" + clip.file + "': a clip's file must be motion capture, BVH (.bvh) or AMC (.amc)");
+        MotionFileOptions& options = clip.fileOptions;
+        std::set<std::string> seen;
+        for (const SyntaxStatement& o : s.children)
+        {
+            const std::string& k = o.keyword;
+            const bool bvhOnly = k == "drop_first_frame" || k == "absolute_root_position";
+            const bool amcOnly = k == "skeleton" || k == "frame_rate";
+            if ((bvhOnly && amc) || (amcOnly && !amc))
+                return fail(o.line, "'" + k + "' is for " + (amc ? "BVH" : "AMC") + " files, and '" + clip.file +
+                                        "' is " + (amc ? "AMC" : "BVH"));
+            bool ok = true;
+            if (k == "scale") ok = once(seen, o) && positive(o, options.scale);
+            else if (k == "up") ok = once(seen, o) && readUpAxis(o, options.fileUpAxis);
+            else if (k == "drop_first_frame") ok = flag(seen, o, options.dropFirstFrame);
+            else if (k == "absolute_root_position") ok = flag(seen, o, options.absoluteRootPosition);
+            else if (k == "frame_rate") ok = once(seen, o) && positive(o, options.amcFrameRate);
+            else if (k == "skeleton")
+            {
+                ok = once(seen, o) && expectNoBlock(o) && expectArguments(o, 1);
+                if (ok) options.skeletonFile = o.arguments.front().text;
+                if (ok && lowerExtensionOf(options.skeletonFile) != ".asf")
+                    return fail(o.line, "'" + options.skeletonFile + "': an AMC motion's skeleton must be ASF (.asf)");
+            }
+            else return unknownKeyword(o, "in a clip's file block");
+            if (!ok) return false;
+        }
+        if (amc && options.skeletonFile.empty())
+            return fail(s.line, "'" + clip.file + "': an AMC motion needs its ASF skeleton: 'skeleton \"x.asf\"' in a "
+                                "block after the file name");
+        return true;
+    }
+
+    bool readUpAxis(const SyntaxStatement& s, UpAxis& axis)
+    {
+        if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
+        const std::string& word = s.arguments.front().text;
+        if (word == "y") axis = UpAxis::Y;
+        else if (word == "z") axis = UpAxis::Z;
+        else return fail(s.line, "'" + word + "' is not an up axis (y, z)");
+        return true;
+    }
+
     /** "clip name { channel ... }" (keys), "clip name { frame_rate ...; channels ...; frame ... }" (frames), or
       * "clip name { file "walk.bvh" }" (read later, see ClipDocument::file). */
     bool readClip(const SyntaxStatement& s, const ActorDefinition& definition, ClipDocument& clip)
@@ -583,10 +625,7 @@ private:
             }
             if (c.keyword == "file")
             {
-                if (!once(seen, c) || !expectNoBlock(c) || !expectArguments(c, 1)) return false;
-                clip.file = c.arguments.front().text;
-                if (lowerExtensionOf(clip.file) != ".bvh")
-                    return fail(c.line, "'" + clip.file + "': a clip's file must be motion capture in BVH (.bvh)");
+                if (!once(seen, c) || !readClipFile(c, clip)) return false;
                 continue;
             }
             const bool isChannel = c.keyword == "channel";
@@ -601,7 +640,7 @@ private:
             if (keyed || uniform)
                 return fail(s.line, "clip '" + s.arguments.front().text +
                                         "' reads its motion from a file, so it has no channels or frames of its own");
-            clip.fileClipName = s.arguments.front().text;
+            clip.fileOptions.name = s.arguments.front().text;
             return true;
         }
         if (keyed)

@@ -104,6 +104,24 @@ const char* interpolationName(Interpolation interpolation)
     return "linear";
 }
 
+/** "file "walk.bvh"" with a block of the options that differ from MotionFileOptions' defaults, if any. */
+SyntaxStatement clipFileStatement(const std::string& file, const MotionFileOptions& options)
+{
+    const MotionFileOptions defaults;
+    SyntaxStatement s = statement("file", {SyntaxArgument{file, true, 0}});
+    if (!options.skeletonFile.empty())
+        s.children.push_back(statement("skeleton", {SyntaxArgument{options.skeletonFile, true, 0}}));
+    if (options.scale != defaults.scale) s.children.push_back(statement("scale", {numberArgument(options.scale)}));
+    if (options.fileUpAxis != defaults.fileUpAxis)
+        s.children.push_back(statement("up", {word(options.fileUpAxis == UpAxis::Z ? "z" : "y")}));
+    if (options.dropFirstFrame) s.children.push_back(statement("drop_first_frame"));
+    if (options.absoluteRootPosition) s.children.push_back(statement("absolute_root_position"));
+    if (options.amcFrameRate != defaults.amcFrameRate)
+        s.children.push_back(statement("frame_rate", {numberArgument(options.amcFrameRate)}));
+    s.hasBlock = !s.children.empty();
+    return s;
+}
+
 /** A clip as channel blocks of keys, as a frame rate, a channel list and one line per frame, or as the file it is
   * read from; "play" first when the actor plays it. */
 SyntaxStatement clipStatement(const ClipDocument& document)
@@ -113,7 +131,7 @@ SyntaxStatement clipStatement(const ClipDocument& document)
     if (document.play) s.children.push_back(statement("play", {word(playModeName(document.playMode))}));
     if (!document.file.empty())
     {
-        s.children.push_back(statement("file", {SyntaxArgument{document.file, true, 0}}));
+        s.children.push_back(clipFileStatement(document.file, document.fileOptions));
         return s;
     }
     const Clip& clip = *document.clip;

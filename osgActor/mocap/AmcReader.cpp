@@ -12,7 +12,8 @@
 
 namespace osgActor {
 
-MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImport& skeleton)
+MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImport& skeleton,
+                    const std::string& clipName)
 {
     MocapImport result;
     if (!skeleton.definition)
@@ -105,7 +106,7 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
                                   " frames leave out some bones; those keep their previous values");
     result.definition = skeleton.definition;
     if (numDofs == 0) return result;
-    ClipBuilder clip(baseNameOf(fileName));
+    ClipBuilder clip(clipName.empty() ? baseNameOf(fileName) : clipName);
     for (unsigned d = 0; d < numDofs; ++d) clip.addChannel(def.getDofName(d), skeleton.options.interpolation);
     clip.setFrames(skeleton.options.frameRate, std::move(values));
     const ClipBuildResult built = clip.build();
@@ -119,7 +120,7 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
     return result;
 }
 
-MocapImport readAmcFile(const std::string& path, const AsfImport& skeleton)
+MocapImport readAmcFile(const std::string& path, const AsfImport& skeleton, const std::string& clipName)
 {
     std::ifstream in(path, std::ios::binary);
     if (!in)
@@ -128,7 +129,7 @@ MocapImport readAmcFile(const std::string& path, const AsfImport& skeleton)
         failed.error = path + ": cannot open the file";
         return failed;
     }
-    return readAmc(in, path, skeleton);
+    return readAmc(in, path, skeleton, clipName);
 }
 
 } // namespace osgActor

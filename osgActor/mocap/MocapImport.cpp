@@ -3,6 +3,8 @@
 #include <glm/ext/quaternion_trigonometric.hpp>
 #include <glm/ext/scalar_constants.hpp>
 
+#include <cctype>
+
 namespace osgActor {
 
 glm::dquat upAxisToZUp(UpAxis fileUpAxis)
@@ -41,6 +43,16 @@ std::string baseNameOf(const std::string& path)
     const std::size_t dot = name.rfind('.');
     if (dot != std::string::npos && dot > 0) name.erase(dot);
     return name;
+}
+
+std::string lowerExtensionOf(const std::string& path)
+{
+    const std::size_t dot = path.find_last_of('.');
+    const std::size_t slash = path.find_last_of("/\\");
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return std::string();
+    std::string extension = path.substr(dot);
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return extension;
 }
 
 } // namespace osgActor

@@ -247,8 +247,11 @@ TEST(ActorReader, RefusesBadClips)
     EXPECT_EQ(readError(kClipActor + " clip w {\n  key 0 1\n }\n}\n"), "t.actor:8: unknown keyword 'key' in a clip");
     EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"walk.bvh\"\n  channel b.rz { key 0 1 }\n }\n}\n"),
               "t.actor:7: clip 'w' reads its motion from a file, so it has no channels or frames of its own");
+    EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"walk.fbx\"\n }\n}\n"),
+              "t.actor:8: 'walk.fbx': a clip's file must be motion capture, BVH (.bvh) or AMC (.amc)");
     EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"walk.amc\"\n }\n}\n"),
-              "t.actor:8: 'walk.amc': a clip's file must be motion capture in BVH (.bvh)");
+              "t.actor:8: 'walk.amc': an AMC motion needs its ASF skeleton: 'skeleton \"x.asf\"' in a block after the "
+              "file name");
     EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"a.bvh\"\n  file \"b.bvh\"\n }\n}\n").rfind("t.actor:9: ", 0), 0u);
     EXPECT_EQ(readError(kClipActor + " clip w { file \"a.bvh\" }\n clip w { file \"b.bvh\" }\n}\n"),
               "t.actor:8: clip 'w' is given twice");
@@ -262,7 +265,7 @@ TEST(ActorReader, LeavesAClipFileForTheSceneLoaderAndWritesItBack)
     const ClipDocument& clip = result.document.clips[0];
     EXPECT_EQ(clip.clip, nullptr) << "read when the actor is made, where files are found";
     EXPECT_EQ(clip.file, "motion/Walk.BVH");
-    EXPECT_EQ(clip.fileClipName, "walk");
+    EXPECT_EQ(clip.fileOptions.name, "walk");
     EXPECT_EQ(clip.line, 7);
     EXPECT_TRUE(clip.play);
     EXPECT_EQ(clip.playMode, PlayMode::PingPong);
@@ -275,6 +278,63 @@ TEST(ActorReader, LeavesAClipFileForTheSceneLoaderAndWritesItBack)
     const ActorReadResult again = read(written.str());
     ASSERT_TRUE(again) << again.error;
     EXPECT_EQ(again.document.clips.at(0).file, "motion/Walk.BVH");
+}
+
+TEST(ActorReader, RefusesClipFileOptionsThatDoNotApplyOrAreBroken)
+{
+    const auto fileBlock = [](const std::string& file, const std::string& options) {
+        return readError(kClipActor + " clip w {\n  file \"" + file + "\" {\n   " + options + "\n  }\n }\n}\n");
+    };
+    EXPECT_EQ(fileBlock("walk.bvh", "frame_rate 60"), "t.actor:9: 'frame_rate' is for AMC files, and 'walk.bvh' is BVH");
+    EXPECT_EQ(fileBlock("walk.bvh", "skeleton \"walk.asf\""),
+              "t.actor:9: 'skeleton' is for AMC files, and 'walk.bvh' is BVH");
+    EXPECT_EQ(fileBlock("walk.amc", "skeleton \"walk.asf\"\n   drop_first_frame"),
+              "t.actor:10: 'drop_first_frame' is for BVH files, and 'walk.amc' is AMC");
+    EXPECT_EQ(fileBlock("walk.amc", "skeleton \"walk.asf\"\n   absolute_root_position"),
+              "t.actor:10: 'absolute_root_position' is for BVH files, and 'walk.amc' is AMC");
+    EXPECT_EQ(fileBlock("walk.amc", "skeleton \"walk.bvh\""),
+              "t.actor:9: 'walk.bvh': an AMC motion's skeleton must be ASF (.asf)");
+    EXPECT_EQ(fileBlock("walk.bvh", "scale 0"), "t.actor:9: 'scale' must be greater than zero");
+    EXPECT_EQ(fileBlock("walk.bvh", "scale 1\n   scale 2"), "t.actor:10: 'scale' is given twice");
+    EXPECT_EQ(fileBlock("walk.bvh", "up x"), "t.actor:9: 'x' is not an up axis (y, z)");
+    EXPECT_EQ(fileBlock("walk.bvh", "loop"), "t.actor:9: unknown keyword 'loop' in a clip's file block");
+    EXPECT_EQ(fileBlock("walk.bvh", "drop_first_frame 1"), "t.actor:9: 'drop_first_frame' takes 0 values, not 1");
+}
+
+TEST(ActorReader, ReadsClipFileOptionsAndWritesBackThoseThatAreNotDefaults)
+{
+    const ActorReadResult result =
+        read(kClipActor + " clip run {\n  file \"motion/02_01.amc\" {\n   skeleton \"motion/02.asf\"\n   scale 0.05\n"
+                          "   up z\n   frame_rate 60\n  }\n }\n clip walk {\n  file \"walk.bvh\" {\n   drop_first_frame\n"
+                          "   absolute_root_position\n  }\n }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    ASSERT_EQ(result.document.clips.size(), 2u);
+    const MotionFileOptions& amc = result.document.clips[0].fileOptions;
+    EXPECT_EQ(amc.name, "run");
+    EXPECT_EQ(amc.skeletonFile, "motion/02.asf");
+    EXPECT_EQ(amc.scale, 0.05);
+    EXPECT_EQ(amc.fileUpAxis, UpAxis::Z);
+    EXPECT_EQ(amc.amcFrameRate, 60.0);
+    EXPECT_FALSE(amc.dropFirstFrame);
+    const MotionFileOptions& bvh = result.document.clips[1].fileOptions;
+    EXPECT_EQ(bvh.scale, 1.0);
+    EXPECT_EQ(bvh.fileUpAxis, UpAxis::Y);
+    EXPECT_TRUE(bvh.dropFirstFrame);
+    EXPECT_TRUE(bvh.absoluteRootPosition);
+
+    std::ostringstream written;
+    writeActor(written, result.document);
+    EXPECT_NE(written.str().find("    clip run {\n        file \"motion/02_01.amc\" {\n            skeleton \"motion/02.asf\"\n"
+                                 "            scale 0.05\n            up z\n            frame_rate 60\n        }\n    }"),
+              std::string::npos)
+        << written.str();
+    const ActorReadResult again = read(written.str());
+    ASSERT_TRUE(again) << again.error;
+    const MotionFileOptions& reread = again.document.clips.at(1).fileOptions;
+    EXPECT_TRUE(reread.dropFirstFrame);
+    EXPECT_TRUE(reread.absoluteRootPosition);
+    EXPECT_EQ(again.document.clips.at(0).fileOptions.skeletonFile, "motion/02.asf");
+    EXPECT_EQ(again.document.clips.at(0).fileOptions.amcFrameRate, 60.0);
 }
 
 TEST(ActorReader, ReadsKeyedClipsInDegreesAndSeconds)

@@ -5,6 +5,7 @@
 
 #include <osgActor/mocap/AmcReader>
 #include <osgActor/mocap/AsfReader>
+#include <osgActor/mocap/MotionFile>
 
 #include <gtest/gtest.h>
 
@@ -275,4 +276,49 @@ TEST(AsfAmc, ReadsSeveralMotionsAgainstOneSkeleton)
     ASSERT_TRUE(second) << second.error;
     EXPECT_EQ(first.definition, second.definition) << "one shared definition";
     EXPECT_EQ(second.clip->getName(), "still");
+}
+
+TEST(MotionFile, ReadsAnAmcAgainstItsSkeletonUnderTheGivenNameWithTheGivenOptions)
+{
+    MotionFileOptions options;
+    options.name = "run";
+    options.skeletonFile = sharedMocap("asfamc/11.asf");
+    options.scale = 0.5;
+    options.amcFrameRate = 60.0;
+    const MocapImport motion = readMotionFile(sharedMocap("asfamc/11_01.amc"), options);
+    ASSERT_TRUE(motion) << motion.error;
+    ASSERT_TRUE(motion.clip);
+    EXPECT_EQ(motion.clip->getName(), "run");
+    EXPECT_EQ(motion.clip->getFrameRate(), 60.0);
+
+    AsfImportOptions asf;
+    asf.scale = 0.5;
+    asf.applyLimits = false;
+    const AsfImport skeleton = readAsfFile(sharedMocap("asfamc/11.asf"), asf);
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    const MocapImport direct = readAmcFile(sharedMocap("asfamc/11_01.amc"), skeleton);
+    ASSERT_TRUE(direct) << direct.error;
+    ASSERT_EQ(motion.clip->getNumFrames(), direct.clip->getNumFrames());
+    ASSERT_EQ(motion.clip->getNumChannels(), direct.clip->getNumChannels());
+    // The root's translation, scaled: the same values frame by frame.
+    const int rootX = motion.definition->findDof("root.tx");
+    ASSERT_GE(rootX, 0);
+    for (unsigned f : {0u, 100u})
+        EXPECT_EQ(motion.clip->getFrame(f)[rootX], direct.clip->getFrame(f)[rootX]) << "frame " << f;
+    EXPECT_NE(motion.clip->getFrame(0)[rootX], 0.0);
+}
+
+TEST(MotionFile, RefusesAnAmcWithoutSkeletonAndOtherFormats)
+{
+    MocapImport motion = readMotionFile(sharedMocap("asfamc/11_01.amc"), MotionFileOptions());
+    EXPECT_FALSE(motion);
+    EXPECT_NE(motion.error.find("11_01.amc: an AMC motion needs the ASF skeleton"), std::string::npos) << motion.error;
+    motion = readMotionFile("walk.fbx", MotionFileOptions());
+    EXPECT_FALSE(motion);
+    EXPECT_EQ(motion.error, "walk.fbx: not a motion file (expected .bvh, or .amc with its ASF skeleton)");
+    MotionFileOptions broken;
+    broken.skeletonFile = "/nonexistent/11.asf";
+    motion = readMotionFile(sharedMocap("asfamc/11_01.amc"), broken);
+    EXPECT_FALSE(motion);
+    EXPECT_NE(motion.error.find("/nonexistent/11.asf: cannot open"), std::string::npos) << motion.error;
 }

@@ -1,16 +1,19 @@
 #include "MocapTestUtil"
 #include "ReferenceMocap"
+#include "../nodes/NodeTestUtil"
 
 #include <osgActor/ActorNode>
 #include <osgActor/ActorSceneIO>
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/io/ActorDocument>
 #include <osgActor/io/ActorWriter>
+#include <osgActor/mocap/AsfReader>
 #include <osgActor/mocap/BvhReader>
 
 #include <osg/FrameStamp>
 #include <osgUtil/UpdateVisitor>
 
+#include <osgDB/FileNameUtils>
 #include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
@@ -62,6 +65,36 @@ void expectToPlay12_03(ActorNode& actor)
     }
 }
 
+/** Writes document as folderName/walker.actor, with copies of the given files of ../shared/mocap in
+  * folderName/motion; returns the .actor file's path. */
+std::string writeActorBesideMotionFiles(const std::string& folderName, const ActorDocument& document,
+                                        const std::vector<std::string>& sharedFiles)
+{
+    const std::string folder = std::string(OSGACTOR_TEST_BINARY_DIR) + "/" + folderName;
+    osgDB::makeDirectory(folder + "/motion");
+    for (const std::string& file : sharedFiles)
+    {
+        std::ifstream in(sharedMocap(file), std::ios::binary);
+        std::ofstream out(folder + "/motion/" + osgDB::getSimpleFileName(file), std::ios::binary);
+        out << in.rdbuf();
+    }
+    const std::string path = folder + "/walker.actor";
+    std::ofstream out(path);
+    writeActor(out, document);
+    return path;
+}
+
+/** A clip "walk", played in a loop, whose motion is the file at fileReference, read with options. */
+ClipDocument walkFromFile(const std::string& fileReference, MotionFileOptions options = MotionFileOptions())
+{
+    ClipDocument clip;
+    clip.file = fileReference;
+    clip.fileOptions = std::move(options);
+    clip.fileOptions.name = "walk";
+    clip.play = true;
+    return clip;
+}
+
 /** Writes, in its own folder, 12_03.bvh's skeleton as a .actor file whose clip "walk" (played in a loop) refers to
   * the file by fileReference, with a copy of the file beside it; returns the .actor file's path. edit changes the
   * document first. */
@@ -71,23 +104,9 @@ std::string writeActorWithClipFile(const std::string& folderName, const std::str
     const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
     EXPECT_TRUE(imported) << imported.error;
     ActorDocument document = makeDocument(*imported.definition);
-    ClipDocument clip;
-    clip.file = fileReference;
-    clip.fileClipName = "walk";
-    clip.play = true;
-    document.clips.push_back(clip);
+    document.clips.push_back(walkFromFile(fileReference));
     edit(document);
-    const std::string folder = std::string(OSGACTOR_TEST_BINARY_DIR) + "/" + folderName;
-    osgDB::makeDirectory(folder + "/motion");
-    {
-        std::ifstream in(sharedMocap("bvh/12_03.bvh"), std::ios::binary);
-        std::ofstream out(folder + "/motion/12_03.bvh", std::ios::binary);
-        out << in.rdbuf();
-    }
-    const std::string path = folder + "/walker.actor";
-    std::ofstream out(path);
-    writeActor(out, document);
-    return path;
+    return writeActorBesideMotionFiles(folderName, document, {"bvh/12_03.bvh"});
 }
 
 } // namespace
@@ -243,6 +262,109 @@ TEST(ActorFileClips, AClipFileMissingOrNotFittingTheActorFailsTheReadAtItsLine)
         << read.message();
 }
 
+TEST(ActorFileClips, AnAmcClipReadAgainstItsAsfSkeletonAtAScalePlaysTheCapture)
+{
+    // An actor of 11.asf at this scale, without the ASF's limits (this capture goes past its rfingers' limits, which
+    // would clamp them), and a clip naming the motion and its skeleton.
+    constexpr double kScale = 0.05;
+    AsfImportOptions asfOptions;
+    asfOptions.scale = kScale;
+    asfOptions.applyLimits = false;
+    const AsfImport skeleton = readAsfFile(sharedMocap("asfamc/11.asf"), asfOptions);
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    ActorDocument document = makeDocument(*skeleton.definition);
+    MotionFileOptions options;
+    options.skeletonFile = "motion/11.asf";
+    options.scale = kScale;
+    document.clips.push_back(walkFromFile("motion/11_01.amc", options));
+    const std::string path =
+        writeActorBesideMotionFiles("clip_file_amc", document, {"asfamc/11.asf", "asfamc/11_01.amc"});
+
+    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
+    ASSERT_TRUE(read.validNode()) << read.message();
+    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(read.getNode());
+    ASSERT_TRUE(actor.valid() && actor->getClipLibrary());
+    const ClipPtr clip = actor->getClipLibrary()->getClip("walk");
+    ASSERT_TRUE(clip);
+    EXPECT_EQ(clip->getFrameRate(), 120.0);
+
+    // Every bone where the independent reading of the files puts it, scaled, at update frames 0 and 3 (60 Hz:
+    // capture frames 0 and 6). The root translates, so a root travel left unscaled would be 20 times too far.
+    const reference::Asf asf = reference::readAsf(sharedMocap("asfamc/11.asf"));
+    const std::vector<reference::AmcFrame> frames = reference::readAmc(sharedMocap("asfamc/11_01.amc"));
+    std::vector<glm::dvec3> rest;
+    for (const auto& entry : reference::asfPositions(asf, frames[0])) rest.push_back(entry.second * kScale);
+    const double size = extent(rest);
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    for (unsigned n : {0u, 3u})
+    {
+        runUpdate(*root, n);
+        for (const auto& entry : reference::asfPositions(asf, frames[2 * n]))
+        {
+            const int joint = actor->getJointIndex(entry.first);
+            ASSERT_GE(joint, 0) << entry.first;
+            EXPECT_LT((actor->getJointWorldPosition(static_cast<unsigned>(joint)) - zUp(entry.second * kScale)).length(),
+                      1e-6 * size)
+                << entry.first << " at update frame " << n;
+        }
+    }
+}
+
+TEST(ActorFileClips, ABvhClipFileTakesItsScaleAndDropsItsFirstFrameWhenTold)
+{
+    BvhImportOptions bvhOptions;
+    bvhOptions.scale = 0.01;
+    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"), bvhOptions);
+    ASSERT_TRUE(imported) << imported.error;
+    ActorDocument document = makeDocument(*imported.definition);
+    MotionFileOptions options;
+    options.scale = 0.01;
+    options.dropFirstFrame = true;
+    document.clips.push_back(walkFromFile("motion/12_03.bvh", options));
+    const std::string path = writeActorBesideMotionFiles("clip_file_scaled", document, {"bvh/12_03.bvh"});
+
+    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
+    ASSERT_TRUE(read.validNode()) << read.message();
+    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(read.getNode());
+    ASSERT_TRUE(actor.valid() && actor->getClipLibrary());
+    const ClipPtr clip = actor->getClipLibrary()->getClip("walk");
+    ASSERT_TRUE(clip);
+    ASSERT_EQ(clip->getNumFrames(), imported.clip->getNumFrames() - 1);
+
+    // Frame 0 of the clip is the file's frame 1; the hips at update frame 5 (60 Hz) are at the file's frame 11.
+    const reference::Bvh bvh = reference::readBvh(sharedMocap("bvh/12_03.bvh"));
+    const int hips = actor->getJointIndex(bvh.joints[0].name);
+    ASSERT_GE(hips, 0);
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    root->addChild(actor.get());
+    for (unsigned n : {0u, 5u})
+    {
+        runUpdate(*root, n);
+        // The file's frame time (.008333) is not quite 1/120 s: update frame 5 falls a hair past file frame 11.
+        const glm::dvec3 expected = reference::bvhPositions(bvh, 2 * n + 1)[0] * 0.01;
+        EXPECT_LT((actor->getJointWorldPosition(static_cast<unsigned>(hips)) - zUp(expected)).length(), 1e-6)
+            << "update frame " << n;
+    }
+}
+
+TEST(ActorFileClips, AnAmcClipWhoseSkeletonIsMissingFailsTheReadAtItsLine)
+{
+    const AsfImport skeleton = readAsfFile(sharedMocap("asfamc/11.asf"));
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    ActorDocument document = makeDocument(*skeleton.definition);
+    MotionFileOptions options;
+    options.skeletonFile = "motion/12.asf";
+    document.clips.push_back(walkFromFile("motion/11_01.amc", options));
+    const std::string path =
+        writeActorBesideMotionFiles("clip_file_amc_missing", document, {"asfamc/11.asf", "asfamc/11_01.amc"});
+    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
+    EXPECT_FALSE(read.validNode());
+    EXPECT_NE(read.message().find("walker.actor:"), std::string::npos) << read.message();
+    EXPECT_NE(read.message().find(": clip 'walk': cannot find the skeleton file 'motion/12.asf'"), std::string::npos)
+        << read.message();
+}
+
 TEST(ActorFileClips, ApplyingAnUnreadClipFileLeavesTheClipOutInsteadOfCrashing)
 {
     // Only createActorNode() reads clip files; applyClips() gets such a clip from a hand-edited embedded document.
@@ -251,7 +373,7 @@ TEST(ActorFileClips, ApplyingAnUnreadClipFileLeavesTheClipOutInsteadOfCrashing)
     ActorDocument document;
     ClipDocument unread;
     unread.file = "walk.bvh";
-    unread.fileClipName = "walk";
+    unread.fileOptions.name = "walk";
     unread.play = true;
     document.clips.push_back(unread);
     ClipDocument read;
