@@ -6,12 +6,15 @@
 #include <osgActor/mocap/AsfReader>
 #include <osgActor/mocap/BvhReader>
 #include <osgActor/mocap/BvhWriter>
+#include <osgActor/mocap/MotionFile>
 #include <osgActor/mocap/PositionsCsv>
 
 #include <algorithm>
 #include <cctype>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -40,6 +43,9 @@ const char* const kUsage =
     "  --up Y|Z           the input's up axis for .actor output (default Y; .actor is Z-up like OSG)\n"
     "  --drop-first-frame drop frame 0 (the reference pose of CMU BVH conversions) when converting\n"
     "  --absolute-root    BVH root positions are absolute (3ds Max), not added to the root OFFSET\n"
+    "  --link-motion      .actor output: the clip names the motion file (and an AMC's skeleton), by paths\n"
+    "                     relative to the output's folder, with the options above, instead of holding\n"
+    "                     its frames; the actor reads the motion when it is loaded\n"
     "  -h, --help         this text\n";
 
 struct Arguments
@@ -54,6 +60,7 @@ struct Arguments
     double scale = 1.0;
     bool dropFirstFrame = false;
     bool absoluteRoot = false;
+    bool linkMotion = false;
     UpAxis up = UpAxis::Y;
 };
 
@@ -94,6 +101,7 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         else if (arg == "--dump-positions") args.dumpPositions = true;
         else if (arg == "--drop-first-frame") args.dropFirstFrame = true;
         else if (arg == "--absolute-root") args.absoluteRoot = true;
+        else if (arg == "--link-motion") args.linkMotion = true;
         else if (arg == "-o" || arg == "--output")
         {
             if (!value(args.output)) return arg + " needs a file name";
@@ -130,6 +138,8 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
     if (args.inputs.empty() || args.inputs.size() > 2) return "give one input file (and an AMC after an ASF)";
     if (args.inputs.size() == 2) args.amc = args.inputs[1];
     if (!args.dumpPositions && args.output.empty()) return "nothing to do: give --dump-positions or -o FILE";
+    if (args.linkMotion && (args.dumpPositions || !endsWith(args.output, ".actor")))
+        return "--link-motion is for .actor output";
     return std::string();
 }
 
@@ -174,6 +184,54 @@ MocapImport readInput(const Arguments& args, bool dump, bool toActor)
     MocapImport failed;
     failed.error = input + ": unknown input format (expected .bvh or .asf)";
     return failed;
+}
+
+/** The imported motion as frames in the .actor file, played in a loop. */
+ClipDocument embeddedClip(const MocapImport& imported)
+{
+    ClipDocument clip;
+    clip.clip = imported.clip;
+    clip.play = true;
+    return clip;
+}
+
+/** path as the .actor file at output will name it, with forward slashes: relative to the output's folder, so the
+  * two can move together, unless they share no folder but the root (then absolute). */
+std::string pathFromOutput(const std::string& path, const std::string& output)
+{
+    namespace fs = std::filesystem;
+    const fs::path file = fs::absolute(path).lexically_normal();
+    const fs::path folder = fs::absolute(output).parent_path().lexically_normal();
+    const auto firstFolder = [](const fs::path& p) {
+        return std::next(p.begin()) != p.end() ? *std::next(p.begin()) : fs::path();
+    };
+    if (firstFolder(file) != firstFolder(folder)) return file.generic_string();
+    return file.lexically_relative(folder).generic_string();
+}
+
+/** A clip that names the motion file (and an AMC's skeleton) with the options it was converted with, played in a
+  * loop: the .actor file reads the very same motion when it is loaded (docs/actor-format.md, "file"). */
+ClipDocument linkedClip(const Arguments& args, const std::string& clipName)
+{
+    const bool bvh = endsWith(args.inputs[0], ".bvh");
+    ClipDocument clip;
+    clip.play = true;
+    clip.file = pathFromOutput(bvh ? args.inputs[0] : args.amc, args.output);
+    MotionFileOptions& options = clip.fileOptions;
+    options.name = clipName;
+    options.scale = args.scale;
+    options.fileUpAxis = args.up;
+    if (bvh)
+    {
+        options.dropFirstFrame = args.dropFirstFrame;
+        options.absoluteRootPosition = args.absoluteRoot;
+    }
+    else
+    {
+        options.skeletonFile = pathFromOutput(args.inputs[0], args.output);
+        options.amcFrameRate = args.fps;
+    }
+    return clip;
 }
 
 } // namespace
@@ -232,12 +290,7 @@ int main(int argc, char** argv)
         ActorDocument document = makeDocument(*imported.definition);
         document.name = imported.definition->getName();
         if (imported.clip) // the motion, played in a loop when the file is loaded
-        {
-            ClipDocument clip;
-            clip.clip = imported.clip;
-            clip.play = true;
-            document.clips.push_back(clip);
-        }
+            document.clips.push_back(args.linkMotion ? linkedClip(args, imported.clip->getName()) : embeddedClip(imported));
         writeActor(out, document);
         written = static_cast<bool>(out);
         if (!written) error = args.output + ": cannot write the file";
