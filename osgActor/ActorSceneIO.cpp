@@ -4,6 +4,7 @@
 #include <osgActor/GlmOsg>
 #include <osgActor/io/ActorSyntax>
 #include <osgActor/mocap/MotionFile>
+#include <osgActor/mocap/TrajectoryCsv>
 
 #include <osg/Notify>
 #include <osg/ValueObject>
@@ -11,6 +12,7 @@
 #include <osgDB/FileUtils>
 #include <osgDB/ReadFile>
 
+#include <algorithm>
 #include <sstream>
 
 namespace osgActor {
@@ -158,6 +160,34 @@ bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& acto
     return true;
 }
 
+/** Reads the trajectories of the document whose keys are in a CSV file (TrajectoryDocument::file), found like model
+  * files; false and an error naming the .actor file and the trajectory's line when one cannot be found or read. */
+bool readTrajectoryFiles(std::vector<TrajectoryDocument>& trajectories, const std::string& fileName,
+                         const osgDB::Options* options, std::string& error)
+{
+    for (TrajectoryDocument& trajectory : trajectories)
+    {
+        if (trajectory.file.empty() || trajectory.trajectory) continue;
+        const std::string prefix = where(fileName, trajectory.line) + "trajectory '" + trajectory.name() + "': ";
+        const std::string path = osgDB::findDataFile(trajectory.file, options);
+        if (path.empty())
+        {
+            error = prefix + "cannot find the file '" + trajectory.file + "'";
+            return false;
+        }
+        const TrajectoryBuildResult read = readTrajectoryCsvFile(path);
+        if (!read)
+        {
+            error = prefix + read.error;
+            return false;
+        }
+        // Named as in the .actor file, whatever the CSV file is called.
+        const TrajectoryBuildResult renamed = TrajectoryBuilder::build(trajectory.name(), read.trajectory->getKeys());
+        trajectory.trajectory = renamed.trajectory;
+    }
+    return true;
+}
+
 std::string sectionsText(const std::vector<SyntaxStatement>& sections)
 {
     std::ostringstream text;
@@ -211,6 +241,50 @@ void addClips(const ActorNode& actor, ActorDocument& document)
     }
 }
 
+void applyTrajectories(ActorNode& actor, const ActorDocument& document)
+{
+    for (const TrajectoryDocument& trajectory : document.trajectories)
+    {
+        if (!trajectory.trajectory)
+        {
+            // Only createActorNode() reads trajectory files; an embedded document carries its keys.
+            OSG_WARN << "osgActor: trajectory '" << trajectory.name() << "' (file '" << trajectory.file
+                     << "') was not read, so the actor lacks it" << std::endl;
+            continue;
+        }
+        auto player = std::make_shared<TrajectoryPlayer>(trajectory.trajectory);
+        player->setName(trajectory.trajectory->getName());
+        player->setPlayMode(trajectory.playMode);
+        player->setSpeed(trajectory.speed);
+        if (!trajectory.play) player->pause();
+        actor.addController(player);
+    }
+}
+
+void addTrajectories(const ActorNode& actor, ActorDocument& document)
+{
+    for (const ControllerPtr& controller : actor.getControllers())
+    {
+        const TrajectoryPlayer* player = dynamic_cast<const TrajectoryPlayer*>(controller.get());
+        if (!player || !player->getTrajectory()) continue;
+        TrajectoryDocument trajectory;
+        trajectory.trajectory = player->getTrajectory();
+        trajectory.play = player->isPlaying();
+        trajectory.playMode = player->getPlayMode();
+        trajectory.speed = player->getSpeed();
+        const bool taken = std::any_of(document.trajectories.begin(), document.trajectories.end(),
+                                       [&](const TrajectoryDocument& t) { return t.name() == trajectory.name(); });
+        if (taken)
+        {
+            // A file names each trajectory once; a second player of the same path would be read back as an error.
+            OSG_WARN << "osgActor: writing actor '" << document.name << "': a second player of trajectory '"
+                     << trajectory.name() << "' is left out" << std::endl;
+            continue;
+        }
+        document.trajectories.push_back(std::move(trajectory));
+    }
+}
+
 void addIkChains(const ActorNode& actor, ActorDocument& document)
 {
     for (const IkChainPtr& chain : actor.getIkChains())
@@ -222,6 +296,7 @@ ActorDocument makeDefinitionDocument(const ActorNode& actor)
     if (!actor.getDefinition()) return ActorDocument();
     ActorDocument document = makeDocument(*actor.getDefinition());
     addClips(actor, document);
+    addTrajectories(actor, document);
     addIkChains(actor, document);
     return document;
 }
@@ -255,9 +330,11 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         applyJointState(*actor, static_cast<unsigned>(index), joint);
         if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
-    ActorDocument withClipFilesRead = document;
-    if (!readClipFiles(withClipFilesRead.clips, *definition, fileName, local.get(), result.error)) return result;
-    applyClips(*actor, withClipFilesRead);
+    ActorDocument withFilesRead = document;
+    if (!readClipFiles(withFilesRead.clips, *definition, fileName, local.get(), result.error)) return result;
+    if (!readTrajectoryFiles(withFilesRead.trajectories, fileName, local.get(), result.error)) return result;
+    applyClips(*actor, withFilesRead);
+    applyTrajectories(*actor, withFilesRead);
     std::vector<IkChainPtr> chains;
     if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
     for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
@@ -313,6 +390,7 @@ ActorDocument extractActorDocument(const ActorNode& actor)
     }
 
     addClips(actor, document);
+    addTrajectories(actor, document);
     addIkChains(actor, document);
 
     std::string sections;

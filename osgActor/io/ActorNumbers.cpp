@@ -155,6 +155,14 @@ std::string formatNumber(double value)
     return std::string(buffer, result.ptr);
 }
 
+std::string formatExactNumber(double value)
+{
+    if (!(std::abs(value) >= kZeroBelow)) return "0";
+    char buffer[64];
+    const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof(buffer), value); // shortest exact
+    return std::string(buffer, result.ptr);
+}
+
 bool toQuaternion(const AngleAxis& angleAxis, glm::dquat& rotation)
 {
     const glm::dvec3 axis(angleAxis.axis[0], angleAxis.axis[1], angleAxis.axis[2]);

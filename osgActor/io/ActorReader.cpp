@@ -194,6 +194,7 @@ private:
                 if (!s.hasBlock) return fail(s.line, "'clip' needs a block in braces");
                 _clipStatements.push_back(&s);
             }
+            else if (k == "trajectory") ok = readTrajectory(s, document);
             else if (k == "ikchain") ok = readIkChain(s, document);
             else if (isReservedSection(k))
             {
@@ -203,6 +204,71 @@ private:
             else return unknownKeyword(s, "in an actor");
             if (!ok) return false;
         }
+        return true;
+    }
+
+    /** "trajectory name { [play mode] [paused] [speed s] key time x y z heading ... }", or "file "path.csv""
+      * instead of keys (read later, see TrajectoryDocument::file). Headings in degrees. */
+    bool readTrajectory(const SyntaxStatement& s, ActorDocument& document)
+    {
+        if (!s.hasBlock) return fail(s.line, "'trajectory' needs a block in braces");
+        if (!expectArguments(s, 1)) return false;
+        const std::string& name = s.arguments.front().text;
+        for (const TrajectoryDocument& other : document.trajectories)
+            if (other.name() == name) return fail(s.line, "trajectory '" + name + "' is given twice");
+        TrajectoryDocument trajectory;
+        trajectory.line = s.line;
+        bool paused = false;
+        std::vector<TrajectoryKey> keys;
+        std::set<std::string> seen;
+        for (const SyntaxStatement& c : s.children)
+        {
+            const std::string& k = c.keyword;
+            bool ok = true;
+            if (k == "key")
+            {
+                double v[5];
+                ok = numbers(c, 5, v);
+                if (ok && !keys.empty() && !(v[0] > keys.back().time))
+                    return fail(c.line, "key times must increase (" + c.arguments[0].text + " follows " +
+                                            formatNumber(keys.back().time) + ")");
+                if (ok) keys.push_back(TrajectoryKey{v[0], glm::dvec3(v[1], v[2], v[3]), v[4] * kRadiansPerDegree});
+            }
+            else if (k == "play")
+            {
+                ok = once(seen, c) && expectNoBlock(c) && expectArguments(c, 1);
+                if (ok && !parsePlayMode(c.arguments.front().text, trajectory.playMode))
+                    return fail(c.line, "'" + c.arguments.front().text + "' is not a play mode (once, loop, pingpong)");
+                trajectory.play = ok;
+            }
+            else if (k == "paused") ok = flag(seen, c, paused);
+            else if (k == "speed") ok = once(seen, c) && numbers(c, 1, &trajectory.speed);
+            else if (k == "file")
+            {
+                ok = once(seen, c) && expectNoBlock(c) && expectArguments(c, 1);
+                if (ok) trajectory.file = c.arguments.front().text;
+                if (ok && lowerExtensionOf(trajectory.file) != ".csv")
+                    return fail(c.line, "'" + trajectory.file + "': a trajectory's file must be CSV (.csv)");
+            }
+            else return unknownKeyword(c, "in a trajectory");
+            if (!ok) return false;
+        }
+        trajectory.play = trajectory.play && !paused;
+        if (!trajectory.file.empty())
+        {
+            if (!keys.empty())
+                return fail(s.line,
+                            "trajectory '" + name + "' reads its keys from a file, so it has no keys of its own");
+            trajectory.fileTrajectoryName = name;
+        }
+        else
+        {
+            if (keys.empty()) return fail(s.line, "trajectory '" + name + "' has no key");
+            const TrajectoryBuildResult built = TrajectoryBuilder::build(name, std::move(keys));
+            if (!built) return fail(s.line, built.error);
+            trajectory.trajectory = built.trajectory;
+        }
+        document.trajectories.push_back(std::move(trajectory));
         return true;
     }
 

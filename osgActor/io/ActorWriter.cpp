@@ -4,6 +4,7 @@
 #include <glm/ext/scalar_constants.hpp>
 
 #include <cmath>
+#include <limits>
 #include <map>
 
 namespace osgActor {
@@ -15,6 +16,19 @@ constexpr double kDegreesPerRadian = 180.0 / glm::pi<double>();
 SyntaxArgument word(const std::string& text) { return SyntaxArgument{text, false, 0}; }
 SyntaxArgument nameArgument(const std::string& name) { return SyntaxArgument{name, quoteIfNeeded(name) != name, 0}; }
 SyntaxArgument numberArgument(double value) { return word(formatNumber(value)); }
+
+/** Key times, increasing as the reader requires: to 12 digits like every number, or exactly where 12 digits would
+  * not come after the key before (keys closer than a part in 10^12). previous is what the key before reads back
+  * as; updated. */
+SyntaxArgument keyTimeArgument(double time, double& previous)
+{
+    std::string text = formatNumber(time);
+    double readBack = 0.0;
+    if (!parseNumber(text, readBack) || !(readBack > previous)) text = formatExactNumber(time);
+    parseNumber(text, readBack);
+    previous = readBack;
+    return word(text);
+}
 
 SyntaxStatement statement(const std::string& keyword, std::vector<SyntaxArgument> arguments = {})
 {
@@ -159,9 +173,10 @@ SyntaxStatement clipStatement(const ClipDocument& document)
         if (clip.getChannel(c).interpolation != Interpolation::Linear)
             channel.children.push_back(
                 statement("interpolation", {word(interpolationName(clip.getChannel(c).interpolation))}));
+        double previous = -std::numeric_limits<double>::infinity();
         for (unsigned k = 0; k < clip.getNumKeys(c); ++k)
-            channel.children.push_back(statement(
-                "key", {numberArgument(clip.getKeyTime(c, k)), numberArgument(clip.getKeyValue(c, k) * unit(c))}));
+            channel.children.push_back(statement("key", {keyTimeArgument(clip.getKeyTime(c, k), previous),
+                                                         numberArgument(clip.getKeyValue(c, k) * unit(c))}));
         s.children.push_back(channel);
     }
     return s;
@@ -252,6 +267,29 @@ private:
 
 } // namespace
 
+/** A trajectory as its player's state ("play" for a player that plays or has another mode than once, "paused" for
+  * one that waits, "speed") and one "key time x y z heading" line per key, or as the file it is read from. */
+SyntaxStatement trajectoryStatement(const TrajectoryDocument& document)
+{
+    SyntaxStatement s = statement("trajectory", {nameArgument(document.name())});
+    s.hasBlock = true;
+    if (document.play || document.playMode != PlayMode::Once)
+        s.children.push_back(statement("play", {word(playModeName(document.playMode))}));
+    if (!document.play && document.playMode != PlayMode::Once) s.children.push_back(statement("paused"));
+    if (document.speed != 1.0) s.children.push_back(statement("speed", {numberArgument(document.speed)}));
+    if (!document.file.empty())
+    {
+        s.children.push_back(statement("file", {SyntaxArgument{document.file, true, 0}}));
+        return s;
+    }
+    double previous = -std::numeric_limits<double>::infinity();
+    for (const TrajectoryKey& key : document.trajectory->getKeys())
+        s.children.push_back(statement("key", {keyTimeArgument(key.time, previous), numberArgument(key.position.x),
+                                               numberArgument(key.position.y), numberArgument(key.position.z),
+                                               numberArgument(key.heading * kDegreesPerRadian)}));
+    return s;
+}
+
 std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
 {
     std::vector<SyntaxStatement> file;
@@ -265,6 +303,9 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     JointTreeWriter(document).write(actor.children);
     for (const ClipDocument& clip : document.clips)
         if (clip.clip || !clip.file.empty()) actor.children.push_back(clipStatement(clip));
+    for (const TrajectoryDocument& trajectory : document.trajectories)
+        if (trajectory.trajectory || !trajectory.file.empty())
+            actor.children.push_back(trajectoryStatement(trajectory));
     for (const IkChainDocument& chain : document.ikChains) actor.children.push_back(ikChainStatement(chain.spec));
     for (const SyntaxStatement& section : document.sections) actor.children.push_back(section);
     file.push_back(std::move(actor));

@@ -285,7 +285,8 @@ TEST(ActorReader, RefusesClipFileOptionsThatDoNotApplyOrAreBroken)
     const auto fileBlock = [](const std::string& file, const std::string& options) {
         return readError(kClipActor + " clip w {\n  file \"" + file + "\" {\n   " + options + "\n  }\n }\n}\n");
     };
-    EXPECT_EQ(fileBlock("walk.bvh", "frame_rate 60"), "t.actor:9: 'frame_rate' is for AMC files, and 'walk.bvh' is BVH");
+    EXPECT_EQ(fileBlock("walk.bvh", "frame_rate 60"),
+              "t.actor:9: 'frame_rate' is for AMC files, and 'walk.bvh' is BVH");
     EXPECT_EQ(fileBlock("walk.bvh", "skeleton \"walk.asf\""),
               "t.actor:9: 'skeleton' is for AMC files, and 'walk.bvh' is BVH");
     EXPECT_EQ(fileBlock("walk.amc", "skeleton \"walk.asf\"\n   drop_first_frame"),
@@ -304,9 +305,9 @@ TEST(ActorReader, RefusesClipFileOptionsThatDoNotApplyOrAreBroken)
 TEST(ActorReader, ReadsClipFileOptionsAndWritesBackThoseThatAreNotDefaults)
 {
     const ActorReadResult result =
-        read(kClipActor + " clip run {\n  file \"motion/02_01.amc\" {\n   skeleton \"motion/02.asf\"\n   scale 0.05\n"
-                          "   up z\n   frame_rate 60\n  }\n }\n clip walk {\n  file \"walk.bvh\" {\n   drop_first_frame\n"
-                          "   absolute_root_position\n  }\n }\n}\n");
+        read(kClipActor + " clip run {\n  file \"motion/02_01.amc\" {\n   skeleton \"motion/02.asf\"\n"
+                          "   scale 0.05\n   up z\n   frame_rate 60\n  }\n }\n clip walk {\n  file \"walk.bvh\" {\n"
+                          "   drop_first_frame\n   absolute_root_position\n  }\n }\n}\n");
     ASSERT_TRUE(result) << result.error;
     ASSERT_EQ(result.document.clips.size(), 2u);
     const MotionFileOptions& amc = result.document.clips[0].fileOptions;
@@ -324,8 +325,9 @@ TEST(ActorReader, ReadsClipFileOptionsAndWritesBackThoseThatAreNotDefaults)
 
     std::ostringstream written;
     writeActor(written, result.document);
-    EXPECT_NE(written.str().find("    clip run {\n        file \"motion/02_01.amc\" {\n            skeleton \"motion/02.asf\"\n"
-                                 "            scale 0.05\n            up z\n            frame_rate 60\n        }\n    }"),
+    EXPECT_NE(written.str().find("    clip run {\n        file \"motion/02_01.amc\" {\n"
+                                 "            skeleton \"motion/02.asf\"\n            scale 0.05\n            up z\n"
+                                 "            frame_rate 60\n        }\n    }"),
               std::string::npos)
         << written.str();
     const ActorReadResult again = read(written.str());
@@ -335,6 +337,89 @@ TEST(ActorReader, ReadsClipFileOptionsAndWritesBackThoseThatAreNotDefaults)
     EXPECT_TRUE(reread.absoluteRootPosition);
     EXPECT_EQ(again.document.clips.at(0).fileOptions.skeletonFile, "motion/02.asf");
     EXPECT_EQ(again.document.clips.at(0).fileOptions.amcFrameRate, 60.0);
+}
+
+TEST(ActorReader, ReadsTrajectoriesInDegreesWithTheirPlayersStateAndWritesThemBack)
+{
+    const ActorReadResult result =
+        read(kClipActor + " trajectory patrol {\n  play loop\n  speed 1.5\n  key 0 0 0 0 0\n  key 2 4 0 0.5 90\n }\n"
+                          " trajectory waiting {\n  play pingpong\n  paused\n  key 1 1 2 3 -45\n }\n"
+                          " trajectory route { file \"paths/route.csv\" }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    ASSERT_EQ(result.document.trajectories.size(), 3u);
+    const TrajectoryDocument& patrol = result.document.trajectories[0];
+    ASSERT_TRUE(patrol.trajectory);
+    EXPECT_EQ(patrol.trajectory->getName(), "patrol");
+    EXPECT_EQ(patrol.line, 7);
+    EXPECT_TRUE(patrol.play);
+    EXPECT_EQ(patrol.playMode, PlayMode::Loop);
+    EXPECT_EQ(patrol.speed, 1.5);
+    ASSERT_EQ(patrol.trajectory->getKeys().size(), 2u);
+    const TrajectoryKey& second = patrol.trajectory->getKeys()[1];
+    EXPECT_EQ(second.time, 2.0);
+    EXPECT_EQ(second.position, glm::dvec3(4.0, 0.0, 0.5));
+    EXPECT_NEAR(second.heading, glm::half_pi<double>(), 1e-15);
+    const TrajectoryDocument& waiting = result.document.trajectories[1];
+    EXPECT_FALSE(waiting.play) << "paused: the player waits, in its mode";
+    EXPECT_EQ(waiting.playMode, PlayMode::PingPong);
+    const TrajectoryDocument& route = result.document.trajectories[2];
+    EXPECT_EQ(route.trajectory, nullptr) << "read when the actor is made, where files are found";
+    EXPECT_EQ(route.file, "paths/route.csv");
+    EXPECT_EQ(route.name(), "route");
+    EXPECT_FALSE(route.play);
+
+    std::ostringstream written;
+    writeActor(written, result.document);
+    EXPECT_NE(written.str().find("    trajectory patrol {\n        play loop\n        speed 1.5\n"
+                                 "        key 0 0 0 0 0\n        key 2 4 0 0.5 90\n    }\n    trajectory waiting {\n"
+                                 "        play pingpong\n        paused\n        key 1 1 2 3 -45\n    }\n    trajectory route {\n"
+                                 "        file \"paths/route.csv\"\n    }\n"),
+              std::string::npos)
+        << written.str();
+    const ActorReadResult again = read(written.str());
+    ASSERT_TRUE(again) << again.error;
+    std::ostringstream rewritten;
+    writeActor(rewritten, again.document);
+    EXPECT_EQ(rewritten.str(), written.str());
+}
+
+TEST(ActorReader, KeysCloserThanTwelveDigitsStayInOrderWhenWritten)
+{
+    // 12 significant digits would write both times as 1, which the reader refuses; the second is written exactly.
+    const ActorReadResult result =
+        read(kClipActor + " clip c { channel b.rz {\n  key 1.0000000000001 0\n  key 1.0000000000002 1\n } }\n"
+                          " trajectory t {\n  key 1.0000000000001 0 0 0 0\n  key 1.0000000000002 1 1 1 1\n }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    std::ostringstream written;
+    writeActor(written, result.document);
+    EXPECT_NE(written.str().find("key 1 0\n            key 1.0000000000002 1\n"), std::string::npos) << written.str();
+    EXPECT_NE(written.str().find("key 1 0 0 0 0\n        key 1.0000000000002 1 1 1 1\n"), std::string::npos);
+    const ActorReadResult again = read(written.str());
+    ASSERT_TRUE(again) << again.error;
+    std::ostringstream rewritten;
+    writeActor(rewritten, again.document);
+    EXPECT_EQ(rewritten.str(), written.str());
+}
+
+TEST(ActorReader, RefusesBrokenTrajectories)
+{
+    EXPECT_EQ(readError(kClipActor + " trajectory p {\n  key 0 0 0 0 0\n  key 0 1 0 0 0\n }\n}\n"),
+              "t.actor:9: key times must increase (0 follows 0)");
+    EXPECT_EQ(readError(kClipActor + " trajectory p {\n  key 0 0 0 0\n }\n}\n"),
+              "t.actor:8: 'key' takes 5 values, not 4");
+    EXPECT_EQ(readError(kClipActor + " trajectory p {\n  key 0 0 nan 0 0\n }\n}\n").rfind("t.actor:8: ", 0), 0u);
+    EXPECT_EQ(readError(kClipActor + " trajectory p {\n  play loop\n }\n}\n"), "t.actor:7: trajectory 'p' has no key");
+    EXPECT_EQ(readError(kClipActor + " trajectory p {\n  play sometimes\n  key 0 0 0 0 0\n }\n}\n"),
+              "t.actor:8: 'sometimes' is not a play mode (once, loop, pingpong)");
+    EXPECT_EQ(readError(kClipActor + " trajectory p {\n  file \"p.csv\"\n  key 0 0 0 0 0\n }\n}\n"),
+              "t.actor:7: trajectory 'p' reads its keys from a file, so it has no keys of its own");
+    EXPECT_EQ(readError(kClipActor + " trajectory p {\n  file \"p.txt\"\n }\n}\n"),
+              "t.actor:8: 'p.txt': a trajectory's file must be CSV (.csv)");
+    EXPECT_EQ(readError(kClipActor + " trajectory p { key 0 0 0 0 0 }\n trajectory p { file \"p.csv\" }\n}\n"),
+              "t.actor:8: trajectory 'p' is given twice");
+    EXPECT_EQ(readError(kClipActor + " trajectory p {\n  heading 0\n }\n}\n"),
+              "t.actor:8: unknown keyword 'heading' in a trajectory");
+    EXPECT_EQ(readError(kClipActor + " trajectory p\n}\n"), "t.actor:7: 'trajectory' needs a block in braces");
 }
 
 TEST(ActorReader, ReadsKeyedClipsInDegreesAndSeconds)

@@ -5,6 +5,7 @@
 #include <osgActor/ActorGeometry>
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/core/ClipPlayer>
+#include <osgActor/core/Trajectory>
 
 #include <osg/ComputeBoundsVisitor>
 #include <osg/Geode>
@@ -305,5 +306,76 @@ TEST(ActorPlugin, AnUnknownPlayModeIsAnErrorWithItsLine)
     osgDB::ReaderWriter::ReadResult read = osgDB::Registry::instance()->readNode(path, nullptr);
     EXPECT_FALSE(read.validNode());
     EXPECT_NE(read.message().find("bad_play.actor:5: 'sideways' is not a play mode"), std::string::npos)
+        << read.message();
+}
+
+TEST(ActorPlugin, ATrajectoryMovesTheActorAlongItsPathAndIsWrittenBack)
+{
+    const std::string text = R"(osgactor 1
+actor walker {
+    joint hips { dof rz }
+    trajectory patrol {
+        play loop
+        key 0 0 0 0 0
+        key 2 4 0 0 90
+    }
+}
+)";
+    osg::ref_ptr<ActorNode> actor = readActorFile(writeTextFile("trajectory.actor", text));
+    ASSERT_TRUE(actor.valid());
+    auto player = std::dynamic_pointer_cast<TrajectoryPlayer>(actor->findController("patrol"));
+    ASSERT_TRUE(player) << "a player named after the trajectory";
+    EXPECT_TRUE(player->isPlaying());
+    EXPECT_EQ(player->getPlayMode(), PlayMode::Loop);
+    // Frame n of runUpdate is at n / 60 s: one second in, half way along, turned 45 degrees; 2.5 s in, a loop and
+    // a quarter.
+    runUpdate(*actor, 1);
+    runUpdate(*actor, 61);
+    EXPECT_TRUE(vec3Near(actor->getPreTranslation(), osg::Vec3d(2, 0, 0), 1e-9));
+    const osg::Vec3d facing = actor->getPreRotation() * osg::Vec3d(1, 0, 0);
+    EXPECT_TRUE(vec3Near(facing, osg::Vec3d(std::cos(osg::PI_4), std::sin(osg::PI_4), 0), 1e-9));
+    runUpdate(*actor, 151);
+    EXPECT_TRUE(vec3Near(actor->getPreTranslation(), osg::Vec3d(1, 0, 0), 1e-9));
+
+    ASSERT_TRUE(osgDB::writeNodeFile(*actor, outFile("trajectory_once.actor")));
+    const std::string written = readTextFile(outFile("trajectory_once.actor"));
+    EXPECT_NE(written.find("    trajectory patrol {\n        play loop\n        key 0 0 0 0 0\n"
+                           "        key 2 4 0 0 90\n"),
+              std::string::npos)
+        << written;
+    osg::ref_ptr<ActorNode> back = readActorFile(outFile("trajectory_once.actor"));
+    ASSERT_TRUE(back.valid());
+    ASSERT_TRUE(osgDB::writeNodeFile(*back, outFile("trajectory_twice.actor")));
+    EXPECT_EQ(readTextFile(outFile("trajectory_twice.actor")), written);
+}
+
+TEST(ActorPlugin, ATrajectoryReadFromACsvFileBesideTheActorFile)
+{
+    osgDB::makeDirectory(outFile("trajectory_csv/paths"));
+    std::ofstream(outFile("trajectory_csv/paths/dash.csv")) << "time,x,y,z,heading\n0,0,0,0,0\n1,2,0,0,0\n"
+                                                               "2,2,2,0,90\n";
+    const std::string actorText = "osgactor 1\nactor a {\n    joint b { dof rz }\n    trajectory dash {\n"
+                                  "        play once\n        speed 2\n        file \"paths/dash.csv\"\n    }\n}\n";
+    std::ofstream(outFile("trajectory_csv/runner.actor")) << actorText;
+    osg::ref_ptr<ActorNode> actor = readActorFile(outFile("trajectory_csv/runner.actor"));
+    ASSERT_TRUE(actor.valid());
+    auto player = std::dynamic_pointer_cast<TrajectoryPlayer>(actor->findController("dash"));
+    ASSERT_TRUE(player);
+    EXPECT_EQ(player->getSpeed(), 2.0);
+    ASSERT_EQ(player->getTrajectory()->getKeys().size(), 3u);
+    EXPECT_EQ(player->getTrajectory()->getName(), "dash");
+    // At speed 2, 0.75 s of frames is 1.5 s of the path: half way up the left turn.
+    runUpdate(*actor, 1);
+    runUpdate(*actor, 46);
+    EXPECT_TRUE(vec3Near(actor->getPreTranslation(), osg::Vec3d(2, 1, 0), 1e-9));
+
+    // A missing file fails the read at the trajectory's line.
+    std::ofstream(outFile("trajectory_csv/lost.actor"))
+        << "osgactor 1\nactor a {\n    joint b { dof rz }\n    trajectory dash { file \"paths/nowhere.csv\" }\n}\n";
+    osgDB::ReaderWriter::ReadResult read =
+        osgDB::Registry::instance()->readNode(outFile("trajectory_csv/lost.actor"), nullptr);
+    EXPECT_FALSE(read.validNode());
+    EXPECT_NE(read.message().find("lost.actor:4: trajectory 'dash': cannot find the file 'paths/nowhere.csv'"),
+              std::string::npos)
         << read.message();
 }

@@ -6,6 +6,7 @@
 
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/GlmOsg>
+#include <osgActor/core/Trajectory>
 
 #include <osgDB/WriteFile>
 
@@ -168,6 +169,57 @@ TEST_P(OsgFormats, ABlockedActorComesBackBlockedInItsPose)
     const unsigned updates = actor->getNumUpdatesRun();
     runUpdate(*back, 7);
     EXPECT_EQ(actor->getNumUpdatesRun(), updates) << "blocked: the update does nothing";
+}
+
+TEST_P(OsgFormats, TrajectoriesComeBackWithTheirPlayersAndKeepMoving)
+{
+    const std::string extension = GetParam();
+    osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("humanoid.actor"));
+    ASSERT_TRUE(actor.valid());
+    const TrajectoryBuildResult patrol =
+        TrajectoryBuilder::build("patrol", {TrajectoryKey{0.0, glm::dvec3(0.0), 0.0},
+                                            TrajectoryKey{2.0, glm::dvec3(4.0, 1.0 / 3.0, 0.0), 1.25}});
+    const TrajectoryBuildResult later = TrajectoryBuilder::build("later", {TrajectoryKey{0.0, glm::dvec3(1.0), 0.0}});
+    ASSERT_TRUE(patrol && later);
+    auto playing = std::make_shared<TrajectoryPlayer>(patrol.trajectory);
+    playing->setPlayMode(PlayMode::Loop);
+    playing->setSpeed(1.5);
+    actor->addController(playing);
+    auto waiting = std::make_shared<TrajectoryPlayer>(later.trajectory);
+    waiting->setPlayMode(PlayMode::PingPong);
+    waiting->pause();
+    actor->addController(waiting);
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    scene->addChild(actor.get());
+    const std::string path = outFile("trajectories." + extension);
+    ASSERT_TRUE(osgDB::writeNodeFile(*scene, path, fullPrecision().get())) << path;
+
+    osg::ref_ptr<osg::Node> back = osgDB::readRefNodeFile(path, fullPrecision().get());
+    ActorNode* backActor = actorOf(back.get());
+    ASSERT_NE(backActor, nullptr) << extension;
+    auto backPlaying = std::dynamic_pointer_cast<TrajectoryPlayer>(backActor->findController("patrol"));
+    auto backWaiting = std::dynamic_pointer_cast<TrajectoryPlayer>(backActor->findController("later"));
+    ASSERT_TRUE(backPlaying && backWaiting) << extension;
+    EXPECT_TRUE(backPlaying->isPlaying());
+    EXPECT_EQ(backPlaying->getPlayMode(), PlayMode::Loop);
+    EXPECT_EQ(backPlaying->getSpeed(), 1.5);
+    EXPECT_FALSE(backWaiting->isPlaying());
+    EXPECT_EQ(backWaiting->getPlayMode(), PlayMode::PingPong);
+    // The definition's text keeps 12 significant digits, as .actor files do (degrees for the heading).
+    const TrajectoryKey& key = backPlaying->getTrajectory()->getKeys().at(1);
+    EXPECT_NEAR(key.position.y, 1.0 / 3.0, 1e-12) << extension;
+    EXPECT_EQ(key.position.x, 4.0) << extension;
+    EXPECT_NEAR(key.heading, 1.25, 1e-11) << extension;
+
+    // The playing one goes on playing: its play head moves as the original's does (speed 1.5, half a second).
+    for (unsigned frame : {1u, 31u})
+    {
+        runUpdate(*scene, frame);
+        runUpdate(*back, frame);
+    }
+    EXPECT_NEAR(backPlaying->getPlayTime(), 0.75, 1e-12) << extension;
+    EXPECT_EQ(backPlaying->getPlayTime(), playing->getPlayTime()) << extension;
+    EXPECT_EQ(backWaiting->getPlayTime(), 0.0) << extension;
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryFormat, OsgFormats, ::testing::Values("osgt", "osgb", "osgx", "osg"),

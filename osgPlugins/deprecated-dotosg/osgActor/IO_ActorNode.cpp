@@ -71,6 +71,7 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
         if (read && actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
         {
             osgActor::applyClips(actor, read.document);
+            osgActor::applyTrajectories(actor, read.document);
             for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
         }
         else if (!read)

@@ -115,6 +115,7 @@ static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
         return false;
     }
     osgActor::applyClips(actor, read.document);
+    osgActor::applyTrajectories(actor, read.document);
     for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
     return true;
 }
