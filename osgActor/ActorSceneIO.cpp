@@ -34,16 +34,22 @@ osg::ref_ptr<osgDB::Options> optionsNextTo(const std::string& fileName, const os
 
 std::string where(const std::string& fileName, int line) { return fileName + ":" + std::to_string(line) + ": "; }
 
+/** Finds a file a .actor file names (next to it first: optionsNextTo), or sets error to prefix + "cannot find the
+  * <what> '<file>'" and returns empty. */
+std::string findNamedFile(const std::string& file, const char* what, const osgDB::Options* options,
+                          const std::string& prefix, std::string& error)
+{
+    const std::string path = osgDB::findDataFile(file, options);
+    if (path.empty()) error = prefix + "cannot find the " + what + " '" + file + "'";
+    return path;
+}
+
 /** Loads one model of the document; null and an error when it cannot. */
 osg::ref_ptr<osg::Node> loadModel(const GeometryDescription& model, const std::string& fileName,
                                   const osgDB::Options* options, std::string& error)
 {
-    const std::string path = osgDB::findDataFile(model.file, options);
-    if (path.empty())
-    {
-        error = where(fileName, model.line) + "cannot find the model file '" + model.file + "'";
-        return nullptr;
-    }
+    const std::string path = findNamedFile(model.file, "model file", options, where(fileName, model.line), error);
+    if (path.empty()) return nullptr;
     osg::ref_ptr<osg::Node> node = osgDB::readRefNodeFile(path, options);
     if (!node) error = where(fileName, model.line) + "cannot read the model file '" + path + "'";
     return node;
@@ -121,21 +127,14 @@ bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& acto
     {
         if (clip.file.empty() || clip.clip) continue;
         const std::string prefix = where(fileName, clip.line) + "clip '" + clip.name() + "': ";
-        const std::string path = osgDB::findDataFile(clip.file, options);
-        if (path.empty())
-        {
-            error = prefix + "cannot find the motion file '" + clip.file + "'";
-            return false;
-        }
+        const std::string path = findNamedFile(clip.file, "motion file", options, prefix, error);
+        if (path.empty()) return false;
         MotionFileOptions motionOptions = clip.fileOptions;
         if (!motionOptions.skeletonFile.empty())
         {
-            motionOptions.skeletonFile = osgDB::findDataFile(clip.fileOptions.skeletonFile, options);
-            if (motionOptions.skeletonFile.empty())
-            {
-                error = prefix + "cannot find the skeleton file '" + clip.fileOptions.skeletonFile + "'";
-                return false;
-            }
+            motionOptions.skeletonFile =
+                findNamedFile(clip.fileOptions.skeletonFile, "skeleton file", options, prefix, error);
+            if (motionOptions.skeletonFile.empty()) return false;
         }
         const MocapImport imported = readMotionFile(path, motionOptions);
         if (!imported)
@@ -169,12 +168,8 @@ bool readTrajectoryFiles(std::vector<TrajectoryDocument>& trajectories, const st
     {
         if (trajectory.file.empty() || trajectory.trajectory) continue;
         const std::string prefix = where(fileName, trajectory.line) + "trajectory '" + trajectory.name() + "': ";
-        const std::string path = osgDB::findDataFile(trajectory.file, options);
-        if (path.empty())
-        {
-            error = prefix + "cannot find the file '" + trajectory.file + "'";
-            return false;
-        }
+        const std::string path = findNamedFile(trajectory.file, "file", options, prefix, error);
+        if (path.empty()) return false;
         const TrajectoryBuildResult read = readTrajectoryCsvFile(path);
         if (!read)
         {

@@ -236,9 +236,7 @@ private:
             }
             else if (k == "play")
             {
-                ok = once(seen, c) && expectNoBlock(c) && expectArguments(c, 1);
-                if (ok && !parsePlayMode(c.arguments.front().text, trajectory.playMode))
-                    return fail(c.line, "'" + c.arguments.front().text + "' is not a play mode (once, loop, pingpong)");
+                ok = once(seen, c) && readPlayMode(c, trajectory.playMode);
                 trajectory.play = ok;
             }
             else if (k == "paused") ok = flag(seen, c, paused);
@@ -660,6 +658,14 @@ private:
         return true;
     }
 
+    /** "play once|loop|pingpong" of a clip or a trajectory. */
+    bool readPlayMode(const SyntaxStatement& s, PlayMode& mode)
+    {
+        if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
+        if (parsePlayMode(s.arguments.front().text, mode)) return true;
+        return fail(s.line, "'" + s.arguments.front().text + "' is not a play mode (once, loop, pingpong)");
+    }
+
     bool readUpAxis(const SyntaxStatement& s, UpAxis& axis)
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
@@ -683,9 +689,7 @@ private:
         {
             if (c.keyword == "play")
             {
-                if (!once(seen, c) || !expectNoBlock(c) || !expectArguments(c, 1)) return false;
-                if (!parsePlayMode(c.arguments.front().text, clip.playMode))
-                    return fail(c.line, "'" + c.arguments.front().text + "' is not a play mode (once, loop, pingpong)");
+                if (!once(seen, c) || !readPlayMode(c, clip.playMode)) return false;
                 clip.play = true;
                 continue;
             }
