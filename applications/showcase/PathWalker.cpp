@@ -18,6 +18,19 @@ PathWalker::PathWalker(const PathWalker& walker, const osg::CopyOp& copyop)
 {
 }
 
+std::shared_ptr<osgActor::TrajectoryPlayer> PathWalker::findKeptPathPlayer(const osgActor::ActorNode& actor) const
+{
+    // A file keeps the path's player under the trajectory's name, and the walk cycle not at all (it is made here,
+    // from the actor's joints, and in no clip library).
+    for (const osgActor::ControllerPtr& controller : actor.getControllers())
+    {
+        auto player = std::dynamic_pointer_cast<osgActor::TrajectoryPlayer>(controller);
+        if (player && player->getTrajectory() && player->getTrajectory()->getName() == _path->getName())
+            return player;
+    }
+    return nullptr;
+}
+
 bool PathWalker::rig(osgActor::ActorNode& actor) const
 {
     if (!_path || !actor.getDefinition())
@@ -26,10 +39,15 @@ bool PathWalker::rig(osgActor::ActorNode& actor) const
                  << ", nothing to drive" << std::endl;
         return false;
     }
-    auto path = std::make_shared<osgActor::TrajectoryPlayer>(_path);
-    path->setName(kPathControllerName);
-    path->setPlayMode(osgActor::PlayMode::Loop);
-    actor.addController(path);
+    if (std::shared_ptr<osgActor::TrajectoryPlayer> kept = findKeptPathPlayer(actor))
+        kept->setName(kPathControllerName);
+    else
+    {
+        auto path = std::make_shared<osgActor::TrajectoryPlayer>(_path);
+        path->setName(kPathControllerName);
+        path->setPlayMode(osgActor::PlayMode::Loop);
+        actor.addController(path);
+    }
 
     // An actor without legs still follows the path.
     const osgActor::ClipBuildResult walk = makeWalkCycleClip(*actor.getDefinition(), _cycleDuration);

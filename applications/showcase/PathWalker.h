@@ -32,11 +32,16 @@ public:
     static const char* const kWalkControllerName;
 
     const char* getRigControllerName() const override { return kPathControllerName; }
-    /** Adds the path's TrajectoryPlayer and, for an actor with the walk's joints, the walk cycle's ClipPlayer. */
+    /** Adds the path's TrajectoryPlayer and, for an actor with the walk's joints, the walk cycle's ClipPlayer. An
+      * actor written after it was rigged and read back already plays the path (findKeptPathPlayer()): that player
+      * is taken, named as the rig names it, so the actor does not walk two copies of it. */
     bool rig(osgActor::ActorNode& actor) const override;
 
 protected:
     ~PathWalker() override = default;
+
+    /** The actor's TrajectoryPlayer of a trajectory named as this rig's path (one a file kept), or null. */
+    std::shared_ptr<osgActor::TrajectoryPlayer> findKeptPathPlayer(const osgActor::ActorNode& actor) const;
 
     osgActor::TrajectoryPtr _path;
     double _cycleDuration;

@@ -282,6 +282,42 @@ TEST(PathWalker, GivesTheActorThePathAndTheWalkAsLibraryPlayers)
     EXPECT_EQ(humanoid->getControllers().size(), 2u) << "rigged once";
 }
 
+TEST(PathWalker, TakesThePathPlayerAnActorReadBackKeeps)
+{
+    // Rigged, written to .osgt and read back, the humanoid keeps the path's player (under the trajectory's name)
+    // but not the walk cycle, which the rig makes: rigged again, it must walk the kept path once, not twice.
+    osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
+    ASSERT_TRUE(humanoid.valid());
+    osg::ref_ptr<osg::Group> group = new osg::Group;
+    group->addChild(humanoid.get());
+    osg::ref_ptr<PathWalker> walker = new PathWalker;
+    walker->setPath(straightPath(1.1));
+    group->setUpdateCallback(walker.get());
+    for (unsigned frame = 0; frame <= 3; ++frame) runUpdate(*group, frame * 0.05, frame + 1);
+    ASSERT_EQ(humanoid->getControllers().size(), 2u);
+
+    osgDB::ReaderWriter* osgt = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
+    ASSERT_NE(osgt, nullptr);
+    osg::ref_ptr<osgDB::Options> ascii = new osgDB::Options;
+    ascii->setPluginStringData("fileType", "Ascii");
+    std::stringstream text;
+    ASSERT_TRUE(osgt->writeNode(*humanoid, text, ascii.get()).success());
+    osg::ref_ptr<ActorNode> back = dynamic_cast<ActorNode*>(osgt->readNode(text, ascii.get()).getNode());
+    ASSERT_TRUE(back.valid());
+    ASSERT_EQ(back->getControllers().size(), 1u) << "the path's player, kept; the walk cycle is the rig's";
+    const ControllerPtr kept = back->getControllers()[0];
+    EXPECT_EQ(kept->getName(), "straight");
+
+    osg::ref_ptr<osg::Group> reloaded = new osg::Group;
+    reloaded->addChild(back.get());
+    reloaded->setUpdateCallback(walker.get());
+    for (unsigned frame = 0; frame <= 11; ++frame) runUpdate(*reloaded, frame * 0.05, frame + 1);
+    ASSERT_EQ(back->getControllers().size(), 2u) << "the kept path and the walk cycle, no second path";
+    EXPECT_EQ(back->findController(PathWalker::kPathControllerName), kept);
+    EXPECT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(back->findController(PathWalker::kWalkControllerName)));
+    EXPECT_GT(back->getPreTranslation().x(), humanoid->getPreTranslation().x()) << "it walks on along the path";
+}
+
 TEST(ShowcaseScene, HasItsPartsAndRigsEvenWithoutADancer)
 {
     ShowcaseSources sources;
