@@ -18,12 +18,7 @@ namespace {
 MocapImport importFile(const std::string& path, const MocapActorOptions& options)
 {
     MotionFileOptions motion;
-    motion.scale = options.scale;
-    motion.fileUpAxis = options.fileUpAxis;
-    motion.dropFirstFrame = options.dropFirstFrame;
-    motion.absoluteRootPosition = options.absoluteRootPosition;
-    motion.applyAsfLimits = options.applyAsfLimits;
-    motion.amcFrameRate = options.amcFrameRate;
+    static_cast<MotionImportOptions&>(motion) = options;
     const std::string extension = lowerExtensionOf(path);
     if (extension == ".bvh") return readMotionFile(path, motion);
     MocapImport failed;
