@@ -59,6 +59,15 @@ TrajectoryPtr straightPath(double speed)
     return TrajectoryBuilder::build("straight", keys).trajectory;
 }
 
+/** A group holding the actor, with the rig as its update callback, as the showcase scene hangs its rigs. */
+osg::ref_ptr<osg::Group> groupWithRig(ActorNode* actor, ControllerRig* rig)
+{
+    osg::ref_ptr<osg::Group> group = new osg::Group;
+    group->addChild(actor);
+    group->setUpdateCallback(rig);
+    return group;
+}
+
 std::shared_ptr<TripodGaitController> findGait(const ActorNode& actor)
 {
     return std::dynamic_pointer_cast<TripodGaitController>(actor.findController(TripodGaitController::kControllerName));
@@ -195,11 +204,9 @@ TEST(TripodGait, RefusesAnActorWithoutLegChains)
 {
     osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
     ASSERT_TRUE(humanoid.valid());
-    osg::ref_ptr<osg::Group> group = new osg::Group;
-    group->addChild(humanoid.get());
     osg::ref_ptr<TripodGait> gait = new TripodGait;
     gait->setPath(straightPath(0.3));
-    group->setUpdateCallback(gait.get());
+    osg::ref_ptr<osg::Group> group = groupWithRig(humanoid.get(), gait.get());
     runUpdate(*group, 0.0, 1);
     runUpdate(*group, 0.1, 2);
     EXPECT_TRUE(humanoid->getControllers().empty()) << "no leg chains, no gait";
@@ -265,12 +272,10 @@ TEST(PathWalker, GivesTheActorThePathAndTheWalkAsLibraryPlayers)
 {
     osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
     ASSERT_TRUE(humanoid.valid());
-    osg::ref_ptr<osg::Group> group = new osg::Group;
-    group->addChild(humanoid.get());
     osg::ref_ptr<PathWalker> walker = new PathWalker;
     walker->setPath(straightPath(1.1));
     walker->setCycleDuration(1.1);
-    group->setUpdateCallback(walker.get());
+    osg::ref_ptr<osg::Group> group = groupWithRig(humanoid.get(), walker.get());
     for (unsigned frame = 0; frame <= 11; ++frame) runUpdate(*group, frame * 0.05, frame + 1);
     ASSERT_TRUE(std::dynamic_pointer_cast<TrajectoryPlayer>(humanoid->findController(PathWalker::kPathControllerName)));
     ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(humanoid->findController(PathWalker::kWalkControllerName)));
@@ -288,11 +293,9 @@ TEST(PathWalker, TakesThePathPlayerAnActorReadBackKeeps)
     // but not the walk cycle, which the rig makes: rigged again, it must walk the kept path once, not twice.
     osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
     ASSERT_TRUE(humanoid.valid());
-    osg::ref_ptr<osg::Group> group = new osg::Group;
-    group->addChild(humanoid.get());
     osg::ref_ptr<PathWalker> walker = new PathWalker;
     walker->setPath(straightPath(1.1));
-    group->setUpdateCallback(walker.get());
+    osg::ref_ptr<osg::Group> group = groupWithRig(humanoid.get(), walker.get());
     for (unsigned frame = 0; frame <= 3; ++frame) runUpdate(*group, frame * 0.05, frame + 1);
     ASSERT_EQ(humanoid->getControllers().size(), 2u);
 
@@ -308,9 +311,7 @@ TEST(PathWalker, TakesThePathPlayerAnActorReadBackKeeps)
     const ControllerPtr kept = back->getControllers()[0];
     EXPECT_EQ(kept->getName(), "straight");
 
-    osg::ref_ptr<osg::Group> reloaded = new osg::Group;
-    reloaded->addChild(back.get());
-    reloaded->setUpdateCallback(walker.get());
+    osg::ref_ptr<osg::Group> reloaded = groupWithRig(back.get(), walker.get());
     for (unsigned frame = 0; frame <= 11; ++frame) runUpdate(*reloaded, frame * 0.05, frame + 1);
     ASSERT_EQ(back->getControllers().size(), 2u) << "the kept path and the walk cycle, no second path";
     EXPECT_EQ(back->findController(PathWalker::kPathControllerName), kept);
