@@ -35,6 +35,18 @@ osgDB::ReaderWriter::ReadResult readThroughOsgDB(const std::string& file, const 
     return osgDB::Registry::instance()->readNode(file, options.get());
 }
 
+/** The actor a .actor file with a clip named "walk" gives through osgDB, with that clip; the test fails (and clip
+  * stays null) when the file does not read or lacks the clip. */
+void readActorWithWalkClip(const std::string& path, osg::ref_ptr<ActorNode>& actor, ClipPtr& clip)
+{
+    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
+    ASSERT_TRUE(read.validNode()) << read.message();
+    actor = dynamic_cast<ActorNode*>(read.getNode());
+    ASSERT_TRUE(actor.valid() && actor->getClipLibrary());
+    clip = actor->getClipLibrary()->getClip("walk");
+    ASSERT_TRUE(clip) << path << ": named as in the .actor file, not after the motion file";
+}
+
 osg::Vec3d zUp(const glm::dvec3& p) { return osg::Vec3d(p.x, -p.z, p.y); }
 
 /** Updates the actor from the frame stamp at frames 0 and 5 (60 Hz), and checks every joint against the reference
@@ -208,13 +220,10 @@ TEST(ActorFileClips, ABrokenClipSectionFailsTheRead)
 TEST(ActorFileClips, AClipReadFromABvhFileBesideTheActorFilePlaysTheFile)
 {
     const std::string path = writeActorWithClipFile("clip_file", "motion/12_03.bvh", [](ActorDocument&) {});
-    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
-    ASSERT_TRUE(read.validNode()) << read.message();
-    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(read.getNode());
-    ASSERT_TRUE(actor.valid());
-    ASSERT_TRUE(actor->getClipLibrary());
-    const ClipPtr clip = actor->getClipLibrary()->getClip("walk");
-    ASSERT_TRUE(clip) << "named as in the .actor file, not after the motion file";
+    osg::ref_ptr<ActorNode> actor;
+    ClipPtr clip;
+    readActorWithWalkClip(path, actor, clip);
+    ASSERT_TRUE(clip);
     const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
     EXPECT_EQ(clip->getNumFrames(), imported.clip->getNumFrames());
     ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("walk")));
@@ -280,11 +289,9 @@ TEST(ActorFileClips, AnAmcClipReadAgainstItsAsfSkeletonAtAScalePlaysTheCapture)
     const std::string path =
         writeActorBesideMotionFiles("clip_file_amc", document, {"asfamc/11.asf", "asfamc/11_01.amc"});
 
-    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
-    ASSERT_TRUE(read.validNode()) << read.message();
-    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(read.getNode());
-    ASSERT_TRUE(actor.valid() && actor->getClipLibrary());
-    const ClipPtr clip = actor->getClipLibrary()->getClip("walk");
+    osg::ref_ptr<ActorNode> actor;
+    ClipPtr clip;
+    readActorWithWalkClip(path, actor, clip);
     ASSERT_TRUE(clip);
     EXPECT_EQ(clip->getFrameRate(), 120.0);
 
@@ -324,11 +331,9 @@ TEST(ActorFileClips, ABvhClipFileTakesItsScaleAndDropsItsFirstFrameWhenTold)
     document.clips.push_back(walkFromFile("motion/12_03.bvh", options));
     const std::string path = writeActorBesideMotionFiles("clip_file_scaled", document, {"bvh/12_03.bvh"});
 
-    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(path);
-    ASSERT_TRUE(read.validNode()) << read.message();
-    osg::ref_ptr<ActorNode> actor = dynamic_cast<ActorNode*>(read.getNode());
-    ASSERT_TRUE(actor.valid() && actor->getClipLibrary());
-    const ClipPtr clip = actor->getClipLibrary()->getClip("walk");
+    osg::ref_ptr<ActorNode> actor;
+    ClipPtr clip;
+    readActorWithWalkClip(path, actor, clip);
     ASSERT_TRUE(clip);
     ASSERT_EQ(clip->getNumFrames(), imported.clip->getNumFrames() - 1);
 
