@@ -316,7 +316,8 @@ private:
             {
                 IkWeightSpec weight;
                 ok = expectNoBlock(c) && expectArguments(c, 2) && number(c.arguments[1], weight.weight);
-                if (ok && weight.weight < 0.0) return fail(c.line, "'" + k + "' must not be negative");
+                if (!ok) return false; // before reading the name: the statement may have no arguments at all
+                if (weight.weight < 0.0) return fail(c.line, "'" + k + "' must not be negative");
                 weight.name = c.arguments.front().text;
                 (k == "joint_weight" ? chain.spec.jointWeights : chain.spec.dofWeights).push_back(weight);
             }

@@ -80,6 +80,11 @@ TEST(IkChainFormat, RefusesBadSectionsWithFileAndLine)
               "t.actor:15: 'joint_weight' must not be negative");
     EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle; dof_weight knee.rx }\n"),
               "t.actor:15: 'dof_weight' takes 2 values, not 1");
+    // Found by the fuzzer: a weight without any argument read its name from an empty list.
+    EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle; dof_weight }\n"),
+              "t.actor:15: 'dof_weight' takes 2 values, not 0");
+    EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle; joint_weight }\n"),
+              "t.actor:15: 'joint_weight' takes 2 values, not 0");
     EXPECT_EQ(chainError("    ikchain leg { root hip; root knee; effector ankle }\n"),
               "t.actor:15: 'root' is given twice");
     EXPECT_EQ(chainError("    ikchain leg { root hip; effector ankle }\n    ikchain leg { root knee; effector toe }\n"),
