@@ -207,6 +207,7 @@ void applyClips(ActorNode& actor, const ActorDocument& document)
         }
         library->addClip(clip.clip);
         if (!clip.play) continue;
+        // The "play" shorthand: a player named after the clip, everything else as a new player has it.
         auto player = std::make_shared<ClipPlayer>(clip.clip);
         player->setName(clip.clip->getName());
         player->setPlayMode(clip.playMode);
@@ -214,6 +215,24 @@ void applyClips(ActorNode& actor, const ActorDocument& document)
         actor.addController(player);
     }
     actor.setClipLibrary(library);
+}
+
+/** The document's players, after the clips' shorthand ones: each finds its clip in the actor's library. */
+void applyPlayers(ActorNode& actor, const ActorDocument& document)
+{
+    const ClipLibrary* library = actor.getClipLibrary().get();
+    for (const PlayerDocument& player : document.players)
+    {
+        ClipPtr clip = library ? library->getClip(player.clip) : ClipPtr();
+        if (!clip)
+        {
+            // Only a clip whose file was not read (applyClips() said so) is missing here; the reader checked names.
+            OSG_WARN << "osgActor: player '" << player.name << "' plays clip '" << player.clip
+                     << "', which the actor lacks; the player is left out" << std::endl;
+            continue;
+        }
+        actor.addController(makeClipPlayer(player, std::move(clip), *actor.getDefinition()));
+    }
 }
 
 void addClips(const ActorNode& actor, ActorDocument& document)
@@ -224,15 +243,31 @@ void addClips(const ActorNode& actor, ActorDocument& document)
     {
         ClipDocument clip;
         clip.clip = library->getClip(name);
-        // A clip some player is playing is written with "play", so the file plays it again when loaded.
-        for (const ControllerPtr& controller : actor.getControllers())
-        {
-            const ClipPlayer* player = dynamic_cast<const ClipPlayer*>(controller.get());
-            if (!player || player->getClip() != clip.clip || !player->isPlaying()) continue;
-            clip.play = true;
-            clip.playMode = player->getPlayMode();
-        }
         document.clips.push_back(clip);
+    }
+}
+
+/** The actor's clip players, in the order it runs them (addClips() first). A player's clip that is not in the
+  * actor's library is written with the clips, so that nothing the player needs is lost. */
+void addPlayers(const ActorNode& actor, ActorDocument& document)
+{
+    for (const ControllerPtr& controller : actor.getControllers())
+    {
+        const ClipPlayer* player = dynamic_cast<const ClipPlayer*>(controller.get());
+        if (!player || !player->getClip()) continue;
+        const ClipPtr& clip = player->getClip();
+        const auto named = std::find_if(document.clips.begin(), document.clips.end(),
+                                        [&](const ClipDocument& c) { return c.name() == clip->getName(); });
+        if (named == document.clips.end()) document.clips.push_back(ClipDocument{clip});
+        else if (named->clip != clip)
+        {
+            // A file names each clip once; the player's would be read back as the other.
+            OSG_WARN << "osgActor: writing actor '" << document.name << "': player '" << player->getName()
+                     << "' plays another clip named like clip '" << clip->getName() << "'; the player is left out"
+                     << std::endl;
+            continue;
+        }
+        document.players.push_back(describeClipPlayer(*player, *actor.getDefinition()));
     }
 }
 
@@ -292,8 +327,17 @@ ActorDocument makeDefinitionDocument(const ActorNode& actor)
     ActorDocument document = makeDocument(*actor.getDefinition());
     addClips(actor, document);
     addTrajectories(actor, document);
+    addPlayers(actor, document);
     addIkChains(actor, document);
     return document;
+}
+
+void applyDefinitionDocument(ActorNode& actor, const ActorDocument& document, const std::vector<IkChainPtr>& ikChains)
+{
+    applyClips(actor, document);
+    applyTrajectories(actor, document);
+    applyPlayers(actor, document);
+    for (const IkChainPtr& chain : ikChains) actor.addIkChain(chain);
 }
 
 ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefinitionPtr& definition,
@@ -330,6 +374,7 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
     if (!readTrajectoryFiles(withFilesRead.trajectories, fileName, local.get(), result.error)) return result;
     applyClips(*actor, withFilesRead);
     applyTrajectories(*actor, withFilesRead);
+    applyPlayers(*actor, withFilesRead);
     std::vector<IkChainPtr> chains;
     if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
     for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
@@ -386,6 +431,7 @@ ActorDocument extractActorDocument(const ActorNode& actor)
 
     addClips(actor, document);
     addTrajectories(actor, document);
+    addPlayers(actor, document);
     addIkChains(actor, document);
 
     std::string sections;

@@ -74,7 +74,8 @@ set(OSGACTOR_IO_SOURCES
     io/ActorNumbers.cpp
     io/ActorReader.cpp
     io/ActorSyntax.cpp
-    io/ActorWriter.cpp)
+    io/ActorWriter.cpp
+    io/PlayerDocument.cpp)
 
 # Motion-capture parsers: plain C++ on std::istream, GLM only like the core (built into the same object library).
 set(OSGACTOR_MOCAP_HEADERS

@@ -20,8 +20,7 @@ PathWalker::PathWalker(const PathWalker& walker, const osg::CopyOp& copyop)
 
 std::shared_ptr<osgActor::TrajectoryPlayer> PathWalker::findKeptPathPlayer(const osgActor::ActorNode& actor) const
 {
-    // A file keeps the path's player under the trajectory's name, and the walk cycle not at all (it is made here,
-    // from the actor's joints, and in no clip library).
+    // A file keeps the path's player under the trajectory's name (a trajectory's player is named after it).
     for (const osgActor::ControllerPtr& controller : actor.getControllers())
     {
         auto player = std::dynamic_pointer_cast<osgActor::TrajectoryPlayer>(controller);
@@ -49,6 +48,8 @@ bool PathWalker::rig(osgActor::ActorNode& actor) const
         actor.addController(path);
     }
 
+    // A file keeps clip players with their names and state.
+    if (std::dynamic_pointer_cast<osgActor::ClipPlayer>(actor.findController(kWalkControllerName))) return true;
     // An actor without legs still follows the path.
     const osgActor::ClipBuildResult walk = makeWalkCycleClip(*actor.getDefinition(), _cycleDuration);
     if (!walk)

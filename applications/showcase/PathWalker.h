@@ -33,8 +33,9 @@ public:
 
     const char* getRigControllerName() const override { return kPathControllerName; }
     /** Adds the path's TrajectoryPlayer and, for an actor with the walk's joints, the walk cycle's ClipPlayer. An
-      * actor written after it was rigged and read back already plays the path (findKeptPathPlayer()): that player
-      * is taken, named as the rig names it, so the actor does not walk two copies of it. */
+      * actor written after it was rigged and read back already plays the path (findKeptPathPlayer(): that player
+      * is taken, named as the rig names it) and the walk cycle (a ClipPlayer under the walk's name, kept as it
+      * is), so the actor does not play two copies of either. */
     bool rig(osgActor::ActorNode& actor) const override;
 
 protected:

@@ -30,22 +30,31 @@ glm::dquat headingRotation(double heading) { return glm::angleAxis(heading, kUp)
 
 namespace {
 
-const char* const kPlayModeNames[] = {"once", "loop", "pingpong"}; // in PlayMode's order
+const char* const kPlayModeNames[] = {"once", "loop", "pingpong"};                    // in PlayMode's order
+const char* const kRootMotionNames[] = {"in_skeleton", "to_transforms", "in_place"}; // in RootMotion's order
+
+/** Finds text among three names of an enum's values, in the enum's order. */
+template <class Enum>
+bool parseEnumName(const char* const (&names)[3], const std::string& text, Enum& value)
+{
+    for (unsigned i = 0; i < 3; ++i)
+        if (text == names[i])
+        {
+            value = static_cast<Enum>(i);
+            return true;
+        }
+    return false;
+}
 
 } // namespace
 
 const char* playModeName(PlayMode mode) { return kPlayModeNames[static_cast<unsigned>(mode)]; }
 
-bool parsePlayMode(const std::string& text, PlayMode& mode)
-{
-    for (unsigned i = 0; i < 3; ++i)
-        if (text == kPlayModeNames[i])
-        {
-            mode = static_cast<PlayMode>(i);
-            return true;
-        }
-    return false;
-}
+bool parsePlayMode(const std::string& text, PlayMode& mode) { return parseEnumName(kPlayModeNames, text, mode); }
+
+const char* rootMotionName(RootMotion mode) { return kRootMotionNames[static_cast<unsigned>(mode)]; }
+
+bool parseRootMotion(const std::string& text, RootMotion& mode) { return parseEnumName(kRootMotionNames, text, mode); }
 
 ClipPlayer::ClipPlayer(ClipPtr clip) : _clip(std::move(clip)) {}
 

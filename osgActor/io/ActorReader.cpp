@@ -5,6 +5,7 @@
 
 #include <glm/ext/scalar_constants.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -54,6 +55,18 @@ public:
             if (!names.insert(clip.name()).second)
                 return fail(statement->line, "clip '" + clip.name() + "' is given twice");
             document.clips.push_back(clip);
+        }
+        return true;
+    }
+
+    /** The players of the actor block, after readClips(). */
+    bool readPlayers(const ActorDefinition& definition, ActorDocument& document)
+    {
+        for (const SyntaxStatement* statement : _playerStatements)
+        {
+            PlayerDocument player;
+            if (!readPlayer(*statement, definition, document, player)) return false;
+            document.players.push_back(std::move(player));
         }
         return true;
     }
@@ -193,6 +206,12 @@ private:
                 // Read once the definition is built: channels are checked against its DOFs.
                 if (!s.hasBlock) return fail(s.line, "'clip' needs a block in braces");
                 _clipStatements.push_back(&s);
+            }
+            else if (k == "player")
+            {
+                // Read after the clips: a player names its clip, and its DOF selection names DOFs.
+                if (!s.hasBlock) return fail(s.line, "'player' needs a block in braces");
+                _playerStatements.push_back(&s);
             }
             else if (k == "trajectory") ok = readTrajectory(s, document);
             else if (k == "ikchain") ok = readIkChain(s, document);
@@ -659,6 +678,97 @@ private:
         return true;
     }
 
+    /** "player name { clip c [play mode] [paused] [time t] [speed s] [weight w] [fade w] [disabled]
+      * [root_motion mode [joint]] [sway_window s] [dof name weight ...] }" */
+    bool readPlayer(const SyntaxStatement& s, const ActorDefinition& definition, const ActorDocument& document,
+                    PlayerDocument& player)
+    {
+        if (!expectArguments(s, 1)) return false;
+        player.name = s.arguments.front().text;
+        player.line = s.line;
+        bool paused = false;
+        std::set<std::string> seen;
+        for (const SyntaxStatement& c : s.children)
+        {
+            const std::string& k = c.keyword;
+            bool ok = true;
+            if (k == "clip") ok = once(seen, c) && expectNoBlock(c) && name(c, player.clip);
+            else if (k == "play")
+            {
+                ok = once(seen, c) && readPlayMode(c, player.playMode);
+                player.playing = ok;
+            }
+            else if (k == "paused") ok = flag(seen, c, paused);
+            else if (k == "time") ok = once(seen, c) && numbers(c, 1, &player.time);
+            else if (k == "speed") ok = once(seen, c) && numbers(c, 1, &player.speed);
+            else if (k == "weight") ok = once(seen, c) && unitWeight(c, player.weight);
+            else if (k == "fade") ok = once(seen, c) && unitWeight(c, player.fade);
+            else if (k == "disabled")
+            {
+                bool disabled = false;
+                ok = flag(seen, c, disabled);
+                player.enabled = !disabled;
+            }
+            else if (k == "root_motion") ok = once(seen, c) && readRootMotion(c, definition, player);
+            else if (k == "sway_window")
+            {
+                ok = once(seen, c) && numbers(c, 1, &player.swayWindow);
+                if (ok && player.swayWindow < 0.0) return fail(c.line, "'sway_window' must not be negative");
+            }
+            else if (k == "dof") ok = readDofWeight(c, definition, player);
+            else return unknownKeyword(c, "in a player");
+            if (!ok) return false;
+        }
+        player.playing = player.playing && !paused;
+        if (player.clip.empty()) return fail(s.line, "player '" + player.name + "' needs the 'clip' it plays");
+        const bool clipKnown = std::any_of(document.clips.begin(), document.clips.end(),
+                                           [&](const ClipDocument& clip) { return clip.name() == player.clip; });
+        if (!clipKnown)
+            return fail(s.line, "player '" + player.name + "' plays clip '" + player.clip +
+                                    "', which the actor does not have");
+        return true;
+    }
+
+    /** A weight in [0, 1] ("weight", "fade", a DOF's). */
+    bool unitWeight(const SyntaxStatement& s, double& value)
+    {
+        if (!numbers(s, 1, &value)) return false;
+        if (value >= 0.0 && value <= 1.0) return true;
+        return fail(s.line, "'" + s.keyword + "' must be from 0 to 1");
+    }
+
+    /** "root_motion in_skeleton|to_transforms|in_place [joint]" */
+    bool readRootMotion(const SyntaxStatement& s, const ActorDefinition& definition, PlayerDocument& player)
+    {
+        if (!expectNoBlock(s)) return false;
+        if (s.arguments.empty() || s.arguments.size() > 2) return expectArguments(s, 1);
+        if (!parseRootMotion(s.arguments.front().text, player.rootMotion))
+            return fail(s.line, "'" + s.arguments.front().text +
+                                    "' is not a root motion (in_skeleton, to_transforms, in_place)");
+        if (s.arguments.size() == 2)
+        {
+            player.rootJoint = s.arguments[1].text;
+            if (definition.findJoint(player.rootJoint) < 0)
+                return fail(s.line, "'" + player.rootJoint + "' is not a joint of the actor");
+        }
+        return true;
+    }
+
+    /** "dof name weight": one DOF of the player's selection. */
+    bool readDofWeight(const SyntaxStatement& s, const ActorDefinition& definition, PlayerDocument& player)
+    {
+        if (!expectNoBlock(s) || !expectArguments(s, 2)) return false;
+        const std::string& dofName = s.arguments.front().text;
+        if (definition.findDof(dofName) < 0) return fail(s.line, "'" + dofName + "' names no DOF of the actor");
+        for (const auto& given : player.dofWeights)
+            if (given.first == dofName) return fail(s.line, "DOF '" + dofName + "' is given twice");
+        double weight = 0.0;
+        if (!number(s.arguments[1], weight)) return false;
+        if (!(weight >= 0.0 && weight <= 1.0)) return fail(s.line, "a DOF's weight must be from 0 to 1");
+        player.dofWeights.emplace_back(dofName, weight);
+        return true;
+    }
+
     /** "play once|loop|pingpong" of a clip or a trajectory. */
     bool readPlayMode(const SyntaxStatement& s, PlayMode& mode)
     {
@@ -736,6 +846,7 @@ private:
     const std::string& _fileName;
     std::string _error;
     std::vector<const SyntaxStatement*> _clipStatements; // point into the caller's statements
+    std::vector<const SyntaxStatement*> _playerStatements; // likewise
 };
 
 } // namespace
@@ -759,6 +870,11 @@ ActorReadResult readActor(std::istream& in, const std::string& fileName)
         return result;
     }
     if (!reader.readClips(*built.definition, document))
+    {
+        result.error = reader.error();
+        return result;
+    }
+    if (!reader.readPlayers(*built.definition, document))
     {
         result.error = reader.error();
         return result;

@@ -290,6 +290,37 @@ SyntaxStatement trajectoryStatement(const TrajectoryDocument& document)
     return s;
 }
 
+/** A clip player: its clip, then only the state that differs from a new ClipPlayer's ("play" for a player that
+  * plays or has another mode than loop, "paused" for one that waits), its DOF selection last. */
+SyntaxStatement playerStatement(const PlayerDocument& document)
+{
+    const PlayerDocument defaults;
+    SyntaxStatement s = statement("player", {nameArgument(document.name)});
+    s.hasBlock = true;
+    s.children.push_back(statement("clip", {nameArgument(document.clip)}));
+    if (document.playing || document.playMode != defaults.playMode)
+        s.children.push_back(statement("play", {word(playModeName(document.playMode))}));
+    if (!document.playing) s.children.push_back(statement("paused"));
+    auto number = [&](const char* keyword, double value, double defaultValue) {
+        if (value != defaultValue) s.children.push_back(statement(keyword, {numberArgument(value)}));
+    };
+    number("time", document.time, defaults.time);
+    number("speed", document.speed, defaults.speed);
+    number("weight", document.weight, defaults.weight);
+    number("fade", document.fade, defaults.fade);
+    if (!document.enabled) s.children.push_back(statement("disabled"));
+    if (document.rootMotion != defaults.rootMotion || !document.rootJoint.empty())
+    {
+        SyntaxStatement rootMotion = statement("root_motion", {word(rootMotionName(document.rootMotion))});
+        if (!document.rootJoint.empty()) rootMotion.arguments.push_back(nameArgument(document.rootJoint));
+        s.children.push_back(rootMotion);
+    }
+    number("sway_window", document.swayWindow, defaults.swayWindow);
+    for (const auto& dofWeight : document.dofWeights)
+        s.children.push_back(statement("dof", {nameArgument(dofWeight.first), numberArgument(dofWeight.second)}));
+    return s;
+}
+
 std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
 {
     std::vector<SyntaxStatement> file;
@@ -306,6 +337,7 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     for (const TrajectoryDocument& trajectory : document.trajectories)
         if (trajectory.trajectory || !trajectory.file.empty())
             actor.children.push_back(trajectoryStatement(trajectory));
+    for (const PlayerDocument& player : document.players) actor.children.push_back(playerStatement(player));
     for (const IkChainDocument& chain : document.ikChains) actor.children.push_back(ikChainStatement(chain.spec));
     for (const SyntaxStatement& section : document.sections) actor.children.push_back(section);
     file.push_back(std::move(actor));

@@ -232,7 +232,9 @@ TEST(ActorFileClips, AClipReadFromABvhFileBesideTheActorFilePlaysTheFile)
     // The actor holds the motion, not where it came from: written out, the clip is frames.
     std::ostringstream written;
     writeActor(written, extractActorDocument(*actor));
-    EXPECT_NE(written.str().find("clip walk {\n        play loop\n        frame_rate 120"), std::string::npos);
+    EXPECT_NE(written.str().find("clip walk {\n        frame_rate 120"), std::string::npos);
+    EXPECT_NE(written.str().find("player walk {\n        clip walk\n        play loop\n"), std::string::npos)
+        << "the player the clip's play statement made";
     EXPECT_EQ(written.str().find("file \""), std::string::npos);
 }
 

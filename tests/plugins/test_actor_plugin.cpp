@@ -261,7 +261,7 @@ actor waver {
               std::string::npos);
 }
 
-TEST(ActorPlugin, APlayStatementStartsTheClipAndIsWrittenBack)
+TEST(ActorPlugin, APlayStatementStartsTheClipAndItsPlayerIsWrittenBack)
 {
     const std::string text = R"(osgactor 1
 actor waver {
@@ -288,10 +288,13 @@ actor waver {
     runUpdate(*actor, 1);
     runUpdate(*actor, 91);
     EXPECT_NEAR(actor->getDof(0u), osg::PI_4, 1e-9);
-    // Written back with its play statement, and stable from then on.
+    // Written back as the player it made, play head included, and stable from then on.
     ASSERT_TRUE(osgDB::writeNodeFile(*actor, outFile("playing_once.actor")));
     const std::string written = readTextFile(outFile("playing_once.actor"));
-    EXPECT_NE(written.find("    clip wave {\n        play pingpong\n"), std::string::npos) << written;
+    EXPECT_NE(written.find("    player wave {\n        clip wave\n        play pingpong\n        time 1.5\n    }\n"),
+              std::string::npos)
+        << written;
+    EXPECT_EQ(written.find("        play pingpong\n        channel"), std::string::npos) << "no second player";
     osg::ref_ptr<ActorNode> back = readActorFile(outFile("playing_once.actor"));
     ASSERT_TRUE(back.valid());
     ASSERT_TRUE(osgDB::writeNodeFile(*back, outFile("playing_twice.actor")));

@@ -290,7 +290,7 @@ TEST(PathWalker, GivesTheActorThePathAndTheWalkAsLibraryPlayers)
 TEST(PathWalker, TakesThePathPlayerAnActorReadBackKeeps)
 {
     // Rigged, written to .osgt and read back, the humanoid keeps the path's player (under the trajectory's name)
-    // but not the walk cycle, which the rig makes: rigged again, it must walk the kept path once, not twice.
+    // and the walk cycle (under its own): rigged again, it must walk the kept path and cycle once, not twice.
     osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
     ASSERT_TRUE(humanoid.valid());
     osg::ref_ptr<PathWalker> walker = new PathWalker;
@@ -307,15 +307,17 @@ TEST(PathWalker, TakesThePathPlayerAnActorReadBackKeeps)
     ASSERT_TRUE(osgt->writeNode(*humanoid, text, ascii.get()).success());
     osg::ref_ptr<ActorNode> back = dynamic_cast<ActorNode*>(osgt->readNode(text, ascii.get()).getNode());
     ASSERT_TRUE(back.valid());
-    ASSERT_EQ(back->getControllers().size(), 1u) << "the path's player, kept; the walk cycle is the rig's";
+    ASSERT_EQ(back->getControllers().size(), 2u) << "the path's player and the walk cycle, kept";
     const ControllerPtr kept = back->getControllers()[0];
     EXPECT_EQ(kept->getName(), "straight");
+    const ControllerPtr keptCycle = back->findController(PathWalker::kWalkControllerName);
+    EXPECT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(keptCycle));
 
     osg::ref_ptr<osg::Group> reloaded = groupWithRig(back.get(), walker.get());
     for (unsigned frame = 0; frame <= 11; ++frame) runUpdate(*reloaded, frame * 0.05, frame + 1);
-    ASSERT_EQ(back->getControllers().size(), 2u) << "the kept path and the walk cycle, no second path";
+    ASSERT_EQ(back->getControllers().size(), 2u) << "the kept path and walk cycle, no second of either";
     EXPECT_EQ(back->findController(PathWalker::kPathControllerName), kept);
-    EXPECT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(back->findController(PathWalker::kWalkControllerName)));
+    EXPECT_EQ(back->findController(PathWalker::kWalkControllerName), keptCycle);
     EXPECT_GT(back->getPreTranslation().x(), humanoid->getPreTranslation().x()) << "it walks on along the path";
 }
 

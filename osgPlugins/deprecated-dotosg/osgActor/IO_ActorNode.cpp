@@ -70,9 +70,7 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
         const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
         if (read && actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
         {
-            osgActor::applyClips(actor, read.document);
-            osgActor::applyTrajectories(actor, read.document);
-            for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
+            osgActor::applyDefinitionDocument(actor, read.document, read.ikChains);
         }
         else if (!read)
             OSG_WARN << "osgActor: " << read.error << std::endl;

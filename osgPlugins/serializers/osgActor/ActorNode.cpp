@@ -114,9 +114,7 @@ static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
                           "' do not match its definition");
         return false;
     }
-    osgActor::applyClips(actor, read.document);
-    osgActor::applyTrajectories(actor, read.document);
-    for (const osgActor::IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
+    osgActor::applyDefinitionDocument(actor, read.document, read.ikChains);
     return true;
 }
 
