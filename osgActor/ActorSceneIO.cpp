@@ -190,6 +190,26 @@ std::string sectionsText(const std::vector<SyntaxStatement>& sections)
     return text.str();
 }
 
+/** Puts a trajectory a player plays into the document (keys only: its players are "player" sections), once; false,
+  * with a warning, when another trajectory of the same name is there already, which the file would confuse with it. */
+bool takeTrajectory(const TrajectoryPtr& trajectory, const std::string& playerName, ActorDocument& document)
+{
+    const auto named = std::find_if(document.trajectories.begin(), document.trajectories.end(),
+                                    [&](const TrajectoryDocument& t) { return t.name() == trajectory->getName(); });
+    if (named == document.trajectories.end())
+    {
+        TrajectoryDocument kept;
+        kept.trajectory = trajectory;
+        document.trajectories.push_back(std::move(kept));
+        return true;
+    }
+    if (named->trajectory == trajectory) return true;
+    OSG_WARN << "osgActor: writing actor '" << document.name << "': player '" << playerName
+             << "' plays another trajectory named like trajectory '" << trajectory->getName()
+             << "'; the player is left out" << std::endl;
+    return false;
+}
+
 } // namespace
 
 void applyClips(ActorNode& actor, const ActorDocument& document)
@@ -217,12 +237,23 @@ void applyClips(ActorNode& actor, const ActorDocument& document)
     actor.setClipLibrary(library);
 }
 
-/** The document's players, after the clips' shorthand ones: each finds its clip in the actor's library. */
 void applyPlayers(ActorNode& actor, const ActorDocument& document)
 {
     const ClipLibrary* library = actor.getClipLibrary().get();
     for (const PlayerDocument& player : document.players)
     {
+        if (player.playsTrajectory())
+        {
+            const auto found = std::find_if(document.trajectories.begin(), document.trajectories.end(),
+                                            [&](const TrajectoryDocument& t) { return t.name() == player.trajectory; });
+            // Only a trajectory whose file was not read (applyTrajectories() said so) lacks its keys here.
+            if (found != document.trajectories.end() && found->trajectory)
+                actor.addController(makeTrajectoryPlayer(player, found->trajectory));
+            else
+                OSG_WARN << "osgActor: player '" << player.name << "' plays trajectory '" << player.trajectory
+                         << "', which the actor lacks; the player is left out" << std::endl;
+            continue;
+        }
         ClipPtr clip = library ? library->getClip(player.clip) : ClipPtr();
         if (!clip)
         {
@@ -247,13 +278,17 @@ void addClips(const ActorNode& actor, ActorDocument& document)
     }
 }
 
-/** The actor's clip players, in the order it runs them (addClips() first). A player's clip that is not in the
-  * actor's library is written with the clips, so that nothing the player needs is lost. */
 void addPlayers(const ActorNode& actor, ActorDocument& document)
 {
     for (const ControllerPtr& controller : actor.getControllers())
     {
-        const ClipPlayer* player = dynamic_cast<const ClipPlayer*>(controller.get());
+        if (const auto* player = dynamic_cast<const TrajectoryPlayer*>(controller.get()))
+        {
+            if (player->getTrajectory() && takeTrajectory(player->getTrajectory(), player->getName(), document))
+                document.players.push_back(describeTrajectoryPlayer(*player));
+            continue;
+        }
+        const auto* player = dynamic_cast<const ClipPlayer*>(controller.get());
         if (!player || !player->getClip()) continue;
         const ClipPtr& clip = player->getClip();
         const auto named = std::find_if(document.clips.begin(), document.clips.end(),
@@ -282,6 +317,10 @@ void applyTrajectories(ActorNode& actor, const ActorDocument& document)
                      << "') was not read, so the actor lacks it" << std::endl;
             continue;
         }
+        // A trajectory that a player section plays has that player (applyPlayers()) and none of its own.
+        if (std::any_of(document.players.begin(), document.players.end(),
+                        [&](const PlayerDocument& player) { return player.trajectory == trajectory.name(); }))
+            continue;
         auto player = std::make_shared<TrajectoryPlayer>(trajectory.trajectory);
         player->setName(trajectory.trajectory->getName());
         player->setPlayMode(trajectory.playMode);
@@ -296,22 +335,7 @@ void addTrajectories(const ActorNode& actor, ActorDocument& document)
     for (const ControllerPtr& controller : actor.getControllers())
     {
         const TrajectoryPlayer* player = dynamic_cast<const TrajectoryPlayer*>(controller.get());
-        if (!player || !player->getTrajectory()) continue;
-        TrajectoryDocument trajectory;
-        trajectory.trajectory = player->getTrajectory();
-        trajectory.play = player->isPlaying();
-        trajectory.playMode = player->getPlayMode();
-        trajectory.speed = player->getSpeed();
-        const bool taken = std::any_of(document.trajectories.begin(), document.trajectories.end(),
-                                       [&](const TrajectoryDocument& t) { return t.name() == trajectory.name(); });
-        if (taken)
-        {
-            // A file names each trajectory once; a second player of the same path would be read back as an error.
-            OSG_WARN << "osgActor: writing actor '" << document.name << "': a second player of trajectory '"
-                     << trajectory.name() << "' is left out" << std::endl;
-            continue;
-        }
-        document.trajectories.push_back(std::move(trajectory));
+        if (player && player->getTrajectory()) takeTrajectory(player->getTrajectory(), player->getName(), document);
     }
 }
 

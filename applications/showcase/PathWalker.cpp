@@ -20,7 +20,7 @@ PathWalker::PathWalker(const PathWalker& walker, const osg::CopyOp& copyop)
 
 std::shared_ptr<osgActor::TrajectoryPlayer> PathWalker::findKeptPathPlayer(const osgActor::ActorNode& actor) const
 {
-    // A file keeps the path's player under the trajectory's name (a trajectory's player is named after it).
+    // A file written before players kept their names has the path's player under the trajectory's name.
     for (const osgActor::ControllerPtr& controller : actor.getControllers())
     {
         auto player = std::dynamic_pointer_cast<osgActor::TrajectoryPlayer>(controller);

@@ -33,9 +33,10 @@ public:
 
     const char* getRigControllerName() const override { return kPathControllerName; }
     /** Adds the path's TrajectoryPlayer and, for an actor with the walk's joints, the walk cycle's ClipPlayer. An
-      * actor written after it was rigged and read back already plays the path (findKeptPathPlayer(): that player
-      * is taken, named as the rig names it) and the walk cycle (a ClipPlayer under the walk's name, kept as it
-      * is), so the actor does not play two copies of either. */
+      * actor read from a file may play them already: a walk cycle under the walk's name is kept as it is, and a
+      * path player a file's trajectory shorthand made (named after the trajectory, findKeptPathPlayer()) is taken
+      * and named as the rig names it, so the actor does not play two copies of either. (An actor written after it
+      * was rigged comes back with both players under the rig's names, so it counts as rigged.) */
     bool rig(osgActor::ActorNode& actor) const override;
 
 protected:

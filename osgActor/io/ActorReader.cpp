@@ -678,8 +678,9 @@ private:
         return true;
     }
 
-    /** "player name { clip c [play mode] [paused] [time t] [speed s] [weight w] [fade w] [disabled]
-      * [root_motion mode [joint]] [sway_window s] [dof name weight ...] }" */
+    /** "player name { clip c | trajectory t [play mode] [paused] [time t] [speed s] [weight w] [disabled]
+      * [fade w] [root_motion mode [joint]] [sway_window s] [dof name weight ...] }": the last four for a clip's
+      * player only. */
     bool readPlayer(const SyntaxStatement& s, const ActorDefinition& definition, const ActorDocument& document,
                     PlayerDocument& player)
     {
@@ -688,18 +689,27 @@ private:
         player.line = s.line;
         bool paused = false;
         std::set<std::string> seen;
+        const SyntaxStatement* clipOnly = nullptr; // the first statement only a clip's player takes
         for (const SyntaxStatement& c : s.children)
         {
             const std::string& k = c.keyword;
             bool ok = true;
+            if (k == "fade" || k == "root_motion" || k == "sway_window" || k == "dof")
+                clipOnly = clipOnly ? clipOnly : &c;
             if (k == "clip") ok = once(seen, c) && expectNoBlock(c) && name(c, player.clip);
+            else if (k == "trajectory") ok = once(seen, c) && expectNoBlock(c) && name(c, player.trajectory);
             else if (k == "play")
             {
                 ok = once(seen, c) && readPlayMode(c, player.playMode);
                 player.playing = ok;
             }
             else if (k == "paused") ok = flag(seen, c, paused);
-            else if (k == "time") ok = once(seen, c) && numbers(c, 1, &player.time);
+            else if (k == "time")
+            {
+                double time = 0.0;
+                ok = once(seen, c) && numbers(c, 1, &time);
+                player.time = time;
+            }
             else if (k == "speed") ok = once(seen, c) && numbers(c, 1, &player.speed);
             else if (k == "weight") ok = once(seen, c) && unitWeight(c, player.weight);
             else if (k == "fade") ok = once(seen, c) && unitWeight(c, player.fade);
@@ -719,13 +729,31 @@ private:
             else return unknownKeyword(c, "in a player");
             if (!ok) return false;
         }
+        if (!seen.count("play")) player.playMode = player.defaultPlayMode();
         player.playing = player.playing && !paused;
-        if (player.clip.empty()) return fail(s.line, "player '" + player.name + "' needs the 'clip' it plays");
-        const bool clipKnown = std::any_of(document.clips.begin(), document.clips.end(),
-                                           [&](const ClipDocument& clip) { return clip.name() == player.clip; });
-        if (!clipKnown)
-            return fail(s.line, "player '" + player.name + "' plays clip '" + player.clip +
-                                    "', which the actor does not have");
+        return checkPlays(s, document, player, clipOnly);
+    }
+
+    /** A player plays one clip or one trajectory of the actor, and takes a clip's options only for a clip. */
+    bool checkPlays(const SyntaxStatement& s, const ActorDocument& document, const PlayerDocument& player,
+                    const SyntaxStatement* clipOnly)
+    {
+        const std::string who = "player '" + player.name + "'";
+        if (player.clip.empty() == player.trajectory.empty())
+            return fail(s.line, who + " needs either the 'clip' or the 'trajectory' it plays");
+        if (player.playsTrajectory())
+        {
+            if (clipOnly) return fail(clipOnly->line, "'" + clipOnly->keyword + "' is for a clip's player, and " +
+                                                          who + " plays a trajectory");
+            const bool known = std::any_of(document.trajectories.begin(), document.trajectories.end(),
+                                           [&](const TrajectoryDocument& t) { return t.name() == player.trajectory; });
+            if (!known)
+                return fail(s.line, who + " plays trajectory '" + player.trajectory + "', which the actor does not have");
+            return true;
+        }
+        const bool known = std::any_of(document.clips.begin(), document.clips.end(),
+                                       [&](const ClipDocument& clip) { return clip.name() == player.clip; });
+        if (!known) return fail(s.line, who + " plays clip '" + player.clip + "', which the actor does not have");
         return true;
     }
 

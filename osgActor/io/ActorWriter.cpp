@@ -290,25 +290,27 @@ SyntaxStatement trajectoryStatement(const TrajectoryDocument& document)
     return s;
 }
 
-/** A clip player: its clip, then only the state that differs from a new ClipPlayer's ("play" for a player that
-  * plays or has another mode than loop, "paused" for one that waits), its DOF selection last. */
+/** A player: its clip or trajectory, then only the state that differs from a new player's ("play" for a player that
+  * plays or has another mode than a new one, "paused" for one that waits), a clip player's DOF selection last. */
 SyntaxStatement playerStatement(const PlayerDocument& document)
 {
     const PlayerDocument defaults;
     SyntaxStatement s = statement("player", {nameArgument(document.name)});
     s.hasBlock = true;
-    s.children.push_back(statement("clip", {nameArgument(document.clip)}));
-    if (document.playing || document.playMode != defaults.playMode)
+    if (document.playsTrajectory()) s.children.push_back(statement("trajectory", {nameArgument(document.trajectory)}));
+    else s.children.push_back(statement("clip", {nameArgument(document.clip)}));
+    if (document.playing || document.playMode != document.defaultPlayMode())
         s.children.push_back(statement("play", {word(playModeName(document.playMode))}));
     if (!document.playing) s.children.push_back(statement("paused"));
     auto number = [&](const char* keyword, double value, double defaultValue) {
         if (value != defaultValue) s.children.push_back(statement(keyword, {numberArgument(value)}));
     };
-    number("time", document.time, defaults.time);
+    if (document.time) s.children.push_back(statement("time", {numberArgument(*document.time)}));
     number("speed", document.speed, defaults.speed);
     number("weight", document.weight, defaults.weight);
-    number("fade", document.fade, defaults.fade);
     if (!document.enabled) s.children.push_back(statement("disabled"));
+    if (document.playsTrajectory()) return s;
+    number("fade", document.fade, defaults.fade);
     if (document.rootMotion != defaults.rootMotion || !document.rootJoint.empty())
     {
         SyntaxStatement rootMotion = statement("root_motion", {word(rootMotionName(document.rootMotion))});

@@ -2,18 +2,35 @@
 
 namespace osgActor {
 
+namespace {
+
+/** What every controller has: name, weight, on or off. */
+void describeController(const Controller& controller, PlayerDocument& document)
+{
+    document.name = controller.getName();
+    document.weight = controller.getWeight();
+    document.enabled = controller.getEnabled();
+}
+
+void applyController(const PlayerDocument& document, Controller& controller)
+{
+    controller.setName(document.name);
+    controller.setWeight(document.weight);
+    controller.setEnabled(document.enabled);
+}
+
+} // namespace
+
 PlayerDocument describeClipPlayer(const ClipPlayer& player, const ActorDefinition& definition)
 {
     PlayerDocument document;
-    document.name = player.getName();
+    describeController(player, document);
     document.clip = player.getClip() ? player.getClip()->getName() : std::string();
     document.playing = player.isPlaying();
     document.playMode = player.getPlayMode();
-    document.time = player.getPlayTime();
+    if (player.getPlayTime() != 0.0) document.time = player.getPlayTime();
     document.speed = player.getSpeed();
-    document.weight = player.getWeight();
     document.fade = player.getFadeWeight();
-    document.enabled = player.getEnabled();
     document.rootMotion = player.getRootMotion();
     document.rootJoint = player.getRootJointName();
     document.swayWindow = player.getSwayWindow();
@@ -31,15 +48,13 @@ std::shared_ptr<ClipPlayer> makeClipPlayer(const PlayerDocument& document, ClipP
                                            const ActorDefinition& definition)
 {
     auto player = std::make_shared<ClipPlayer>(std::move(clip));
-    player->setName(document.name);
+    applyController(document, *player);
     player->setPlayMode(document.playMode);
     if (document.playing) player->play();
     else player->pause();
     player->setSpeed(document.speed);
-    player->seek(document.time);
-    player->setWeight(document.weight);
+    if (document.time) player->seek(*document.time);
     player->setFadeWeight(document.fade);
-    player->setEnabled(document.enabled);
     player->setRootMotion(document.rootMotion, document.rootJoint);
     player->setSwayWindow(document.swayWindow);
     if (!document.dofWeights.empty())
@@ -52,6 +67,30 @@ std::shared_ptr<ClipPlayer> makeClipPlayer(const PlayerDocument& document, ClipP
         }
         player->setSelection(selection);
     }
+    return player;
+}
+
+PlayerDocument describeTrajectoryPlayer(const TrajectoryPlayer& player)
+{
+    PlayerDocument document;
+    describeController(player, document);
+    document.trajectory = player.getTrajectory() ? player.getTrajectory()->getName() : std::string();
+    document.playing = player.isPlaying();
+    document.playMode = player.getPlayMode();
+    if (player.hasStarted()) document.time = player.getPlayTime();
+    document.speed = player.getSpeed();
+    return document;
+}
+
+std::shared_ptr<TrajectoryPlayer> makeTrajectoryPlayer(const PlayerDocument& document, TrajectoryPtr trajectory)
+{
+    auto player = std::make_shared<TrajectoryPlayer>(std::move(trajectory));
+    applyController(document, *player);
+    player->setPlayMode(document.playMode);
+    if (document.playing) player->play();
+    else player->pause();
+    player->setSpeed(document.speed);
+    if (document.time) player->seek(*document.time);
     return player;
 }
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <sstream>
 
 using namespace osgActor;
@@ -53,7 +54,7 @@ TEST(ActorPlayers, AreReadWithTheirStateInFileOrder)
     EXPECT_EQ(full.line, 12);
     EXPECT_TRUE(full.playing);
     EXPECT_EQ(full.playMode, PlayMode::PingPong);
-    EXPECT_EQ(full.time, 0.75);
+    EXPECT_EQ(full.time, std::optional<double>(0.75));
     EXPECT_EQ(full.speed, -2.0);
     EXPECT_EQ(full.weight, 0.5);
     EXPECT_EQ(full.fade, 0.25);
@@ -71,6 +72,7 @@ TEST(ActorPlayers, AreReadWithTheirStateInFileOrder)
     EXPECT_EQ(plain.playMode, PlayMode::Loop) << "a new ClipPlayer's mode";
     EXPECT_TRUE(plain.enabled);
     EXPECT_TRUE(plain.dofWeights.empty()) << "every DOF at weight 1";
+    EXPECT_FALSE(plain.time.has_value()) << "a new player's play head";
 }
 
 TEST(ActorPlayers, AreWrittenWithWhatDiffersFromANewPlayerAndReadBackTheSame)
@@ -83,7 +85,7 @@ TEST(ActorPlayers, AreWrittenWithWhatDiffersFromANewPlayerAndReadBackTheSame)
     ASSERT_TRUE(result) << result.error;
     const std::string text = written(result.document);
     EXPECT_NE(text.find("    player \"upper wave\" {\n        clip wave\n        play pingpong\n        time 0.75\n"
-                        "        speed -2\n        weight 0.5\n        fade 0.25\n        disabled\n"
+                        "        speed -2\n        weight 0.5\n        disabled\n        fade 0.25\n"
                         "        root_motion to_transforms\n        sway_window 0.4\n        dof shoulder.rz 1\n"
                         "        dof elbow.rx 0.125\n    }\n"
                         "    player looping {\n        clip wave\n        play loop\n    }\n"
@@ -98,7 +100,14 @@ TEST(ActorPlayers, AreWrittenWithWhatDiffersFromANewPlayerAndReadBackTheSame)
 TEST(ActorPlayers, BrokenOnesAreRefusedAtTheirLine)
 {
     auto player = [](const std::string& body) { return kArm + " player p {\n" + body + " }\n}\n"; };
-    EXPECT_EQ(readError(player("  play loop\n")), "p.actor:12: player 'p' needs the 'clip' it plays");
+    EXPECT_EQ(readError(player("  play loop\n")), "p.actor:12: player 'p' needs either the 'clip' or the 'trajectory' it plays");
+    EXPECT_EQ(readError(kArm + " trajectory t { key 0 0 0 0 0 }\n player p {\n  clip wave\n  trajectory t\n }\n}\n"),
+              "p.actor:13: player 'p' needs either the 'clip' or the 'trajectory' it plays");
+    EXPECT_EQ(readError(kArm + " player p {\n  trajectory t\n }\n}\n"),
+              "p.actor:12: player 'p' plays trajectory 't', which the actor does not have");
+    EXPECT_EQ(readError(kArm + " trajectory t { key 0 0 0 0 0 }\n player p {\n  trajectory t\n  speed 2\n  fade 0.5\n"
+                               "  dof elbow.rx 1\n }\n}\n"),
+              "p.actor:16: 'fade' is for a clip's player, and player 'p' plays a trajectory");
     EXPECT_EQ(readError(player("  clip walk\n")), "p.actor:12: player 'p' plays clip 'walk', which the actor does not have");
     EXPECT_EQ(readError(player("  clip wave\n  clip wave\n")), "p.actor:14: 'clip' is given twice");
     EXPECT_EQ(readError(player("  clip wave\n  loop\n")), "p.actor:14: unknown keyword 'loop' in a player");
@@ -122,4 +131,39 @@ TEST(ActorPlayers, BrokenOnesAreRefusedAtTheirLine)
     EXPECT_EQ(readError(player("  clip wave\n  disabled 1\n")), "p.actor:14: 'disabled' takes 0 values, not 1");
     EXPECT_EQ(readError(kArm + " player p\n}\n"), "p.actor:12: 'player' needs a block in braces");
     EXPECT_EQ(readError(kArm + " player { clip wave }\n}\n"), "p.actor:12: 'player' takes 1 value, not 0");
+}
+
+TEST(ActorPlayers, PlayATrajectoryWithAControllersStateAndAreWrittenBackSo)
+{
+    const ActorReadResult result =
+        read(kArm + " trajectory patrol {\n  key 1 0 0 0 0\n  key 3 4 0 0 90\n }\n"
+                    " player walking {\n  trajectory patrol\n  play loop\n  time 2\n  speed 0.5\n }\n"
+                    " player waiting {\n  trajectory patrol\n  weight 0.25\n  disabled\n }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    ASSERT_EQ(result.document.players.size(), 2u);
+    const PlayerDocument& walking = result.document.players[0];
+    EXPECT_TRUE(walking.playsTrajectory());
+    EXPECT_EQ(walking.trajectory, "patrol");
+    EXPECT_TRUE(walking.clip.empty());
+    EXPECT_TRUE(walking.playing);
+    EXPECT_EQ(walking.playMode, PlayMode::Loop);
+    EXPECT_EQ(walking.time, std::optional<double>(2.0));
+    EXPECT_EQ(walking.speed, 0.5);
+    const PlayerDocument& waiting = result.document.players[1];
+    EXPECT_FALSE(waiting.playing);
+    EXPECT_EQ(waiting.playMode, PlayMode::Once) << "a new TrajectoryPlayer's mode";
+    EXPECT_FALSE(waiting.time.has_value()) << "starts at the first key, like a new player";
+    EXPECT_EQ(waiting.weight, 0.25);
+    EXPECT_FALSE(waiting.enabled);
+
+    const std::string text = written(result.document);
+    EXPECT_NE(text.find("    trajectory patrol {\n        key 1 0 0 0 0\n        key 3 4 0 0 90\n    }\n"
+                        "    player walking {\n        trajectory patrol\n        play loop\n        time 2\n"
+                        "        speed 0.5\n    }\n    player waiting {\n        trajectory patrol\n        paused\n"
+                        "        weight 0.25\n        disabled\n    }\n}\n"),
+              std::string::npos)
+        << text;
+    const ActorReadResult again = read(text);
+    ASSERT_TRUE(again) << again.error;
+    EXPECT_EQ(written(again.document), text);
 }

@@ -312,7 +312,7 @@ TEST(ActorPlugin, AnUnknownPlayModeIsAnErrorWithItsLine)
         << read.message();
 }
 
-TEST(ActorPlugin, ATrajectoryMovesTheActorAlongItsPathAndIsWrittenBack)
+TEST(ActorPlugin, ATrajectoryMovesTheActorAlongItsPathAndItsPlayerIsWrittenBack)
 {
     const std::string text = R"(osgactor 1
 actor walker {
@@ -342,8 +342,10 @@ actor walker {
 
     ASSERT_TRUE(osgDB::writeNodeFile(*actor, outFile("trajectory_once.actor")));
     const std::string written = readTextFile(outFile("trajectory_once.actor"));
-    EXPECT_NE(written.find("    trajectory patrol {\n        play loop\n        key 0 0 0 0 0\n"
-                           "        key 2 4 0 0 90\n"),
+    // The keys in the trajectory, the player that the trajectory's play statement made in a player section.
+    EXPECT_NE(written.find("    trajectory patrol {\n        key 0 0 0 0 0\n        key 2 4 0 0 90\n    }\n"
+                           "    player patrol {\n        trajectory patrol\n        play loop\n        time 2.5\n"
+                           "    }\n"),
               std::string::npos)
         << written;
     osg::ref_ptr<ActorNode> back = readActorFile(outFile("trajectory_once.actor"));

@@ -182,6 +182,7 @@ TEST_P(OsgFormats, TrajectoriesComeBackWithTheirPlayersAndKeepMoving)
     const TrajectoryBuildResult later = TrajectoryBuilder::build("later", {TrajectoryKey{0.0, glm::dvec3(1.0), 0.0}});
     ASSERT_TRUE(patrol && later);
     auto playing = std::make_shared<TrajectoryPlayer>(patrol.trajectory);
+    playing->setName("on patrol");
     playing->setPlayMode(PlayMode::Loop);
     playing->setSpeed(1.5);
     actor->addController(playing);
@@ -189,6 +190,10 @@ TEST_P(OsgFormats, TrajectoriesComeBackWithTheirPlayersAndKeepMoving)
     waiting->setPlayMode(PlayMode::PingPong);
     waiting->pause();
     actor->addController(waiting);
+    // A second player of the same path, unnamed: it comes back too, under no name.
+    auto again = std::make_shared<TrajectoryPlayer>(patrol.trajectory);
+    again->pause();
+    actor->addController(again);
     osg::ref_ptr<osg::Group> scene = new osg::Group;
     scene->addChild(actor.get());
     const std::string path = outFile("trajectories." + extension);
@@ -197,9 +202,16 @@ TEST_P(OsgFormats, TrajectoriesComeBackWithTheirPlayersAndKeepMoving)
     osg::ref_ptr<osg::Node> back = osgDB::readRefNodeFile(path, fullPrecision().get());
     ActorNode* backActor = actorOf(back.get());
     ASSERT_NE(backActor, nullptr) << extension;
-    auto backPlaying = std::dynamic_pointer_cast<TrajectoryPlayer>(backActor->findController("patrol"));
-    auto backWaiting = std::dynamic_pointer_cast<TrajectoryPlayer>(backActor->findController("later"));
-    ASSERT_TRUE(backPlaying && backWaiting) << extension;
+    ASSERT_EQ(backActor->getControllers().size(), 3u) << extension;
+    auto backPlaying = std::dynamic_pointer_cast<TrajectoryPlayer>(backActor->getControllers()[0]);
+    auto backWaiting = std::dynamic_pointer_cast<TrajectoryPlayer>(backActor->getControllers()[1]);
+    auto backAgain = std::dynamic_pointer_cast<TrajectoryPlayer>(backActor->getControllers()[2]);
+    ASSERT_TRUE(backPlaying && backWaiting && backAgain) << extension;
+    EXPECT_EQ(backPlaying->getName(), "on patrol");
+    EXPECT_EQ(backWaiting->getName(), "");
+    EXPECT_EQ(backAgain->getName(), "");
+    EXPECT_EQ(backAgain->getTrajectory(), backPlaying->getTrajectory()) << "one trajectory, two players";
+    EXPECT_FALSE(backAgain->isPlaying());
     EXPECT_TRUE(backPlaying->isPlaying());
     EXPECT_EQ(backPlaying->getPlayMode(), PlayMode::Loop);
     EXPECT_EQ(backPlaying->getSpeed(), 1.5);

@@ -8,6 +8,7 @@
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/core/ClipLibrary>
 #include <osgActor/core/ClipPlayer>
+#include <osgActor/core/Trajectory>
 
 #include <osgDB/WriteFile>
 
@@ -28,8 +29,9 @@ std::shared_ptr<ClipPlayer> addPlayer(ActorNode& actor, const std::string& name,
     return player;
 }
 
-/** The humanoid with three players of state a file must keep, none of it a new player's: one of a clip in the
-  * actor's library, one of the same clip on the right arm only, and one of a clip the library does not hold. */
+/** The humanoid with four players of state a file must keep, none of it a new player's: one of a clip in the
+  * actor's library, one of the same clip on the right arm only, one of a path, and one of a clip the library does
+  * not hold. */
 osg::ref_ptr<ActorNode> makeActorWithPlayers()
 {
     osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("humanoid.actor"));
@@ -52,6 +54,17 @@ osg::ref_ptr<ActorNode> makeActorWithPlayers()
                         0.375);
     arm->setSelection(selection);
     arm->setSwayWindow(0.2);
+
+    // Between the clip players, a path's player, started and half-way along.
+    const TrajectoryBuildResult stroll = TrajectoryBuilder::build(
+        "stroll", {TrajectoryKey{0.0, glm::dvec3(0.0), 0.0}, TrajectoryKey{4.0, glm::dvec3(2.0, 1.0, 0.0), 0.5}});
+    if (!stroll) return nullptr;
+    auto path = std::make_shared<TrajectoryPlayer>(stroll.trajectory);
+    path->setName("strolling");
+    path->setPlayMode(PlayMode::PingPong);
+    path->seek(2.0);
+    path->setSpeed(0.75);
+    actor->addController(path);
 
     ClipBuilder nodBuilder("nod");
     const unsigned neck = nodBuilder.addChannel("skullbase.rx", Interpolation::Cubic);
@@ -83,6 +96,20 @@ TEST_P(PlayerRoundTrip, PlayersComeBackWithTheirNamesOrderAndStateAndPlayOnTheSa
     ASSERT_EQ(back->getControllers().size(), actor->getControllers().size()) << extension;
     for (std::size_t i = 0; i < actor->getControllers().size(); ++i)
     {
+        if (const auto path = std::dynamic_pointer_cast<TrajectoryPlayer>(actor->getControllers()[i]))
+        {
+            const auto read = std::dynamic_pointer_cast<TrajectoryPlayer>(back->getControllers()[i]);
+            ASSERT_TRUE(read) << extension << " controller " << i;
+            EXPECT_EQ(read->getName(), path->getName()) << extension;
+            ASSERT_TRUE(read->getTrajectory()) << extension;
+            EXPECT_EQ(read->getTrajectory()->getName(), path->getTrajectory()->getName()) << extension;
+            EXPECT_EQ(read->isPlaying(), path->isPlaying()) << extension;
+            EXPECT_EQ(read->getPlayMode(), path->getPlayMode()) << extension;
+            EXPECT_EQ(read->hasStarted(), path->hasStarted()) << extension;
+            EXPECT_EQ(read->getPlayTime(), path->getPlayTime()) << extension;
+            EXPECT_EQ(read->getSpeed(), path->getSpeed()) << extension;
+            continue;
+        }
         const auto original = std::dynamic_pointer_cast<ClipPlayer>(actor->getControllers()[i]);
         const auto read = std::dynamic_pointer_cast<ClipPlayer>(back->getControllers()[i]);
         ASSERT_TRUE(original && read) << extension << " controller " << i;
@@ -113,6 +140,8 @@ TEST_P(PlayerRoundTrip, PlayersComeBackWithTheirNamesOrderAndStateAndPlayOnTheSa
         runUpdate(*actor, frame);
         runUpdate(*back, frame);
     }
+    EXPECT_TRUE(vec3Near(back->getPreTranslation(), actor->getPreTranslation(), 1e-12)) << extension;
+    EXPECT_GT(actor->getPreTranslation().length(), 0.1) << "the path moved the actor";
     for (unsigned dof = 0; dof < actor->getNumDofs(); ++dof)
         EXPECT_NEAR(back->getDof(dof), actor->getDof(dof), 1e-12)
             << extension << " " << actor->getDefinition()->getDofName(dof);

@@ -8,8 +8,11 @@
 #include "WalkCycle.h"
 
 #include <osgActor/ActorNode>
+#include <osgActor/ActorSceneIO>
 #include <osgActor/GlmOsg>
 #include <osgActor/core/ActorDefinitionBuilder>
+#include <osgActor/io/ActorReader>
+#include <osgActor/io/ActorWriter>
 
 #include <osg/FrameStamp>
 #include <osg/Group>
@@ -289,8 +292,8 @@ TEST(PathWalker, GivesTheActorThePathAndTheWalkAsLibraryPlayers)
 
 TEST(PathWalker, TakesThePathPlayerAnActorReadBackKeeps)
 {
-    // Rigged, written to .osgt and read back, the humanoid keeps the path's player (under the trajectory's name)
-    // and the walk cycle (under its own): rigged again, it must walk the kept path and cycle once, not twice.
+    // Rigged, written to .osgt and read back, the humanoid keeps the path's player and the walk cycle, under the
+    // rig's names: it counts as rigged, and walks the kept path and cycle once, not twice.
     osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
     ASSERT_TRUE(humanoid.valid());
     osg::ref_ptr<PathWalker> walker = new PathWalker;
@@ -309,7 +312,7 @@ TEST(PathWalker, TakesThePathPlayerAnActorReadBackKeeps)
     ASSERT_TRUE(back.valid());
     ASSERT_EQ(back->getControllers().size(), 2u) << "the path's player and the walk cycle, kept";
     const ControllerPtr kept = back->getControllers()[0];
-    EXPECT_EQ(kept->getName(), "straight");
+    EXPECT_EQ(kept->getName(), PathWalker::kPathControllerName);
     const ControllerPtr keptCycle = back->findController(PathWalker::kWalkControllerName);
     EXPECT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(keptCycle));
 
@@ -319,6 +322,36 @@ TEST(PathWalker, TakesThePathPlayerAnActorReadBackKeeps)
     EXPECT_EQ(back->findController(PathWalker::kPathControllerName), kept);
     EXPECT_EQ(back->findController(PathWalker::kWalkControllerName), keptCycle);
     EXPECT_GT(back->getPreTranslation().x(), humanoid->getPreTranslation().x()) << "it walks on along the path";
+}
+
+TEST(PathWalker, TakesThePathPlayerAFileOfTheTrajectoryShorthandMade)
+{
+    // A file that plays the path with the trajectory section's own "play" (as files did before players kept their
+    // names) gives a player named after the trajectory: the rig takes it rather than walking the path twice.
+    osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
+    ASSERT_TRUE(humanoid.valid());
+    ActorDocument document = extractActorDocument(*humanoid);
+    TrajectoryDocument path;
+    path.trajectory = straightPath(1.1);
+    path.play = true;
+    path.playMode = PlayMode::Loop;
+    document.trajectories.push_back(path);
+    std::stringstream text;
+    writeActor(text, document);
+    const ActorReadResult read = readActor(text, "shorthand.actor");
+    ASSERT_TRUE(read) << read.error;
+    const ActorNodeResult made = createActorNode(read.document, read.definition, "shorthand.actor", nullptr);
+    ASSERT_TRUE(made.actor.valid()) << made.error;
+    ASSERT_EQ(made.actor->getControllers().size(), 1u);
+    const ControllerPtr shorthand = made.actor->getControllers()[0];
+    EXPECT_EQ(shorthand->getName(), "straight");
+
+    osg::ref_ptr<PathWalker> walker = new PathWalker;
+    walker->setPath(straightPath(1.1));
+    osg::ref_ptr<osg::Group> group = groupWithRig(made.actor.get(), walker.get());
+    runUpdate(*group, 0.0, 1);
+    ASSERT_EQ(made.actor->getControllers().size(), 2u) << "the file's path player and the walk cycle";
+    EXPECT_EQ(made.actor->findController(PathWalker::kPathControllerName), shorthand);
 }
 
 TEST(ShowcaseScene, HasItsPartsAndRigsEvenWithoutADancer)
