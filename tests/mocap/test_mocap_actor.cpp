@@ -1,6 +1,4 @@
-#include "MocapTestUtil"
-#include "ReferenceMocap"
-#include "../nodes/NodeTestUtil"
+#include "MocapActorCheck"
 
 #include <osgActor/MocapActor>
 #include <osgActor/StickFigure>
@@ -17,9 +15,6 @@ using namespace osgActor;
 using namespace osgActor::test;
 
 namespace {
-
-/** Y-up file coordinates as the actor shows them in OSG's Z-up frame. */
-osg::Vec3d zUp(const glm::dvec3& p) { return osg::Vec3d(p.x, -p.z, p.y); }
 
 double distance(const osg::Vec3d& a, const osg::Vec3d& b) { return (a - b).length(); }
 
@@ -61,26 +56,8 @@ TEST(MocapActor, PlaysABvhFileFromTheFrameStamp)
     ASSERT_TRUE(actor->getClipLibrary());
     EXPECT_TRUE(actor->getClipLibrary()->getClip("12_03"));
 
-    const reference::Bvh bvh = reference::readBvh(path);
-    const double size = extent(reference::bvhPositions(bvh, 0));
-    osg::ref_ptr<osg::Group> root = new osg::Group;
-    root->addChild(actor.get());
-    // runUpdate gives frame n the simulation time n / 60 s: clip frame 2n of this 120 Hz file.
-    for (unsigned n : {0u, 1u, 2u, 7u})
-    {
-        runUpdate(*root, n);
-        const std::vector<glm::dvec3> expected = reference::bvhPositions(bvh, 2 * n);
-        for (std::size_t j = 0; j < bvh.joints.size(); ++j)
-        {
-            const std::string name = bvh.joints[j].endSite ? bvh.joints[bvh.joints[j].parent].name + "_end"
-                                                           : bvh.joints[j].name;
-            const int joint = actor->getJointIndex(name);
-            ASSERT_GE(joint, 0) << name;
-            EXPECT_LT(distance(actor->getJointWorldPosition(static_cast<unsigned>(joint)), zUp(expected[j])),
-                      1e-6 * size)
-                << name << " at frame " << 2 * n;
-        }
-    }
+    // Frame n of runUpdate is clip frame 2n of this 120 Hz file; the end sites are joints too.
+    expectToFollowBvh(*actor, path, {0u, 1u, 2u, 7u}, true);
 }
 
 TEST(MocapActor, PlaysAnAsfAmcPairFoundBesideEachOther)
@@ -89,25 +66,7 @@ TEST(MocapActor, PlaysAnAsfAmcPairFoundBesideEachOther)
     std::string error;
     osg::ref_ptr<ActorNode> actor = readMocapActor(asfPath, MocapActorOptions(), error);
     ASSERT_TRUE(actor.valid()) << error;
-    const reference::Asf asf = reference::readAsf(asfPath);
-    const std::vector<reference::AmcFrame> frames = reference::readAmc(sharedMocap("asfamc/11_01.amc"));
-    std::vector<glm::dvec3> rest;
-    for (const auto& entry : reference::asfPositions(asf, frames[0])) rest.push_back(entry.second);
-    const double size = extent(rest);
-    osg::ref_ptr<osg::Group> root = new osg::Group;
-    root->addChild(actor.get());
-    for (unsigned n : {0u, 3u})
-    {
-        runUpdate(*root, n);
-        for (const auto& entry : reference::asfPositions(asf, frames[2 * n]))
-        {
-            const int joint = actor->getJointIndex(entry.first);
-            ASSERT_GE(joint, 0) << entry.first;
-            EXPECT_LT(distance(actor->getJointWorldPosition(static_cast<unsigned>(joint)), zUp(entry.second)),
-                      1e-6 * size)
-                << entry.first;
-        }
-    }
+    expectToFollowAsfAmc(*actor, asfPath, sharedMocap("asfamc/11_01.amc"), 1.0);
 }
 
 TEST(StickFigure, HangsABallOnEveryJointAndBonesOnParents)

@@ -1,6 +1,4 @@
-#include "MocapTestUtil"
-#include "ReferenceMocap"
-#include "../nodes/NodeTestUtil"
+#include "MocapActorCheck"
 
 #include <osgActor/ActorNode>
 #include <osgActor/ActorSceneIO>
@@ -9,9 +7,6 @@
 #include <osgActor/io/ActorWriter>
 #include <osgActor/mocap/AsfReader>
 #include <osgActor/mocap/BvhReader>
-
-#include <osg/FrameStamp>
-#include <osgUtil/UpdateVisitor>
 
 #include <osgDB/FileNameUtils>
 #include <osgDB/FileUtils>
@@ -45,36 +40,6 @@ void readActorWithWalkClip(const std::string& path, osg::ref_ptr<ActorNode>& act
     ASSERT_TRUE(actor.valid() && actor->getClipLibrary());
     clip = actor->getClipLibrary()->getClip("walk");
     ASSERT_TRUE(clip) << path << ": named as in the .actor file, not after the motion file";
-}
-
-osg::Vec3d zUp(const glm::dvec3& p) { return osg::Vec3d(p.x, -p.z, p.y); }
-
-/** Updates the actor from the frame stamp at frames 0 and 5 (60 Hz), and checks every joint against the reference
-  * reading of 12_03.bvh (120 Hz: update frame n is file frame 2n). */
-void expectToPlay12_03(ActorNode& actor)
-{
-    const reference::Bvh bvh = reference::readBvh(sharedMocap("bvh/12_03.bvh"));
-    const double size = extent(reference::bvhPositions(bvh, 0));
-    osg::ref_ptr<osg::Group> root = new osg::Group;
-    root->addChild(&actor);
-    for (unsigned n : {0u, 5u})
-    {
-        osg::ref_ptr<osgUtil::UpdateVisitor> visitor = new osgUtil::UpdateVisitor;
-        osg::ref_ptr<osg::FrameStamp> stamp = new osg::FrameStamp;
-        stamp->setFrameNumber(n);
-        stamp->setSimulationTime(n / 60.0);
-        visitor->setFrameStamp(stamp.get());
-        root->accept(*visitor);
-        const std::vector<glm::dvec3> expected = reference::bvhPositions(bvh, 2 * n);
-        for (std::size_t j = 0; j < bvh.joints.size(); ++j)
-        {
-            if (bvh.joints[j].endSite) continue;
-            const unsigned joint = static_cast<unsigned>(actor.getJointIndex(bvh.joints[j].name));
-            // The file keeps 12 significant digits.
-            EXPECT_LT((actor.getJointWorldPosition(joint) - zUp(expected[j])).length(), 1e-6 * size)
-                << bvh.joints[j].name << " at update frame " << n;
-        }
-    }
 }
 
 /** Writes document as folderName/walker.actor, with copies of the given files of ../shared/mocap in
@@ -204,7 +169,7 @@ TEST(ActorFileClips, AnActorFileCarriesAndPlaysItsMotion)
     EXPECT_TRUE(actor->getClipLibrary()->getClip("12_03"));
     ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("12_03")));
 
-    expectToPlay12_03(*actor);
+    expectToFollowBvh(*actor, sharedMocap("bvh/12_03.bvh"), {0u, 5u}, false);
 }
 
 TEST(ActorFileClips, ABrokenClipSectionFailsTheRead)
@@ -227,7 +192,7 @@ TEST(ActorFileClips, AClipReadFromABvhFileBesideTheActorFilePlaysTheFile)
     const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
     EXPECT_EQ(clip->getNumFrames(), imported.clip->getNumFrames());
     ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("walk")));
-    expectToPlay12_03(*actor);
+    expectToFollowBvh(*actor, sharedMocap("bvh/12_03.bvh"), {0u, 5u}, false);
 
     // The actor holds the motion, not where it came from: written out, the clip is frames.
     std::ostringstream written;
@@ -297,27 +262,9 @@ TEST(ActorFileClips, AnAmcClipReadAgainstItsAsfSkeletonAtAScalePlaysTheCapture)
     ASSERT_TRUE(clip);
     EXPECT_EQ(clip->getFrameRate(), 120.0);
 
-    // Every bone where the independent reading of the files puts it, scaled, at update frames 0 and 3 (60 Hz:
-    // capture frames 0 and 6). The root translates, so a root travel left unscaled would be 20 times too far.
-    const reference::Asf asf = reference::readAsf(sharedMocap("asfamc/11.asf"));
-    const std::vector<reference::AmcFrame> frames = reference::readAmc(sharedMocap("asfamc/11_01.amc"));
-    std::vector<glm::dvec3> rest;
-    for (const auto& entry : reference::asfPositions(asf, frames[0])) rest.push_back(entry.second * kScale);
-    const double size = extent(rest);
-    osg::ref_ptr<osg::Group> root = new osg::Group;
-    root->addChild(actor.get());
-    for (unsigned n : {0u, 3u})
-    {
-        runUpdate(*root, n);
-        for (const auto& entry : reference::asfPositions(asf, frames[2 * n]))
-        {
-            const int joint = actor->getJointIndex(entry.first);
-            ASSERT_GE(joint, 0) << entry.first;
-            EXPECT_LT((actor->getJointWorldPosition(static_cast<unsigned>(joint)) - zUp(entry.second * kScale)).length(),
-                      1e-6 * size)
-                << entry.first << " at update frame " << n;
-        }
-    }
+    // Every bone where the independent reading of the files puts it, scaled. The root translates, so a root travel
+    // left unscaled would be 20 times too far.
+    expectToFollowAsfAmc(*actor, sharedMocap("asfamc/11.asf"), sharedMocap("asfamc/11_01.amc"), kScale);
 }
 
 TEST(ActorFileClips, ABvhClipFileTakesItsScaleAndDropsItsFirstFrameWhenTold)
