@@ -21,7 +21,7 @@ sanitizer_configure asan "$build"
 cmake --build "$build" -j "${OSGACTOR_JOBS:-$(nproc)}" --target $(printf 'fuzz_%s ' "${targets[@]}")
 
 # Seeds per target: shell globs, those that match nothing are skipped.
-seeds_actor=("$root"/data/*.actor "$root"/tests/robustness/inputs/actor/*)
+seeds_actor=("$root"/data/*.actor "$root"/fuzz/seeds/actor/* "$root"/tests/robustness/inputs/actor/*)
 seeds_bvh=("$shared"/mocap/bvh/*.bvh "$assimp"/*.bvh "$root"/tests/robustness/inputs/bvh/*)
 seeds_asf=("$shared"/mocap/asfamc/*.asf "$root"/tests/robustness/inputs/asf/*)
 seeds_amc=("$shared"/mocap/asfamc/11_*.amc "$root"/tests/robustness/inputs/amc/*)
