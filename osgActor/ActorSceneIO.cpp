@@ -190,23 +190,25 @@ std::string sectionsText(const std::vector<SyntaxStatement>& sections)
     return text.str();
 }
 
-/** Puts a trajectory a player plays into the document (keys only: its players are "player" sections), once; false,
-  * with a warning, when another trajectory of the same name is there already, which the file would confuse with it. */
-bool takeTrajectory(const TrajectoryPtr& trajectory, const std::string& playerName, ActorDocument& document)
+/** Puts what a player plays, a clip or a trajectory, into the document's list of them (the member of each document
+  * that holds it), once; false, with a warning, when another of the same name is there already, which the file would
+  * read back as that one. */
+template <class Document, class Pointer>
+bool takeForPlayer(std::vector<Document>& documents, Pointer Document::*member, const Pointer& played,
+                   const char* kind, const std::string& playerName, const std::string& actorName)
 {
-    const auto named = std::find_if(document.trajectories.begin(), document.trajectories.end(),
-                                    [&](const TrajectoryDocument& t) { return t.name() == trajectory->getName(); });
-    if (named == document.trajectories.end())
+    const auto named = std::find_if(documents.begin(), documents.end(),
+                                    [&](const Document& d) { return d.name() == played->getName(); });
+    if (named == documents.end())
     {
-        TrajectoryDocument kept;
-        kept.trajectory = trajectory;
-        document.trajectories.push_back(std::move(kept));
+        Document kept;
+        kept.*member = played;
+        documents.push_back(std::move(kept));
         return true;
     }
-    if (named->trajectory == trajectory) return true;
-    OSG_WARN << "osgActor: writing actor '" << document.name << "': player '" << playerName
-             << "' plays another trajectory named like trajectory '" << trajectory->getName()
-             << "'; the player is left out" << std::endl;
+    if ((*named).*member == played) return true;
+    OSG_WARN << "osgActor: writing actor '" << actorName << "': player '" << playerName << "' plays another " << kind
+             << " named like " << kind << " '" << played->getName() << "'; the player is left out" << std::endl;
     return false;
 }
 
@@ -284,25 +286,17 @@ void addPlayers(const ActorNode& actor, ActorDocument& document)
     {
         if (const auto* player = dynamic_cast<const TrajectoryPlayer*>(controller.get()))
         {
-            if (player->getTrajectory() && takeTrajectory(player->getTrajectory(), player->getName(), document))
+            if (player->getTrajectory() &&
+                takeForPlayer(document.trajectories, &TrajectoryDocument::trajectory, player->getTrajectory(),
+                              "trajectory", player->getName(), document.name))
                 document.players.push_back(describeTrajectoryPlayer(*player));
             continue;
         }
         const auto* player = dynamic_cast<const ClipPlayer*>(controller.get());
-        if (!player || !player->getClip()) continue;
-        const ClipPtr& clip = player->getClip();
-        const auto named = std::find_if(document.clips.begin(), document.clips.end(),
-                                        [&](const ClipDocument& c) { return c.name() == clip->getName(); });
-        if (named == document.clips.end()) document.clips.push_back(ClipDocument{clip});
-        else if (named->clip != clip)
-        {
-            // A file names each clip once; the player's would be read back as the other.
-            OSG_WARN << "osgActor: writing actor '" << document.name << "': player '" << player->getName()
-                     << "' plays another clip named like clip '" << clip->getName() << "'; the player is left out"
-                     << std::endl;
-            continue;
-        }
-        document.players.push_back(describeClipPlayer(*player, *actor.getDefinition()));
+        if (player && player->getClip() &&
+            takeForPlayer(document.clips, &ClipDocument::clip, player->getClip(), "clip", player->getName(),
+                          document.name))
+            document.players.push_back(describeClipPlayer(*player, *actor.getDefinition()));
     }
 }
 
@@ -335,7 +329,9 @@ void addTrajectories(const ActorNode& actor, ActorDocument& document)
     for (const ControllerPtr& controller : actor.getControllers())
     {
         const TrajectoryPlayer* player = dynamic_cast<const TrajectoryPlayer*>(controller.get());
-        if (player && player->getTrajectory()) takeTrajectory(player->getTrajectory(), player->getName(), document);
+        if (player && player->getTrajectory())
+            takeForPlayer(document.trajectories, &TrajectoryDocument::trajectory, player->getTrajectory(),
+                          "trajectory", player->getName(), document.name);
     }
 }
 

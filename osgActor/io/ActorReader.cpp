@@ -748,7 +748,8 @@ private:
             const bool known = std::any_of(document.trajectories.begin(), document.trajectories.end(),
                                            [&](const TrajectoryDocument& t) { return t.name() == player.trajectory; });
             if (!known)
-                return fail(s.line, who + " plays trajectory '" + player.trajectory + "', which the actor does not have");
+                return fail(s.line,
+                            who + " plays trajectory '" + player.trajectory + "', which the actor does not have");
             return true;
         }
         const bool known = std::any_of(document.clips.begin(), document.clips.end(),

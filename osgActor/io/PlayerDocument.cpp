@@ -19,6 +19,27 @@ void applyController(const PlayerDocument& document, Controller& controller)
     controller.setEnabled(document.enabled);
 }
 
+/** What both kinds of player have besides: the play head, its mode and speed, playing or waiting. ClipPlayer and
+  * TrajectoryPlayer name these alike but share no base for them. */
+template <class Player>
+void applyPlayHead(const PlayerDocument& document, Player& player)
+{
+    player.setPlayMode(document.playMode);
+    if (document.playing) player.play();
+    else player.pause();
+    player.setSpeed(document.speed);
+    if (document.time) player.seek(*document.time);
+}
+
+template <class Player>
+void describePlayHead(const Player& player, bool started, PlayerDocument& document)
+{
+    document.playing = player.isPlaying();
+    document.playMode = player.getPlayMode();
+    if (started) document.time = player.getPlayTime();
+    document.speed = player.getSpeed();
+}
+
 } // namespace
 
 PlayerDocument describeClipPlayer(const ClipPlayer& player, const ActorDefinition& definition)
@@ -26,10 +47,7 @@ PlayerDocument describeClipPlayer(const ClipPlayer& player, const ActorDefinitio
     PlayerDocument document;
     describeController(player, document);
     document.clip = player.getClip() ? player.getClip()->getName() : std::string();
-    document.playing = player.isPlaying();
-    document.playMode = player.getPlayMode();
-    if (player.getPlayTime() != 0.0) document.time = player.getPlayTime();
-    document.speed = player.getSpeed();
+    describePlayHead(player, player.getPlayTime() != 0.0, document); // a clip's play head starts at 0
     document.fade = player.getFadeWeight();
     document.rootMotion = player.getRootMotion();
     document.rootJoint = player.getRootJointName();
@@ -37,7 +55,8 @@ PlayerDocument describeClipPlayer(const ClipPlayer& player, const ActorDefinitio
     const DofSelection& selection = player.getSelection();
     if (selection.drivesAll()) return document;
     for (unsigned dof = 0; dof < definition.getNumDofs(); ++dof)
-        if (selection.weight(dof) > 0.0) document.dofWeights.emplace_back(definition.getDofName(dof), selection.weight(dof));
+        if (selection.weight(dof) > 0.0)
+            document.dofWeights.emplace_back(definition.getDofName(dof), selection.weight(dof));
     // A selection that drives nothing is still not "every DOF": one DOF at weight 0 says so.
     if (document.dofWeights.empty() && definition.getNumDofs() > 0)
         document.dofWeights.emplace_back(definition.getDofName(0), 0.0);
@@ -49,11 +68,7 @@ std::shared_ptr<ClipPlayer> makeClipPlayer(const PlayerDocument& document, ClipP
 {
     auto player = std::make_shared<ClipPlayer>(std::move(clip));
     applyController(document, *player);
-    player->setPlayMode(document.playMode);
-    if (document.playing) player->play();
-    else player->pause();
-    player->setSpeed(document.speed);
-    if (document.time) player->seek(*document.time);
+    applyPlayHead(document, *player);
     player->setFadeWeight(document.fade);
     player->setRootMotion(document.rootMotion, document.rootJoint);
     player->setSwayWindow(document.swayWindow);
@@ -75,10 +90,7 @@ PlayerDocument describeTrajectoryPlayer(const TrajectoryPlayer& player)
     PlayerDocument document;
     describeController(player, document);
     document.trajectory = player.getTrajectory() ? player.getTrajectory()->getName() : std::string();
-    document.playing = player.isPlaying();
-    document.playMode = player.getPlayMode();
-    if (player.hasStarted()) document.time = player.getPlayTime();
-    document.speed = player.getSpeed();
+    describePlayHead(player, player.hasStarted(), document);
     return document;
 }
 
@@ -86,11 +98,7 @@ std::shared_ptr<TrajectoryPlayer> makeTrajectoryPlayer(const PlayerDocument& doc
 {
     auto player = std::make_shared<TrajectoryPlayer>(std::move(trajectory));
     applyController(document, *player);
-    player->setPlayMode(document.playMode);
-    if (document.playing) player->play();
-    else player->pause();
-    player->setSpeed(document.speed);
-    if (document.time) player->seek(*document.time);
+    applyPlayHead(document, *player);
     return player;
 }
 

@@ -1,36 +1,12 @@
-/* The "player" section of .actor files: a clip player's name and state, read, refused and written back. */
-#include <osgActor/io/ActorReader>
-#include <osgActor/io/ActorWriter>
-
-#include <gtest/gtest.h>
+/* The "player" section of .actor files: a player's name and state, read, refused and written back. */
+#include "ActorTextTestUtil"
 
 #include <optional>
-#include <sstream>
 
 using namespace osgActor;
+using namespace osgActor::test;
 
 namespace {
-
-ActorReadResult read(const std::string& text)
-{
-    std::istringstream in(text);
-    return readActor(in, "p.actor");
-}
-
-std::string readError(const std::string& text)
-{
-    const ActorReadResult result = read(text);
-    EXPECT_FALSE(result) << text;
-    EXPECT_EQ(result.definition, nullptr);
-    return result.error;
-}
-
-std::string written(const ActorDocument& document)
-{
-    std::ostringstream out;
-    writeActor(out, document);
-    return out.str();
-}
 
 // Lines 1-11: an arm with two joints and a clip; a test's player starts at line 12.
 const std::string kArm = "osgactor 1\nactor arm {\n joint shoulder {\n  dof rz\n  dof ry\n"
@@ -92,45 +68,45 @@ TEST(ActorPlayers, AreWrittenWithWhatDiffersFromANewPlayerAndReadBackTheSame)
                         "    player waiting {\n        clip wave\n        paused\n    }\n}\n"),
               std::string::npos)
         << text;
-    const ActorReadResult again = read(text);
-    ASSERT_TRUE(again) << again.error;
-    EXPECT_EQ(written(again.document), text);
+    expectRewrittenTheSame(text);
 }
 
 TEST(ActorPlayers, BrokenOnesAreRefusedAtTheirLine)
 {
     auto player = [](const std::string& body) { return kArm + " player p {\n" + body + " }\n}\n"; };
-    EXPECT_EQ(readError(player("  play loop\n")), "p.actor:12: player 'p' needs either the 'clip' or the 'trajectory' it plays");
+    EXPECT_EQ(readError(player("  play loop\n")),
+              "t.actor:12: player 'p' needs either the 'clip' or the 'trajectory' it plays");
     EXPECT_EQ(readError(kArm + " trajectory t { key 0 0 0 0 0 }\n player p {\n  clip wave\n  trajectory t\n }\n}\n"),
-              "p.actor:13: player 'p' needs either the 'clip' or the 'trajectory' it plays");
+              "t.actor:13: player 'p' needs either the 'clip' or the 'trajectory' it plays");
     EXPECT_EQ(readError(kArm + " player p {\n  trajectory t\n }\n}\n"),
-              "p.actor:12: player 'p' plays trajectory 't', which the actor does not have");
+              "t.actor:12: player 'p' plays trajectory 't', which the actor does not have");
     EXPECT_EQ(readError(kArm + " trajectory t { key 0 0 0 0 0 }\n player p {\n  trajectory t\n  speed 2\n  fade 0.5\n"
                                "  dof elbow.rx 1\n }\n}\n"),
-              "p.actor:16: 'fade' is for a clip's player, and player 'p' plays a trajectory");
-    EXPECT_EQ(readError(player("  clip walk\n")), "p.actor:12: player 'p' plays clip 'walk', which the actor does not have");
-    EXPECT_EQ(readError(player("  clip wave\n  clip wave\n")), "p.actor:14: 'clip' is given twice");
-    EXPECT_EQ(readError(player("  clip wave\n  loop\n")), "p.actor:14: unknown keyword 'loop' in a player");
+              "t.actor:16: 'fade' is for a clip's player, and player 'p' plays a trajectory");
+    EXPECT_EQ(readError(player("  clip walk\n")),
+              "t.actor:12: player 'p' plays clip 'walk', which the actor does not have");
+    EXPECT_EQ(readError(player("  clip wave\n  clip wave\n")), "t.actor:14: 'clip' is given twice");
+    EXPECT_EQ(readError(player("  clip wave\n  loop\n")), "t.actor:14: unknown keyword 'loop' in a player");
     EXPECT_EQ(readError(player("  clip wave\n  play sometimes\n")),
-              "p.actor:14: 'sometimes' is not a play mode (once, loop, pingpong)");
-    EXPECT_EQ(readError(player("  clip wave\n  weight 1.5\n")), "p.actor:14: 'weight' must be from 0 to 1");
-    EXPECT_EQ(readError(player("  clip wave\n  fade -0.1\n")), "p.actor:14: 'fade' must be from 0 to 1");
-    EXPECT_EQ(readError(player("  clip wave\n  time nan\n")), "p.actor:14: 'nan' is not a finite number");
-    EXPECT_EQ(readError(player("  clip wave\n  speed\n")), "p.actor:14: 'speed' takes 1 value, not 0");
-    EXPECT_EQ(readError(player("  clip wave\n  sway_window -1\n")), "p.actor:14: 'sway_window' must not be negative");
+              "t.actor:14: 'sometimes' is not a play mode (once, loop, pingpong)");
+    EXPECT_EQ(readError(player("  clip wave\n  weight 1.5\n")), "t.actor:14: 'weight' must be from 0 to 1");
+    EXPECT_EQ(readError(player("  clip wave\n  fade -0.1\n")), "t.actor:14: 'fade' must be from 0 to 1");
+    EXPECT_EQ(readError(player("  clip wave\n  time nan\n")), "t.actor:14: 'nan' is not a finite number");
+    EXPECT_EQ(readError(player("  clip wave\n  speed\n")), "t.actor:14: 'speed' takes 1 value, not 0");
+    EXPECT_EQ(readError(player("  clip wave\n  sway_window -1\n")), "t.actor:14: 'sway_window' must not be negative");
     EXPECT_EQ(readError(player("  clip wave\n  root_motion sideways\n")),
-              "p.actor:14: 'sideways' is not a root motion (in_skeleton, to_transforms, in_place)");
+              "t.actor:14: 'sideways' is not a root motion (in_skeleton, to_transforms, in_place)");
     EXPECT_EQ(readError(player("  clip wave\n  root_motion in_place hip\n")),
-              "p.actor:14: 'hip' is not a joint of the actor");
-    EXPECT_EQ(readError(player("  clip wave\n  root_motion\n")), "p.actor:14: 'root_motion' takes 1 value, not 0");
-    EXPECT_EQ(readError(player("  clip wave\n  dof knee.rx 1\n")), "p.actor:14: 'knee.rx' names no DOF of the actor");
+              "t.actor:14: 'hip' is not a joint of the actor");
+    EXPECT_EQ(readError(player("  clip wave\n  root_motion\n")), "t.actor:14: 'root_motion' takes 1 value, not 0");
+    EXPECT_EQ(readError(player("  clip wave\n  dof knee.rx 1\n")), "t.actor:14: 'knee.rx' names no DOF of the actor");
     EXPECT_EQ(readError(player("  clip wave\n  dof elbow.rx 1\n  dof elbow.rx 0.5\n")),
-              "p.actor:15: DOF 'elbow.rx' is given twice");
-    EXPECT_EQ(readError(player("  clip wave\n  dof elbow.rx 2\n")), "p.actor:14: a DOF's weight must be from 0 to 1");
-    EXPECT_EQ(readError(player("  clip wave\n  dof elbow.rx\n")), "p.actor:14: 'dof' takes 2 values, not 1");
-    EXPECT_EQ(readError(player("  clip wave\n  disabled 1\n")), "p.actor:14: 'disabled' takes 0 values, not 1");
-    EXPECT_EQ(readError(kArm + " player p\n}\n"), "p.actor:12: 'player' needs a block in braces");
-    EXPECT_EQ(readError(kArm + " player { clip wave }\n}\n"), "p.actor:12: 'player' takes 1 value, not 0");
+              "t.actor:15: DOF 'elbow.rx' is given twice");
+    EXPECT_EQ(readError(player("  clip wave\n  dof elbow.rx 2\n")), "t.actor:14: a DOF's weight must be from 0 to 1");
+    EXPECT_EQ(readError(player("  clip wave\n  dof elbow.rx\n")), "t.actor:14: 'dof' takes 2 values, not 1");
+    EXPECT_EQ(readError(player("  clip wave\n  disabled 1\n")), "t.actor:14: 'disabled' takes 0 values, not 1");
+    EXPECT_EQ(readError(kArm + " player p\n}\n"), "t.actor:12: 'player' needs a block in braces");
+    EXPECT_EQ(readError(kArm + " player { clip wave }\n}\n"), "t.actor:12: 'player' takes 1 value, not 0");
 }
 
 TEST(ActorPlayers, PlayATrajectoryWithAControllersStateAndAreWrittenBackSo)
@@ -163,7 +139,5 @@ TEST(ActorPlayers, PlayATrajectoryWithAControllersStateAndAreWrittenBackSo)
                         "        weight 0.25\n        disabled\n    }\n}\n"),
               std::string::npos)
         << text;
-    const ActorReadResult again = read(text);
-    ASSERT_TRUE(again) << again.error;
-    EXPECT_EQ(written(again.document), text);
+    expectRewrittenTheSame(text);
 }

@@ -1,5 +1,4 @@
-#include <osgActor/io/ActorReader>
-#include <osgActor/io/ActorWriter>
+#include "ActorTextTestUtil"
 
 #include <gtest/gtest.h>
 
@@ -7,24 +6,9 @@
 #include <sstream>
 
 using namespace osgActor;
+using namespace osgActor::test;
 
 namespace {
-
-ActorReadResult read(const std::string& text)
-{
-    std::istringstream in(text);
-    return readActor(in, "t.actor");
-}
-
-/** Reads text that must fail, and checks nothing half-built came back. */
-std::string readError(const std::string& text)
-{
-    const ActorReadResult result = read(text);
-    EXPECT_FALSE(result) << text;
-    EXPECT_EQ(result.definition, nullptr);
-    EXPECT_TRUE(result.document.joints.empty());
-    return result.error;
-}
 
 const double kDegree = 3.14159265358979323846 / 180.0;
 
@@ -376,11 +360,7 @@ TEST(ActorReader, ReadsTrajectoriesInDegreesWithTheirPlayersStateAndWritesThemBa
                                  "        file \"paths/route.csv\"\n    }\n"),
               std::string::npos)
         << written.str();
-    const ActorReadResult again = read(written.str());
-    ASSERT_TRUE(again) << again.error;
-    std::ostringstream rewritten;
-    writeActor(rewritten, again.document);
-    EXPECT_EQ(rewritten.str(), written.str());
+    expectRewrittenTheSame(written.str());
 }
 
 TEST(ActorReader, KeysCloserThanTwelveDigitsStayInOrderWhenWritten)
@@ -394,11 +374,7 @@ TEST(ActorReader, KeysCloserThanTwelveDigitsStayInOrderWhenWritten)
     writeActor(written, result.document);
     EXPECT_NE(written.str().find("key 1 0\n            key 1.0000000000002 1\n"), std::string::npos) << written.str();
     EXPECT_NE(written.str().find("key 1 0 0 0 0\n        key 1.0000000000002 1 1 1 1\n"), std::string::npos);
-    const ActorReadResult again = read(written.str());
-    ASSERT_TRUE(again) << again.error;
-    std::ostringstream rewritten;
-    writeActor(rewritten, again.document);
-    EXPECT_EQ(rewritten.str(), written.str());
+    expectRewrittenTheSame(written.str());
 }
 
 TEST(ActorReader, RefusesBrokenTrajectories)

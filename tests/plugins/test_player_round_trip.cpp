@@ -5,6 +5,7 @@
 
 #include "../nodes/NodeTestUtil"
 
+#include <osgActor/ActorSceneIO>
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/core/ClipLibrary>
 #include <osgActor/core/ClipPlayer>
@@ -152,3 +153,29 @@ TEST_P(PlayerRoundTrip, PlayersComeBackWithTheirNamesOrderAndStateAndPlayOnTheSa
 
 INSTANTIATE_TEST_SUITE_P(EveryFormat, PlayerRoundTrip, ::testing::Values("actor", "osgt", "osgb", "osgx", "osg"),
                          [](const ::testing::TestParamInfo<const char*>& info) { return std::string(info.param); });
+
+TEST(PlayerRoundTrip, APlayerOfAnotherClipOrPathNamedLikeOneWrittenIsLeftOut)
+{
+    // A file names each clip and path once: a player of a second one of the same name would read back playing the
+    // first, so the writer leaves it out (with a warning) rather than change what it plays.
+    osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("humanoid.actor"));
+    ASSERT_TRUE(actor.valid());
+    ClipBuilder other("wave");
+    other.addKey(other.addChannel("skullbase.rx"), 0.0, 0.5);
+    addPlayer(*actor, "library wave", actor->getClipLibrary()->getClip("wave"));
+    addPlayer(*actor, "other wave", other.build().clip);
+    const TrajectoryBuildResult first = TrajectoryBuilder::build("path", {TrajectoryKey{0.0, glm::dvec3(0.0), 0.0}});
+    const TrajectoryBuildResult second = TrajectoryBuilder::build("path", {TrajectoryKey{0.0, glm::dvec3(1.0), 0.0}});
+    ASSERT_TRUE(first && second);
+    actor->addController(std::make_shared<TrajectoryPlayer>(first.trajectory));
+    actor->addController(std::make_shared<TrajectoryPlayer>(second.trajectory));
+
+    const ActorDocument document = extractActorDocument(*actor);
+    ASSERT_EQ(document.players.size(), 2u);
+    EXPECT_EQ(document.players[0].name, "library wave");
+    EXPECT_TRUE(document.players[1].playsTrajectory());
+    ASSERT_EQ(document.clips.size(), 1u);
+    EXPECT_EQ(document.clips[0].clip, actor->getClipLibrary()->getClip("wave"));
+    ASSERT_EQ(document.trajectories.size(), 1u);
+    EXPECT_EQ(document.trajectories[0].trajectory, first.trajectory);
+}
