@@ -81,7 +81,7 @@ inline void writeDirtyingBounds(const int* parents, const osg::ref_ptr<SkeletonN
 ActorNode::ActorNode()
     : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _preTransformDirty(true),
       _postTransformDirty(true), _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false),
-      _boundMode(BOUND_FOLLOWS_POSE), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+      _boundMode(BOUND_COVERS_ROTATIONS), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
 {
     setDataVariance(osg::Object::DYNAMIC);
     setUpdateCallback(new ActorUpdateCallback);

@@ -1,5 +1,6 @@
 #include "CameraView.h"
 
+#include <osg/ComputeBoundsVisitor>
 #include <osg/Math>
 
 #include <algorithm>
@@ -25,6 +26,15 @@ CameraView frameBoundingSphere(const osg::BoundingSphere& bound, double fovyDegr
     view.eye = view.center + towardsEye * distance;
     view.up = osg::Vec3d(0.0, 0.0, 1.0);
     return view;
+}
+
+osg::BoundingSphere shownBound(osg::Node& scene)
+{
+    osg::ComputeBoundsVisitor drawn;
+    scene.accept(drawn);
+    const osg::BoundingBox& box = drawn.getBoundingBox();
+    if (!box.valid()) return scene.getBound();
+    return osg::BoundingSphere(box);
 }
 
 } // namespace osgActorApps

@@ -3,6 +3,7 @@
 #define OSGACTORAPPS_CAMERAVIEW_H 1
 
 #include <osg/BoundingSphere>
+#include <osg/Node>
 #include <osg/Vec3d>
 
 namespace osgActorApps {
@@ -19,6 +20,11 @@ struct CameraView
   * sphere fits a perspective camera of the given vertical field of view (degrees) and aspect ratio (width /
   * height). An invalid or empty bound gives the default view. */
 CameraView frameBoundingSphere(const osg::BoundingSphere& bound, double fovyDegrees, double aspect);
+
+/** The sphere about the box that holds the scene's drawables as posed now, for framing. Tighter than the scene's
+  * own bound, which holds each node's bound (an actor's, by default, holds every rotation of its joints); the
+  * scene's bound where it has no drawable. */
+osg::BoundingSphere shownBound(osg::Node& scene);
 
 } // namespace osgActorApps
 

@@ -51,10 +51,10 @@ void OffscreenRenderer::setCameraView(const CameraView& view)
 
 CameraView OffscreenRenderer::frameScene() const
 {
-    const osg::Node* scene = _viewer->getSceneData();
+    osg::Node* scene = _viewer->getSceneData();
     if (scene == nullptr) return CameraView();
     const double aspect = double(_context->getWidth()) / double(_context->getHeight());
-    return frameBoundingSphere(scene->getBound(), _fovyDegrees, aspect);
+    return frameBoundingSphere(osgActorApps::shownBound(*scene), _fovyDegrees, aspect);
 }
 
 void OffscreenRenderer::update(double simulationTime)

@@ -23,7 +23,7 @@ struct RenderOptions
     int height = 480;
     double fovyDegrees = 30.0;
 
-    /** Camera: auto-framed from the scene's bound at the first frame unless eye is given. */
+    /** Camera: auto-framed from what the scene draws at the first frame unless eye is given. */
     bool hasEye = false;
     bool hasCenter = false;
     CameraView view;

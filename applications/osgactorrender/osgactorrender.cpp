@@ -37,7 +37,7 @@ bool writeImage(const osg::Image& image, const std::string& file, std::string& e
     return false;
 }
 
-/** The camera of the first frame: the user's, completed from the scene's bound where the user left it open. */
+/** The camera of the first frame: the user's, completed from what the scene draws where the user left it open. */
 CameraView chooseCameraView(const RenderOptions& options, const OffscreenRenderer& renderer)
 {
     const CameraView framed = renderer.frameScene();

@@ -149,7 +149,7 @@ int main(int argc, char** argv)
 
     // Home: the scene from the front, a little above (as osgactorrender frames it), not edge-on to a floor.
     const osgActorApps::CameraView home =
-        osgActorApps::frameBoundingSphere(scene->getBound(), 30.0, double(width) / height);
+        osgActorApps::frameBoundingSphere(osgActorApps::shownBound(*scene), 30.0, double(width) / height);
     manipulators->setAutoComputeHomePosition(false);
     manipulators->setHomePosition(home.eye, home.center, home.up);
     viewer.home();

@@ -105,7 +105,7 @@ void SummaryReporter::writeSummary()
     std::stable_sort(_results.begin(), _results.end(), [](const Result& a, const Result& b) {
         const auto key = [](const Result& r) {
             return std::make_tuple(rank(r.mode, {"update", "update_cull", "parallel", "memory"}), r.n,
-                                   rank(r.system, {"osgActor_all", "osgActor_all_cover", "osgActor_quarter",
+                                   rank(r.system, {"osgActor_all", "osgActor_all_follow", "osgActor_quarter",
                                                    "osgActor_idle", "osgAnimation", "plainOSG", "osgActor_1thread",
                                                    "osgActor_2threads"}));
         };
@@ -167,7 +167,7 @@ void SummaryReporter::writeSummary()
         gp << "set title '" << mode << "'\nplot ";
         bool first = true;
         for (const char* system :
-             {"osgActor_all", "osgActor_all_cover", "osgActor_quarter", "osgActor_idle", "osgAnimation", "plainOSG"})
+             {"osgActor_all", "osgActor_all_follow", "osgActor_quarter", "osgActor_idle", "osgAnimation", "plainOSG"})
         {
             data << "# " << mode << " " << system << "\n";
             for (const Result& r : _results)

@@ -14,7 +14,8 @@ osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, Motion motion, un
     osg::ref_ptr<osgActor::ActorNode> prototype = new osgActor::ActorNode(humanoidDefinition());
     for (unsigned j = 0; j < prototype->getNumSkeletonNodes(); ++j)
         prototype->getSkeletonNode(j)->addChild(jointBox().get());
-    if (bounds == Bounds::CoverRotations) prototype->setBoundMode(osgActor::ActorNode::BOUND_COVERS_ROTATIONS);
+    prototype->setBoundMode(bounds == Bounds::FollowPose ? osgActor::ActorNode::BOUND_FOLLOWS_POSE
+                                                         : osgActor::ActorNode::BOUND_COVERS_ROTATIONS);
     if (motion != Motion::Idle)
     {
         auto controller = std::make_shared<osgActor::ClipPlayer>(humanoidOsgActorClip());

@@ -14,7 +14,7 @@ namespace {
 
 using bench::Motion;
 
-enum class System { OsgActorAll, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg, OsgActorAllCover,
+enum class System { OsgActorAll, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg, OsgActorAllFollow,
                     OsgActor1Thread, OsgActor2Threads };
 
 osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors)
@@ -26,8 +26,8 @@ osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors)
     case System::OsgActorIdle: return bench::makeOsgActorScene(numActors, Motion::Idle);
     case System::OsgAnimation: return bench::makeOsgAnimationScene(numActors);
     case System::PlainOsg: return bench::makePlainOsgScene(numActors);
-    case System::OsgActorAllCover:
-        return bench::makeOsgActorScene(numActors, Motion::All, 0, bench::Bounds::CoverRotations);
+    case System::OsgActorAllFollow:
+        return bench::makeOsgActorScene(numActors, Motion::All, 0, bench::Bounds::FollowPose);
     case System::OsgActor1Thread: return bench::makeOsgActorScene(numActors, Motion::All, 1);
     case System::OsgActor2Threads: return bench::makeOsgActorScene(numActors, Motion::All, 2);
     }
@@ -72,7 +72,7 @@ void runSystem(benchmark::State& state, System system, bool withCull)
 }
 
 const char* const kNames[] = {"osgActor_all", "osgActor_quarter",   "osgActor_idle",    "osgAnimation",
-                              "plainOSG",     "osgActor_all_cover", "osgActor_1thread", "osgActor_2threads"};
+                              "plainOSG",     "osgActor_all_follow", "osgActor_1thread", "osgActor_2threads"};
 
 void registerAll()
 {

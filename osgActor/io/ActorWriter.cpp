@@ -332,7 +332,7 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     addPlacement(actor.children, "pre_translation", document.preTranslation, "pre_rotation", document.preRotation);
     addPlacement(actor.children, "post_translation", document.postTranslation, "post_rotation", document.postRotation);
     if (document.blocked) actor.children.push_back(statement("blocked"));
-    if (document.boundsCoverRotations) actor.children.push_back(statement("bounds", {word("covers_rotations")}));
+    if (!document.boundsCoverRotations) actor.children.push_back(statement("bounds", {word("follows_pose")}));
     JointTreeWriter(document).write(actor.children);
     for (const ClipDocument& clip : document.clips)
         if (clip.clip || !clip.file.empty()) actor.children.push_back(clipStatement(clip));

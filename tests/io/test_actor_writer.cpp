@@ -45,7 +45,7 @@ ActorDocument makeRichDocument()
     document.preRotation = glm::angleAxis(0.4, glm::dvec3(0, 0, 1));
     document.postTranslation = glm::dvec3(0, 0, 0.9);
     document.blocked = true;
-    document.boundsCoverRotations = true;
+    document.boundsCoverRotations = false; // not the default, so it is written
     document.joints[1].values[0] = 1.0;
     document.joints[1].hidden = true;
     GeometryDescription cone;
@@ -168,7 +168,7 @@ TEST(ActorWriter, ReadingWhatItWroteGivesTheSameActorAndWritingAgainTheSameBytes
     EXPECT_NEAR(again.preRotation.z, original.preRotation.z, 1e-12);
     EXPECT_EQ(again.postTranslation, original.postTranslation);
     EXPECT_TRUE(again.blocked);
-    EXPECT_TRUE(again.boundsCoverRotations);
+    EXPECT_FALSE(again.boundsCoverRotations);
     ASSERT_TRUE(again.joints[1].values[0].has_value());
     EXPECT_NEAR(*again.joints[1].values[0], 1.0, 1e-11);
     EXPECT_TRUE(again.joints[1].hidden);

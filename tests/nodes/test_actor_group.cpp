@@ -62,8 +62,9 @@ TEST(ActorGroup, ParallelUpdateGivesTheSamePosesAsSerialUpdate)
     {
         osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
         actor->addController(std::make_shared<SwingController>(0.1 * a));
-        // Half of them write their nodes the covering way (no bounds dirtied): that path runs on the workers too.
-        if (a % 2) actor->setBoundMode(ActorNode::BOUND_COVERS_ROTATIONS);
+        // Half of them write their nodes dirtying bounds (the covering default dirties none): that path runs on the
+        // workers too.
+        if (a % 2) actor->setBoundMode(ActorNode::BOUND_FOLLOWS_POSE);
         parallel->addChild(actor.get());
         serial->addChild(osg::clone(actor.get(), osg::CopyOp::SHALLOW_COPY));
     }
@@ -105,6 +106,7 @@ TEST(ActorGroup, BoundsFollowJointsMovedOnWorkerThreads)
     for (int a = 0; a < 8; ++a)
     {
         osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+        actor->setBoundMode(ActorNode::BOUND_FOLLOWS_POSE); // so that a moved joint dirties bounds
         actor->getSkeletonNode("tip")->addChild(makeBox(osg::Vec3(), 0.1f).get());
         group->addChild(actor.get());
         actors.push_back(actor.get());

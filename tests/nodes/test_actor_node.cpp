@@ -225,6 +225,7 @@ TEST(ActorNode, WorldQueriesGoThroughTransformsAboveTheActor)
 TEST(ActorNode, WorldQueriesAreCurrentBetweenFramesAndLeaveTheGraphConsistent)
 {
     osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    actor->setBoundMode(ActorNode::BOUND_FOLLOWS_POSE); // bounds that show where the hand is
     actor->getSkeletonNode(3u)->addChild(makeBox(osg::Vec3(), 0.1f)); // a hand at the tip, (2.5, 0, 0)
     EXPECT_TRUE(vec3Near(actor->getBound().center(), osg::Vec3d(2.5, 0, 0), 1e-6));
     actor->setDof("base.rz", kQuarter);

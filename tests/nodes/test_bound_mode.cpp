@@ -77,10 +77,14 @@ osg::ref_ptr<ActorNode> makeCoveredActor(ActorDefinitionBuilder& builder)
 
 } // namespace
 
-TEST(BoundMode, FollowsThePoseByDefault)
+TEST(BoundMode, CoversRotationsByDefault)
 {
     osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
-    EXPECT_EQ(actor->getBoundMode(), ActorNode::BOUND_FOLLOWS_POSE);
+    EXPECT_EQ(actor->getBoundMode(), ActorNode::BOUND_COVERS_ROTATIONS);
+    // base, upper and lower turn about Z; the tip has no DOF, so its bound follows (and never moves).
+    for (unsigned j = 0; j < 3; ++j) EXPECT_TRUE(actor->getSkeletonNode(j)->getBoundCoversRotations()) << j;
+    EXPECT_FALSE(actor->getSkeletonNode(3u)->getBoundCoversRotations());
+    actor->setBoundMode(ActorNode::BOUND_FOLLOWS_POSE);
     for (unsigned j = 0; j < actor->getNumSkeletonNodes(); ++j)
         EXPECT_FALSE(actor->getSkeletonNode(j)->getBoundCoversRotations()) << j;
 }
@@ -274,5 +278,19 @@ TEST(BoundMode, AnActorFileSaysWhichAndSoDoesTheDocumentOfAnActor)
     EXPECT_TRUE(extractActorDocument(*made.actor).boundsCoverRotations);
     made.actor->setBoundMode(ActorNode::BOUND_FOLLOWS_POSE);
     EXPECT_FALSE(extractActorDocument(*made.actor).boundsCoverRotations);
+
+    // Without a bounds line, the default; follows_pose is the one a file must name.
+    std::istringstream plain("osgactor 1\nactor arm {\n  joint base { dof rz }\n}\n");
+    const ActorReadResult plainRead = readActor(plain, "plain.actor");
+    ASSERT_TRUE(plainRead) << plainRead.error;
+    EXPECT_TRUE(plainRead.document.boundsCoverRotations);
+    std::istringstream follows("osgactor 1\nactor arm {\n  bounds follows_pose\n  joint base { dof rz }\n}\n");
+    const ActorReadResult followsRead = readActor(follows, "follows.actor");
+    ASSERT_TRUE(followsRead) << followsRead.error;
+    const ActorNodeResult following = createActorNode(followsRead.document, followsRead.definition, "follows.actor",
+                                                      nullptr);
+    ASSERT_TRUE(following.actor.valid()) << following.error;
+    EXPECT_EQ(following.actor->getBoundMode(), ActorNode::BOUND_FOLLOWS_POSE);
+    EXPECT_FALSE(following.actor->getSkeletonNode(0u)->getBoundCoversRotations());
 }
 

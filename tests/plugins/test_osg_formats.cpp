@@ -29,7 +29,7 @@ osg::ref_ptr<osg::Group> makeScene(bool blocked)
     actor->setPostRotation(osg::Quat(0.1, osg::Vec3d(1, 0, 0)));
     actor->getSkeletonNode("r_elbow")->setHidden(true);
     // The blocked scene also has the bound mode that is not the default (a default is not written at all).
-    if (blocked) actor->setBoundMode(ActorNode::BOUND_COVERS_ROTATIONS);
+    if (blocked) actor->setBoundMode(ActorNode::BOUND_FOLLOWS_POSE);
     runUpdate(*actor, 1);
     // The frame computed local matrices only; bring the model matrices up to date too, so that the blocked
     // original answers queries with the pose it shows (main's lazy model matrices; see the report).

@@ -3,6 +3,10 @@
 #include "ContactSheet.h"
 #include "OutputPattern.h"
 
+#include <osg/Geode>
+#include <osg/MatrixTransform>
+#include <osg/ShapeDrawable>
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -62,6 +66,27 @@ TEST(CameraView, FramedSphereFitsTheNarrowerFieldOfView)
         EXPECT_GT(view.eye.z(), view.center.z()); // from above
         EXPECT_LT(view.eye.y(), view.center.y()); // from the front (-Y)
     }
+}
+
+TEST(CameraView, ShownBoundHoldsTheDrawablesAsPlacedNotTheNodesBounds)
+{
+    // A unit cube (half size 1) 5 along X, under a node whose own bound is a far larger ball.
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->addDrawable(new osg::ShapeDrawable(new osg::Box(osg::Vec3(), 2.0f)));
+    osg::ref_ptr<osg::MatrixTransform> placed = new osg::MatrixTransform(osg::Matrixd::translate(5, 0, 0));
+    placed->addChild(geode.get());
+    placed->setInitialBound(osg::BoundingSphere(osg::Vec3(), 100.0f));
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    scene->addChild(placed.get());
+    ASSERT_GT(scene->getBound().radius(), 90.0f);
+    const osg::BoundingSphere shown = shownBound(*scene);
+    EXPECT_NEAR((osg::Vec3d(shown.center()) - osg::Vec3d(5, 0, 0)).length(), 0.0, 1e-6);
+    EXPECT_NEAR(shown.radius(), std::sqrt(3.0), 1e-6); // half the cube's diagonal
+    // Nothing drawn: the scene's own bound.
+    osg::ref_ptr<osg::Group> empty = new osg::Group;
+    empty->setInitialBound(osg::BoundingSphere(osg::Vec3(1, 2, 3), 4.0f));
+    EXPECT_EQ(shownBound(*empty).center(), osg::Vec3(1, 2, 3));
+    EXPECT_FLOAT_EQ(shownBound(*empty).radius(), 4.0f);
 }
 
 namespace {
