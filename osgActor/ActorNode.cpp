@@ -62,18 +62,24 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
     return true;
 }
 
-/** Dirties the bounds of a joint's ancestors, up to the first one already dirty (whose ancestors are too). */
-inline void dirtyBoundsAbove(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint)
+/** A joint's skeleton node, from the pose's pointers to the nodes' matrices (the per-frame loops use them rather
+  * than the array of node pointers: see SkeletonNode::fromMatrixStorageForActor()). */
+inline SkeletonNode* nodeOf(double* const* matrices, unsigned joint)
 {
-    int parent = parents[joint];
-    while (parent >= 0 && nodes[parent]->markBoundDirtyWithinActor()) parent = parents[parent];
+    return SkeletonNode::fromMatrixStorageForActor(matrices[joint]);
 }
 
-/** Writes a changed joint's matrix into its skeleton node, and dirties its bound and its ancestors'. */
-inline void writeDirtyingBounds(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint,
-                                const double* local)
+/** Dirties the bounds of a joint's ancestors, up to the first one already dirty (whose ancestors are too). */
+inline void dirtyBoundsAbove(const int* parents, double* const* matrices, unsigned joint)
 {
-    if (nodes[joint]->setMatrixWithinActor(local)) dirtyBoundsAbove(parents, nodes, joint);
+    int parent = parents[joint];
+    while (parent >= 0 && nodeOf(matrices, parent)->markBoundDirtyWithinActor()) parent = parents[parent];
+}
+
+/** Marks a joint's node as written (FK wrote its matrix in place), and dirties its bound and its ancestors'. */
+inline void writeDirtyingBounds(const int* parents, double* const* matrices, unsigned joint)
+{
+    if (nodeOf(matrices, joint)->setMatrixWithinActor(matrices[joint])) dirtyBoundsAbove(parents, matrices, joint);
 }
 
 } // namespace
@@ -513,11 +519,13 @@ void ActorNode::computeFrame(double time)
     // The skeleton nodes are written after the controllers and FK have run: start fetching them now.
     if (!_controllers.empty() || _pose.hasDirtyJoints())
     {
+        double* const* matrices = nodeMatricesOrNull();
+        const unsigned numNodes = static_cast<unsigned>(_skeletonNodes.size());
         // Two loops, so that neither tests the mode per node.
         if (_boundMode == BOUND_FOLLOWS_POSE)
-            for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) node->prefetchForMatrixWrite(true);
+            for (unsigned j = 0; j < numNodes; ++j) nodeOf(matrices, j)->prefetchForMatrixWrite(true);
         else
-            for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) node->prefetchForMatrixWrite(false);
+            for (unsigned j = 0; j < numNodes; ++j) nodeOf(matrices, j)->prefetchForMatrixWrite(false);
     }
     runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
@@ -538,12 +546,12 @@ void ActorNode::writeJointMatrices()
         return;
     }
     const int* parents = parentsOrNull();
-    const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
+    double* const* matrices = nodeMatricesOrNull();
     const std::size_t numNodes = _skeletonNodes.size();
     bool dirtied = false; // a local, not the member, inside the loop: it then stays in a register
-    _pose.consumeChangedLocals([&](unsigned joint, const double* local) {
+    _pose.consumeChangedLocals([&](unsigned joint, double*) {
         if (joint >= numNodes) return;
-        writeDirtyingBounds(parents, nodes, joint, local);
+        writeDirtyingBounds(parents, matrices, joint);
         dirtied = true;
     });
     if (dirtied) _boundsToPropagate = true;
@@ -552,20 +560,26 @@ void ActorNode::writeJointMatrices()
 void ActorNode::writeJointMatricesKeepingBalls()
 {
     const int* parents = parentsOrNull();
-    const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
+    double* const* matrices = nodeMatricesOrNull();
     const std::size_t numNodes = _skeletonNodes.size();
     bool dirtied = false;
-    _pose.consumeChangedLocals([&](unsigned joint, const double* local) {
+    _pose.consumeChangedLocals([&](unsigned joint, double* local) {
         if (joint >= numNodes) return;
         // A ball that holds every rotation of the joint does not change as it turns: no bound to dirty, here or
         // above. (The flag shares a cache line with the inverse's flag, which is written anyway.)
-        SkeletonNode* node = nodes[joint].get();
-        if (!node->getBoundCoversRotations()) writeDirtyingBounds(parents, nodes, joint, local);
-        else if (node->setMatrixKeepingBallWithinActor(local)) dirtyBoundsAbove(parents, nodes, joint);
+        SkeletonNode* node = nodeOf(matrices, joint);
+        if (!node->getBoundCoversRotations()) writeDirtyingBounds(parents, matrices, joint);
+        else if (node->setMatrixKeepingBallWithinActor(local)) dirtyBoundsAbove(parents, matrices, joint);
         else return;
         dirtied = true;
     });
     if (dirtied) _boundsToPropagate = true;
+}
+
+double* const* ActorNode::nodeMatricesOrNull() const
+{
+    // bindLocalMatricesToNodes() points the pose's local matrices at the nodes whenever there are nodes.
+    return _skeletonNodes.empty() ? nullptr : _pose.getLocalMatrixTargets();
 }
 
 const int* ActorNode::parentsOrNull() const

@@ -19,13 +19,8 @@ constexpr std::size_t kCacheLine = 64;
 std::size_t SkeletonNode::placementPad()
 {
     // The node's address sits this many bytes past a cache-line boundary, so that its matrix (a member of
-    // osg::MatrixTransform at a fixed offset) starts one. offsetof on a class that is not standard-layout is
-    // conditionally supported; GCC and Clang compute it for single, non-virtual inheritance like this one.
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Winvalid-offsetof"
-    constexpr std::size_t matrixOffset = offsetof(SkeletonNode, _matrix);
-#pragma GCC diagnostic pop
-    return (kCacheLine - matrixOffset % kCacheLine) % kCacheLine;
+    // osg::MatrixTransform at a fixed offset) starts one.
+    return (kCacheLine - matrixOffset() % kCacheLine) % kCacheLine;
 }
 
 void* SkeletonNode::operator new(std::size_t size)
