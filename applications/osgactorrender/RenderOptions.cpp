@@ -19,7 +19,8 @@ void describeRenderOptions(osg::ArgumentParser& arguments)
     usage->addCommandLineOption("--size <width> <height>", "Image size in pixels (default 640 480).");
     usage->addCommandLineOption("--fov <degrees>", "Vertical field of view (default 30).");
     usage->addCommandLineOption("--eye <x> <y> <z>", "Camera position (default: framed from what the scene draws).");
-    usage->addCommandLineOption("--center <x> <y> <z>", "Point looked at (default: the centre of what the scene draws).");
+    usage->addCommandLineOption("--center <x> <y> <z>",
+                                "Point looked at (default: the centre of what the scene draws).");
     usage->addCommandLineOption("--up <x> <y> <z>", "Camera up direction (default 0 0 1).");
     usage->addCommandLineOption("--time <seconds>", "Render one frame at this simulation time (default 0), after "
                                                     "updating the scene at every frame time before it (see --fps).");
