@@ -75,10 +75,9 @@ ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(defi
     _dofMaxs = _definition->getDofRangeMaxs().data();
     _dofJoints = _definition->getDofJoints().data();
     _dofMasks = _definition->getDofMasks().data();
-    _jointDirty.assign(numJoints, 1);
-    _localChanged.assign(numJoints, 0);
-    _modelChanged.assign(numJoints, 0);
-    _modelStale.assign(numJoints, 0);
+    _numJoints = numJoints;
+    _jointFlags.assign(4 * std::size_t(numJoints), 0);
+    std::fill_n(jointDirtyFlags(), numJoints, 1);
     _local = LocalMatrices(numJoints);
     _model.assign(numJoints, glm::dmat4(1.0));
     _anyDirty = numJoints > 0;
@@ -101,7 +100,7 @@ unsigned ActorPose::setDofRange(unsigned firstDof, const double* values, unsigne
     // Every array in a local: the dirty flags are bytes, which may alias anything, so members would be reloaded
     // after each flag store.
     const unsigned* const dofJoints = _dofJoints;
-    std::uint8_t* const jointDirty = _jointDirty.data();
+    std::uint8_t* const jointDirty = jointDirtyFlags();
     std::uint64_t refused = 0, anyChanged = 0;
     // In blocks, so the change flags stay in a small buffer on the stack.
     constexpr unsigned kBlock = 128;
@@ -137,8 +136,8 @@ void ActorPose::resetDofs()
 
 void ActorPose::markAllJointsDirty()
 {
-    std::fill(_jointDirty.begin(), _jointDirty.end(), 1);
-    _anyDirty = !_jointDirty.empty();
+    std::fill_n(jointDirtyFlags(), _numJoints, 1);
+    _anyDirty = _numJoints > 0;
 }
 
 unsigned ActorPose::updateMatrices() { return runForwardKinematics(true, true); }
@@ -155,12 +154,12 @@ unsigned ActorPose::runForwardKinematics(bool rebuildLocal, bool computeModel)
     ForwardKinematicsJob job;
     job.definition = _definition.get();
     job.dofs = _dofs.data();
-    job.jointDirty = _jointDirty.data();
+    job.jointDirty = jointDirtyFlags();
     job.local = _local.targets();
     job.model = _model.data();
-    job.localChanged = _localChanged.data();
-    job.modelStale = _modelStale.data();
-    job.modelChanged = _modelChanged.data();
+    job.localChanged = localChangedFlags();
+    job.modelStale = modelStaleFlags();
+    job.modelChanged = modelChangedFlags();
     job.computeModel = computeModel;
     job.rebuildLocal = rebuildLocal;
     job.run();
