@@ -143,6 +143,42 @@ TEST(ActorPose, CopiesAreIndependent)
     EXPECT_EQ(a.getDefinition(), b.getDefinition()) << "the definition is shared";
 }
 
+TEST(ActorPose, PerJointFlagsStaySeparateInThePoseAndItsCopy)
+{
+    // Thirteen joints: the flag arrays share one block and are read and written eight bytes at a time, so a count
+    // that is no multiple of eight would show a write spilling from one array into the next.
+    ActorDefinitionBuilder b("chain");
+    b.addJoint("j0").dofs(dofBit(Dof::RX));
+    for (int j = 1; j < 13; ++j)
+        b.addJoint("j" + std::to_string(j), "j" + std::to_string(j - 1)).offset(0, 0, 0.1).dofs(dofBit(Dof::RX));
+    ActorPose pose(b.build().definition);
+    ASSERT_EQ(pose.getNumJoints(), 13u);
+    pose.updateMatrices();
+    pose.consumeChangedLocals([](unsigned, const double*) {});
+
+    const std::vector<double> angles(13, 0.2);
+    ASSERT_EQ(pose.setDofRange(0, angles.data(), 13), 0u);
+    EXPECT_EQ(pose.updateLocalMatrices(), 13u);
+    ASSERT_EQ(pose.setDof(5, 0.4), DofWriteStatus::Written);
+    for (unsigned j = 0; j < 13; ++j) EXPECT_EQ(pose.isJointDirty(j), j == 5) << "joint " << j;
+
+    ActorPose copy = pose;
+    std::vector<unsigned> changed, changedInCopy;
+    copy.consumeChangedLocals([&](unsigned joint, const double*) { changedInCopy.push_back(joint); });
+    EXPECT_EQ(changedInCopy.size(), 13u) << "every joint rebuilt, whatever was marked dirty after";
+    pose.consumeChangedLocals([&](unsigned joint, const double*) { changed.push_back(joint); });
+    EXPECT_EQ(changed, changedInCopy) << "consuming the copy's list leaves the original's";
+
+    EXPECT_EQ(pose.updateMatrices(), 1u) << "only joint 5 was dirty";
+    EXPECT_FALSE(pose.isJointDirty(5));
+    EXPECT_TRUE(copy.isJointDirty(5)) << "the copy keeps its own dirty flags";
+    // The model matrices caught up with every local rebuilt, stale since updateLocalMatrices(): the chain's end
+    // turned by 12 x 0.2 + 0.4 about x.
+    const glm::dmat4& end = pose.getModelMatrix(12);
+    EXPECT_NEAR(end[1][2], std::sin(2.8), 1e-12);
+    EXPECT_NEAR(end[1][1], std::cos(2.8), 1e-12);
+}
+
 TEST(ActorPose, RedirectedLocalMatricesAreWrittenInPlace)
 {
     ActorPose pose(makeArm());
