@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <typeinfo>
 
 namespace osgActor {
 
@@ -500,6 +501,26 @@ void ActorNode::update(const osg::NodeVisitor* nv)
     if (!claimFrame(stamp)) return;
     computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
     writeSceneGraph();
+}
+
+unsigned char ActorNode::updateWithinGroup(const osg::FrameStamp* stamp)
+{
+    unsigned char left = hasUpdateTraversalWorkBeyondOwnUpdate() ? GROUP_WORK_VISIT : GROUP_WORK_NONE;
+    if (!claimFrame(stamp)) return left;
+    computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
+    writeJointMatrices();
+    // Nothing to write for a still actor_m whose bounds below stayed clean (the covering bounds' usual frame):
+    // the update thread then need not touch this actor at all.
+    if (!_actorMatrixWritten || _boundsToPropagate) left |= GROUP_WORK_WRITE_ACTOR_MATRIX;
+    return left;
+}
+
+bool ActorNode::hasUpdateTraversalWorkBeyondOwnUpdate() const
+{
+    if (getNumChildrenRequiringUpdateTraversal() > 0) return true;
+    const osg::Callback* callback = getUpdateCallback();
+    if (!callback) return false;
+    return typeid(*callback) != typeid(ActorUpdateCallback) || callback->getNestedCallback();
 }
 
 bool ActorNode::claimFrame(const osg::FrameStamp* stamp)

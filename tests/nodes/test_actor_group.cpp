@@ -122,3 +122,114 @@ TEST(ActorGroup, BoundsFollowJointsMovedOnWorkerThreads)
     runUpdate(*group, 3);
     EXPECT_FALSE(group->getBound().contains(raisedTip));
 }
+
+namespace {
+
+/** Counts its calls and passes the traversal on. */
+class CountingCallback : public osg::NodeCallback
+{
+public:
+    void operator()(osg::Node* node, osg::NodeVisitor* nv) override
+    {
+        ++calls;
+        traverse(node, nv);
+    }
+    int calls = 0;
+};
+
+osg::ref_ptr<ActorNode> makeSwingingArm(double phase)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    actor->addController(std::make_shared<SwingController>(phase));
+    return actor;
+}
+
+} // namespace
+
+TEST(ActorGroup, StillRunsUserCallbacksOnAndBelowItsActors)
+{
+    // The group skips visiting actors with nothing more to run than their own update: these have more.
+    osg::ref_ptr<ActorGroup> group = new ActorGroup;
+    group->setNumThreads(2);
+    osg::ref_ptr<ActorNode> nested = makeSwingingArm(0.0);
+    osg::ref_ptr<CountingCallback> onActor = new CountingCallback;
+    nested->addUpdateCallback(onActor.get()); // nested behind the actor's own ActorUpdateCallback
+    osg::ref_ptr<ActorNode> below = makeSwingingArm(1.0);
+    osg::ref_ptr<osg::Group> attached = new osg::Group;
+    osg::ref_ptr<CountingCallback> onAttached = new CountingCallback;
+    attached->setUpdateCallback(onAttached.get());
+    below->getSkeletonNode("tip")->addChild(attached.get());
+    osg::ref_ptr<ActorNode> replaced = makeSwingingArm(2.0);
+    osg::ref_ptr<CountingCallback> instead = new CountingCallback;
+    replaced->setUpdateCallback(instead.get()); // no ActorUpdateCallback at all: the group still updates it
+    osg::ref_ptr<osg::Group> other = new osg::Group;
+    osg::ref_ptr<CountingCallback> onOther = new CountingCallback;
+    other->setUpdateCallback(onOther.get());
+    for (osg::Node* child : {static_cast<osg::Node*>(nested.get()), static_cast<osg::Node*>(below.get()),
+                             static_cast<osg::Node*>(replaced.get()), static_cast<osg::Node*>(other.get())})
+        group->addChild(child);
+    for (unsigned frame = 1; frame <= 3; ++frame) runUpdate(*group, frame);
+    EXPECT_EQ(onActor->calls, 3);
+    EXPECT_EQ(onAttached->calls, 3);
+    EXPECT_EQ(instead->calls, 3);
+    EXPECT_EQ(onOther->calls, 3);
+    for (ActorNode* actor : {nested.get(), below.get(), replaced.get()}) EXPECT_EQ(actor->getNumUpdatesRun(), 3u);
+}
+
+TEST(ActorGroup, FollowsItsChildrenAsTheyChange)
+{
+    osg::ref_ptr<ActorGroup> group = new ActorGroup;
+    group->setNumThreads(2);
+    osg::ref_ptr<ActorNode> first = makeSwingingArm(0.0);
+    osg::ref_ptr<ActorNode> second = makeSwingingArm(1.0);
+    osg::ref_ptr<ActorNode> third = makeSwingingArm(2.0);
+    // A child many times over, among others: updated once a frame all the same, and never by two workers at
+    // once (ThreadSanitizer runs this test).
+    for (int copy = 0; copy < 16; ++copy)
+    {
+        group->addChild(first.get());
+        group->addChild(makeSwingingArm(copy).get());
+    }
+    group->addChild(second.get());
+    runUpdate(*group, 1);
+    EXPECT_EQ(first->getNumUpdatesRun(), 1u);
+    EXPECT_EQ(second->getNumUpdatesRun(), 1u);
+
+    group->removeChild(second.get());
+    group->addChild(third.get());
+    runUpdate(*group, 2);
+    EXPECT_EQ(first->getNumUpdatesRun(), 2u);
+    EXPECT_EQ(second->getNumUpdatesRun(), 1u) << "removed: no longer updated";
+    EXPECT_EQ(third->getNumUpdatesRun(), 1u) << "added: updated from its first frame in the group";
+
+    group->replaceChild(third.get(), second.get()); // osg::Group::setChild() underneath
+    runUpdate(*group, 3);
+    EXPECT_EQ(third->getNumUpdatesRun(), 1u);
+    EXPECT_EQ(second->getNumUpdatesRun(), 2u);
+    EXPECT_EQ(first->getNumUpdatesRun(), 3u);
+    const osg::Matrixd swung = second->getSkeletonNode(0u)->getMatrix();
+    runUpdate(*group, 4);
+    EXPECT_NE(second->getSkeletonNode(0u)->getMatrix(), swung) << "its controller runs in the group";
+}
+
+TEST(ActorGroup, PlacesActorsWhosePreTransformChangesBetweenFrames)
+{
+    // actor_m is written on the update thread, only for the actors whose placement changed.
+    osg::ref_ptr<ActorGroup> group = new ActorGroup;
+    group->setNumThreads(2);
+    std::vector<osg::ref_ptr<ActorNode>> actors;
+    for (int a = 0; a < 6; ++a)
+    {
+        actors.push_back(makeSwingingArm(a));
+        actors.back()->getSkeletonNode("tip")->addChild(makeBox(osg::Vec3(), 0.1f).get());
+        group->addChild(actors.back().get());
+    }
+    runUpdate(*group, 1);
+    EXPECT_LT(group->getBound().center().x(), 4.0f);
+    actors[3]->setPreTranslation(osg::Vec3d(50.0, 0.0, 0.0));
+    runUpdate(*group, 2);
+    EXPECT_EQ(actors[3]->getMatrix().getTrans(), osg::Vec3d(50.0, 0.0, 0.0));
+    EXPECT_EQ(actors[2]->getMatrix().getTrans(), osg::Vec3d());
+    EXPECT_GT(actors[3]->getBound().center().x(), 45.0f);
+    EXPECT_TRUE(group->getBound().contains(actors[3]->getBound().center())) << "the group's bound was dirtied";
+}
