@@ -1,11 +1,15 @@
 #include <osgActor/core/WorkerPool>
 
+#include <algorithm>
+#include <cstdint>
+
 namespace osgActor {
 
 WorkerPool::WorkerPool(unsigned numThreads)
 {
     if (numThreads == 0) numThreads = std::max(1u, std::thread::hardware_concurrency());
-    for (unsigned i = 1; i < numThreads; ++i) _workers.emplace_back([this] { workerLoop(); });
+    _slices.reset(new Slice[numThreads]);
+    for (unsigned i = 1; i < numThreads; ++i) _workers.emplace_back([this, i] { workerLoop(i); });
 }
 
 WorkerPool::~WorkerPool()
@@ -18,18 +22,23 @@ WorkerPool::~WorkerPool()
     for (std::thread& worker : _workers) worker.join();
 }
 
-void WorkerPool::runItems()
+void WorkerPool::runItems(unsigned thread)
 {
-    for (;;)
+    const unsigned numThreads = getNumThreads();
+    for (unsigned k = 0; k < numThreads; ++k) // its own slice first, then the others' in turn
     {
-        const unsigned begin = _next.fetch_add(_grain, std::memory_order_relaxed);
-        if (begin >= _count) return;
-        const unsigned end = std::min(_count, begin + _grain);
-        for (unsigned i = begin; i < end; ++i) (*_task)(i);
+        Slice& slice = _slices[(thread + k) % numThreads];
+        for (;;)
+        {
+            const unsigned begin = slice.next.fetch_add(_grain, std::memory_order_relaxed);
+            if (begin >= slice.end) break;
+            const unsigned end = std::min(slice.end, begin + _grain);
+            for (unsigned i = begin; i < end; ++i) (*_task)(i);
+        }
     }
 }
 
-void WorkerPool::workerLoop()
+void WorkerPool::workerLoop(unsigned thread)
 {
     unsigned seen = 0;
     for (;;)
@@ -40,7 +49,7 @@ void WorkerPool::workerLoop()
             if (_stopping) return;
             seen = _generation;
         }
-        runItems();
+        runItems(thread);
         {
             std::lock_guard<std::mutex> lock(_mutex);
             if (--_busyWorkers == 0) _finished.notify_one();
@@ -59,14 +68,19 @@ void WorkerPool::parallelFor(unsigned count, const std::function<void(unsigned)>
     {
         std::lock_guard<std::mutex> lock(_mutex);
         _task = &task;
-        _count = count;
         _grain = std::max(1u, grain);
-        _next.store(0, std::memory_order_relaxed);
+        const unsigned numThreads = getNumThreads();
+        for (unsigned t = 0; t < numThreads; ++t)
+        {
+            // Published to the workers by the mutex, as the task is.
+            _slices[t].next.store(static_cast<unsigned>(std::uint64_t(count) * t / numThreads), std::memory_order_relaxed);
+            _slices[t].end = static_cast<unsigned>(std::uint64_t(count) * (t + 1) / numThreads);
+        }
         _busyWorkers = static_cast<unsigned>(_workers.size());
         ++_generation;
     }
     _wake.notify_all();
-    runItems();
+    runItems(0);
     // Every worker must have left runItems() before the task (owned by the caller) goes out of scope.
     std::unique_lock<std::mutex> lock(_mutex);
     _finished.wait(lock, [&] { return _busyWorkers == 0; });

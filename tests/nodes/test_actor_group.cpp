@@ -4,7 +4,9 @@
 #include <osgActor/core/WorkerPool>
 
 #include <atomic>
+#include <chrono>
 #include <numeric>
+#include <thread>
 
 using namespace osgActor;
 using namespace osgActor::test;
@@ -43,6 +45,31 @@ TEST(WorkerPool, RunsEveryItemExactlyOnce)
             for (unsigned i = 0; i < count; ++i) ASSERT_EQ(hits[i].load(), 1) << threads << " threads, item " << i;
         }
     }
+}
+
+TEST(WorkerPool, FinishesTheSliceOfAThreadThatIsStillBusy)
+{
+    // Two threads, four items, one at a time: the caller's slice is items 0-1, the worker's 2-3. Whichever thread
+    // runs item 2 waits there for item 3, which only the other thread can then run: it must take it from a slice
+    // that is not its own (were slices not shared, item 2 would wait out its deadline and the test fail).
+    WorkerPool pool(2);
+    std::atomic<bool> item3Ran{false};
+    std::atomic<bool> item2TimedOut{false};
+    std::vector<std::atomic<int>> hits(4);
+    for (auto& h : hits) h = 0;
+    pool.parallelFor(4, [&](unsigned i) {
+        hits[i].fetch_add(1);
+        if (i == 3) item3Ran = true;
+        if (i != 2) return;
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+        while (!item3Ran)
+        {
+            if (std::chrono::steady_clock::now() > deadline) { item2TimedOut = true; return; }
+            std::this_thread::yield();
+        }
+    }, 1);
+    EXPECT_FALSE(item2TimedOut.load());
+    for (unsigned i = 0; i < 4; ++i) EXPECT_EQ(hits[i].load(), 1) << "item " << i;
 }
 
 TEST(WorkerPool, RunsManyBatchesInARow)
