@@ -70,11 +70,14 @@ void WorkerPool::parallelFor(unsigned count, const std::function<void(unsigned)>
         _task = &task;
         _grain = std::max(1u, grain);
         const unsigned numThreads = getNumThreads();
+        const auto sliceStart = [&](unsigned slice) {
+            return static_cast<unsigned>(std::uint64_t(count) * slice / numThreads);
+        };
         for (unsigned t = 0; t < numThreads; ++t)
         {
             // Published to the workers by the mutex, as the task is.
-            _slices[t].next.store(static_cast<unsigned>(std::uint64_t(count) * t / numThreads), std::memory_order_relaxed);
-            _slices[t].end = static_cast<unsigned>(std::uint64_t(count) * (t + 1) / numThreads);
+            _slices[t].next.store(sliceStart(t), std::memory_order_relaxed);
+            _slices[t].end = sliceStart(t + 1);
         }
         _busyWorkers = static_cast<unsigned>(_workers.size());
         ++_generation;
