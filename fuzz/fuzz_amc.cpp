@@ -1,5 +1,5 @@
 // libFuzzer target: the AMC parser on arbitrary bytes, against one real ASF skeleton read once at start
-// (OSGACTOR_FUZZ_ASF, else the CMU skeleton in ../shared/mocap).
+// (OSGACTOR_FUZZ_ASF, else the CMU skeleton in data/mocap).
 #include "FuzzMain"
 
 namespace {

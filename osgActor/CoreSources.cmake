@@ -1,4 +1,4 @@
-# The OSG-free part of libosgActor (DESIGN.md section 3): core (GLM only), the .actor format (io/) and the
+# The OSG-free part of libosgActor (docs/architecture.md): core (GLM only), the .actor format (io/) and the
 # motion-capture parsers (mocap/). Paths are relative to this folder. Included by osgActor/CMakeLists.txt, which
 # compiles them into the object library osgActorCore (linked alone into the fuzzers of fuzz/).
 
@@ -17,6 +17,7 @@ set(OSGACTOR_CORE_HEADERS
     core/JointBatches
     core/LocalMatrices
     core/SinCos
+    core/Span
     core/Trajectory
     core/WorkerPool)
 set(OSGACTOR_CORE_IK_HEADERS

@@ -12,7 +12,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${OSGACTOR_ASAN_BUILD_DIR:-$root/build-asan}"
 seconds="${OSGACTOR_FUZZ_SECONDS:-60}"
 targets=(${OSGACTOR_FUZZ_TARGETS:-actor bvh asf amc trajectory_csv})
-shared="$root/../shared"
+mocap="$root/data/mocap"
 assimp=/usr/share/assimp/models/BVH
 artifacts="${OSGACTOR_FUZZ_ARTIFACTS:-$build/fuzz-artifacts}"
 
@@ -22,9 +22,9 @@ cmake --build "$build" -j "${OSGACTOR_JOBS:-$(nproc)}" --target $(printf 'fuzz_%
 
 # Seeds per target: shell globs, those that match nothing are skipped.
 seeds_actor=("$root"/data/*.actor "$root"/fuzz/seeds/actor/* "$root"/tests/robustness/inputs/actor/*)
-seeds_bvh=("$shared"/mocap/bvh/*.bvh "$assimp"/*.bvh "$root"/tests/robustness/inputs/bvh/*)
-seeds_asf=("$shared"/mocap/asfamc/*.asf "$root"/tests/robustness/inputs/asf/*)
-seeds_amc=("$shared"/mocap/asfamc/11_*.amc "$root"/tests/robustness/inputs/amc/*)
+seeds_bvh=("$mocap"/bvh/*.bvh "$assimp"/*.bvh "$root"/tests/robustness/inputs/bvh/*)
+seeds_asf=("$mocap"/asfamc/*.asf "$root"/tests/robustness/inputs/asf/*)
+seeds_amc=("$mocap"/asfamc/11_*.amc "$root"/tests/robustness/inputs/amc/*)
 seeds_trajectory_csv=("$root"/tests/motion/data/*.csv "$root"/tests/robustness/inputs/trajectory_csv/*)
 
 work="$(mktemp -d)"

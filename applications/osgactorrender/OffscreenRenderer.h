@@ -18,7 +18,7 @@ namespace osgActorRender {
 using osgActorApps::CameraView;
 using osgActorApps::frameBoundingSphere;
 
-/** An osgViewer::Viewer embedded in an OSMesa context (DESIGN.md section 4): single-threaded, one frame per
+/** An osgViewer::Viewer embedded in an OSMesa context (docs/architecture.md): single-threaded, one frame per
   * call, each frame read back as an RGB osg::Image (rows bottom-first). The frame stamp's simulation time is the
   * one given, so actor controllers animate exactly as they would in a viewer at that time.
   *

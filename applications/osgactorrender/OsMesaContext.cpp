@@ -22,7 +22,7 @@ bool OsMesaContext::glResolvesToOsMesa(std::string& error)
     if (std::strstr(info.dli_fname, "libOSMesa") == nullptr)
     {
         error = std::string("glGetString resolves into ") + info.dli_fname +
-                ", not libOSMesa: libOSMesa must come first on the executable's link line (DESIGN.md section 4)";
+                ", not libOSMesa: libOSMesa must come first on the executable's link line (docs/architecture.md)";
         return false;
     }
     return true;

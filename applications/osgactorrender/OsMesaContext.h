@@ -1,4 +1,4 @@
-/* osgactorrender: an OSMesa context rendering into a client memory buffer (DESIGN.md section 4). */
+/* osgactorrender: an OSMesa context rendering into a client memory buffer (docs/architecture.md). */
 #ifndef OSGACTORRENDER_OSMESACONTEXT_H
 #define OSGACTORRENDER_OSMESACONTEXT_H 1
 

@@ -14,9 +14,9 @@ struct ShowcaseSources
 {
     std::string humanoid = "humanoid.actor";
     std::string insect = "insect.actor";
-    /** The motion-capture dancer, a CMU Charleston (../shared/mocap, ASF + AMC) through osgdb_actor's mocap
+    /** The motion-capture dancer, a CMU Charleston (data/mocap, ASF + AMC) through osgdb_actor's mocap
       * pseudo-loader, which turns its Y up to Z up; empty: no dancer. */
-    std::string dancer = "../../shared/mocap/asfamc/charleston.asf.actor";
+    std::string dancer = "mocap/asfamc/charleston.asf.actor";
     /** From the file's units to metres: CMU skeletons are in units of 1/0.45 inch, 0.0254 / 0.45 m. */
     double dancerScale = 0.0254 / 0.45;
     /** Turn the dancer from Y up to Z up here (for a loader that does not). */

@@ -18,7 +18,7 @@ int main(int argc, char** argv)
     usage->setDescription(arguments.getApplicationName() + " writes the osgActor showcase scene.");
     usage->setCommandLineUsage(arguments.getApplicationName() + " [options] output.osgt");
     usage->addCommandLineOption("--dancer <file>", "The motion-capture dancer, as osgDB reads it, relative to the "
-                                                   "output's folder (default: the CMU Charleston in ../shared/mocap).");
+                                                   "output's folder (default: the CMU Charleston in data/mocap).");
     usage->addCommandLineOption("--no-dancer", "Leave the dancer out.");
     usage->addCommandLineOption("--dancer-scale <s>", "Scale from the dancer file's units to metres (default CMU's).");
     usage->addCommandLineOption("--dancer-y-up", "The dancer file is Y up (turned to Z up).");

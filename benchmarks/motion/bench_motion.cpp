@@ -27,7 +27,7 @@ namespace {
 const std::vector<std::string>& bvhFiles()
 {
     static const std::vector<std::string> files = {
-        std::string(OSGACTOR_BENCH_SHARED_DIR) + "/mocap/bvh/12_03.bvh",
+        std::string(OSGACTOR_BENCH_MOCAP_DIR) + "/bvh/12_03.bvh",
         "/usr/share/assimp/models/BVH/01_01.bvh",
         "/usr/share/assimp/models/BVH/Boxing_Toes.bvh",
     };
@@ -97,7 +97,7 @@ void BM_BvhLoadRatio(benchmark::State& state)
 /** The CMU walk as a uniform clip (Y-up turned Z-up, as an application loads it). */
 const MocapImport& walk()
 {
-    static const MocapImport imported = readBvhFile(std::string(OSGACTOR_BENCH_SHARED_DIR) + "/mocap/bvh/12_03.bvh");
+    static const MocapImport imported = readBvhFile(std::string(OSGACTOR_BENCH_MOCAP_DIR) + "/bvh/12_03.bvh");
     return imported;
 }
 

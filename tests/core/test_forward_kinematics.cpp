@@ -1,4 +1,4 @@
-// Forward kinematics against matrices derived by hand (column-vector notation, as in DESIGN.md section 1).
+// Forward kinematics against matrices derived by hand (column-vector notation, as in docs/architecture.md).
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/core/ActorPose>
 #include <osgActor/core/ForwardKinematicsJob>

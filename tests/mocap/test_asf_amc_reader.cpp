@@ -252,12 +252,12 @@ TEST(AsfReader, TakesBoneTranslationsInTheBoneAxisFrameInLengthUnits)
 
 TEST(AsfAmc, MatchesTheReferenceOnCmuSubject11)
 {
-    expectMatchesReference(sharedMocap("asfamc/11.asf"), sharedMocap("asfamc/11_01.amc"));
+    expectMatchesReference(repositoryMocap("asfamc/11.asf"), repositoryMocap("asfamc/11_01.amc"));
 }
 
 TEST(AsfAmc, MatchesTheReferenceOnCharleston)
 {
-    expectMatchesReference(sharedMocap("asfamc/charleston.asf"), sharedMocap("asfamc/charleston1.amc"));
+    expectMatchesReference(repositoryMocap("asfamc/charleston.asf"), repositoryMocap("asfamc/charleston1.amc"));
 }
 
 TEST(AsfAmc, MatchesTheReferenceOnBonesThatTranslate)
@@ -267,9 +267,9 @@ TEST(AsfAmc, MatchesTheReferenceOnBonesThatTranslate)
 
 TEST(AsfAmc, ReadsSeveralMotionsAgainstOneSkeleton)
 {
-    const AsfImport skeleton = readAsfFile(sharedMocap("asfamc/11.asf"), fileFrame());
+    const AsfImport skeleton = readAsfFile(repositoryMocap("asfamc/11.asf"), fileFrame());
     ASSERT_TRUE(skeleton) << skeleton.error;
-    const MocapImport first = readAmcFile(sharedMocap("asfamc/11_01.amc"), skeleton);
+    const MocapImport first = readAmcFile(repositoryMocap("asfamc/11_01.amc"), skeleton);
     std::istringstream in("1\nroot 0 0 0 0 0 0\n");
     const MocapImport second = readAmc(in, "still.amc", skeleton);
     ASSERT_TRUE(first) << first.error;
@@ -282,10 +282,10 @@ TEST(MotionFile, ReadsAnAmcAgainstItsSkeletonUnderTheGivenNameWithTheGivenOption
 {
     MotionFileOptions options;
     options.name = "run";
-    options.skeletonFile = sharedMocap("asfamc/11.asf");
+    options.skeletonFile = repositoryMocap("asfamc/11.asf");
     options.scale = 0.5;
     options.amcFrameRate = 60.0;
-    const MocapImport motion = readMotionFile(sharedMocap("asfamc/11_01.amc"), options);
+    const MocapImport motion = readMotionFile(repositoryMocap("asfamc/11_01.amc"), options);
     ASSERT_TRUE(motion) << motion.error;
     ASSERT_TRUE(motion.clip);
     EXPECT_EQ(motion.clip->getName(), "run");
@@ -294,9 +294,9 @@ TEST(MotionFile, ReadsAnAmcAgainstItsSkeletonUnderTheGivenNameWithTheGivenOption
     AsfImportOptions asf;
     asf.scale = 0.5;
     asf.applyLimits = false;
-    const AsfImport skeleton = readAsfFile(sharedMocap("asfamc/11.asf"), asf);
+    const AsfImport skeleton = readAsfFile(repositoryMocap("asfamc/11.asf"), asf);
     ASSERT_TRUE(skeleton) << skeleton.error;
-    const MocapImport direct = readAmcFile(sharedMocap("asfamc/11_01.amc"), skeleton);
+    const MocapImport direct = readAmcFile(repositoryMocap("asfamc/11_01.amc"), skeleton);
     ASSERT_TRUE(direct) << direct.error;
     ASSERT_EQ(motion.clip->getNumFrames(), direct.clip->getNumFrames());
     ASSERT_EQ(motion.clip->getNumChannels(), direct.clip->getNumChannels());
@@ -310,7 +310,7 @@ TEST(MotionFile, ReadsAnAmcAgainstItsSkeletonUnderTheGivenNameWithTheGivenOption
 
 TEST(MotionFile, RefusesAnAmcWithoutSkeletonAndOtherFormats)
 {
-    MocapImport motion = readMotionFile(sharedMocap("asfamc/11_01.amc"), MotionFileOptions());
+    MocapImport motion = readMotionFile(repositoryMocap("asfamc/11_01.amc"), MotionFileOptions());
     EXPECT_FALSE(motion);
     EXPECT_NE(motion.error.find("11_01.amc: an AMC motion needs the ASF skeleton"), std::string::npos) << motion.error;
     motion = readMotionFile("walk.fbx", MotionFileOptions());
@@ -318,7 +318,7 @@ TEST(MotionFile, RefusesAnAmcWithoutSkeletonAndOtherFormats)
     EXPECT_EQ(motion.error, "walk.fbx: not a motion file (expected .bvh, or .amc with its ASF skeleton)");
     MotionFileOptions broken;
     broken.skeletonFile = "/nonexistent/11.asf";
-    motion = readMotionFile(sharedMocap("asfamc/11_01.amc"), broken);
+    motion = readMotionFile(repositoryMocap("asfamc/11_01.amc"), broken);
     EXPECT_FALSE(motion);
     EXPECT_NE(motion.error.find("/nonexistent/11.asf: cannot open"), std::string::npos) << motion.error;
 }

@@ -252,8 +252,8 @@ TEST(BvhReader, ScalesTurnsYUpIntoZUpAndDropsTheReferenceFrame)
 
 // --- real files against the reference computation ---
 
-TEST(BvhReader, MatchesTheReferenceOnCmu12_03) { expectMatchesReference(sharedMocap("bvh/12_03.bvh")); }
-TEST(BvhReader, MatchesTheReferenceOnMakeHumanTPose) { expectMatchesReference(sharedMocap("bvh/tpose.bvh")); }
+TEST(BvhReader, MatchesTheReferenceOnCmu12_03) { expectMatchesReference(repositoryMocap("bvh/12_03.bvh")); }
+TEST(BvhReader, MatchesTheReferenceOnMakeHumanTPose) { expectMatchesReference(repositoryMocap("bvh/tpose.bvh")); }
 TEST(BvhReader, MatchesTheReferenceOnAssimp01_01) { expectMatchesReference(assimpBvh("01_01.bvh")); }
 TEST(BvhReader, MatchesTheReferenceOnAssimp01_03) { expectMatchesReference(assimpBvh("01_03.bvh")); }
 TEST(BvhReader, MatchesTheReferenceOnAssimpBoxingToes) { expectMatchesReference(assimpBvh("Boxing_Toes.bvh")); }

@@ -57,12 +57,12 @@ TEST(BvhWriter, RefusesWhatBvhCannotSay)
 {
     std::string error;
     std::ostringstream out;
-    const MocapImport zUp = readBvhFile(sharedMocap("bvh/12_03.bvh")); // turned to Z-up by a root offset rotation
+    const MocapImport zUp = readBvhFile(repositoryMocap("bvh/12_03.bvh")); // turned to Z-up by a root offset rotation
     ASSERT_TRUE(zUp) << zUp.error;
     EXPECT_FALSE(writeBvh(out, *zUp.definition, zUp.clip.get(), error));
     EXPECT_NE(error.find("joint 'Hips' has an offset rotation"), std::string::npos) << error;
 
-    const MocapImport fileAxes = readBvhFile(sharedMocap("bvh/12_03.bvh"), fileFrame());
+    const MocapImport fileAxes = readBvhFile(repositoryMocap("bvh/12_03.bvh"), fileFrame());
     ClipBuilder keyed("keyed");
     keyed.addKey(keyed.addChannel("Hips.rx"), 0.0, 1.0);
     EXPECT_FALSE(writeBvh(out, *fileAxes.definition, keyed.build().clip.get(), error));
@@ -71,14 +71,14 @@ TEST(BvhWriter, RefusesWhatBvhCannotSay)
 
 TEST(BvhWriter, RoundTripsRealFiles)
 {
-    expectRoundTrip(sharedMocap("bvh/tpose.bvh"));         // position channels on 144 joints, Z-up, decimetres
+    expectRoundTrip(repositoryMocap("bvh/tpose.bvh"));         // position channels on 144 joints, Z-up, decimetres
     expectRoundTrip(assimpBvh("Boxing_Toes.bvh"));         // ZXY
-    expectRoundTrip(sharedMocap("bvh/12_03.bvh"));         // ZYX, CMU
+    expectRoundTrip(repositoryMocap("bvh/12_03.bvh"));         // ZYX, CMU
 }
 
 TEST(PositionsCsv, RefusesAnEmptyRange)
 {
-    const MocapImport imported = readBvhFile(sharedMocap("bvh/tpose.bvh"), fileFrame());
+    const MocapImport imported = readBvhFile(repositoryMocap("bvh/tpose.bvh"), fileFrame());
     ASSERT_TRUE(imported) << imported.error;
     std::ostringstream out;
     std::string error;

@@ -42,13 +42,13 @@ TEST(MocapActor, RefusesMissingAndUnknownFilesAndAnAsfWithoutMotion)
 
 TEST(MocapActor, FindsTheAmcBesideAnAsf)
 {
-    EXPECT_EQ(findAmcBeside(sharedMocap("asfamc/11.asf")), sharedMocap("asfamc/11_01.amc"));
-    EXPECT_EQ(findAmcBeside(sharedMocap("asfamc/charleston.asf")), sharedMocap("asfamc/charleston1.amc"));
+    EXPECT_EQ(findAmcBeside(repositoryMocap("asfamc/11.asf")), repositoryMocap("asfamc/11_01.amc"));
+    EXPECT_EQ(findAmcBeside(repositoryMocap("asfamc/charleston.asf")), repositoryMocap("asfamc/charleston1.amc"));
 }
 
 TEST(MocapActor, PlaysABvhFileFromTheFrameStamp)
 {
-    const std::string path = sharedMocap("bvh/12_03.bvh");
+    const std::string path = repositoryMocap("bvh/12_03.bvh");
     std::string error;
     osg::ref_ptr<ActorNode> actor = readMocapActor(path, MocapActorOptions(), error);
     ASSERT_TRUE(actor.valid()) << error;
@@ -62,17 +62,17 @@ TEST(MocapActor, PlaysABvhFileFromTheFrameStamp)
 
 TEST(MocapActor, PlaysAnAsfAmcPairFoundBesideEachOther)
 {
-    const std::string asfPath = sharedMocap("asfamc/11.asf");
+    const std::string asfPath = repositoryMocap("asfamc/11.asf");
     std::string error;
     osg::ref_ptr<ActorNode> actor = readMocapActor(asfPath, MocapActorOptions(), error);
     ASSERT_TRUE(actor.valid()) << error;
-    expectToFollowAsfAmc(*actor, asfPath, sharedMocap("asfamc/11_01.amc"), 1.0);
+    expectToFollowAsfAmc(*actor, asfPath, repositoryMocap("asfamc/11_01.amc"), 1.0);
 }
 
 TEST(StickFigure, HangsABallOnEveryJointAndBonesOnParents)
 {
     std::string error;
-    osg::ref_ptr<ActorNode> actor = readMocapActor(sharedMocap("bvh/12_03.bvh"), MocapActorOptions(), error);
+    osg::ref_ptr<ActorNode> actor = readMocapActor(repositoryMocap("bvh/12_03.bvh"), MocapActorOptions(), error);
     ASSERT_TRUE(actor.valid()) << error;
     const osg::Node* ball = nullptr;
     for (unsigned j = 0; j < actor->getNumSkeletonNodes(); ++j)
@@ -102,7 +102,7 @@ TEST(StickFigure, HangsABallOnEveryJointAndBonesOnParents)
 TEST(MocapActor, ClonesShareTheClipLibraryButPlayOnTheirOwn)
 {
     std::string error;
-    osg::ref_ptr<ActorNode> actor = readMocapActor(sharedMocap("bvh/12_03.bvh"), MocapActorOptions(), error);
+    osg::ref_ptr<ActorNode> actor = readMocapActor(repositoryMocap("bvh/12_03.bvh"), MocapActorOptions(), error);
     ASSERT_TRUE(actor.valid()) << error;
     osg::ref_ptr<ActorNode> twin = osg::clone(actor.get(), osg::CopyOp::SHALLOW_COPY);
     EXPECT_EQ(twin->getClipLibrary(), actor->getClipLibrary());
@@ -155,7 +155,7 @@ TEST(MocapOptionString, ReadsEveryOptionAndLeavesOtherWordsAlone)
 
 TEST(MocapActor, StartsItsClipAtTheFirstFrameStampItSees)
 {
-    const std::string path = sharedMocap("bvh/12_03.bvh");
+    const std::string path = repositoryMocap("bvh/12_03.bvh");
     std::string error;
     osg::ref_ptr<ActorNode> actor = readMocapActor(path, MocapActorOptions(), error);
     ASSERT_TRUE(actor.valid()) << error;

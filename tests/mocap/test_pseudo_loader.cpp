@@ -42,16 +42,16 @@ void readActorWithWalkClip(const std::string& path, osg::ref_ptr<ActorNode>& act
     ASSERT_TRUE(clip) << path << ": named as in the .actor file, not after the motion file";
 }
 
-/** Writes document as folderName/walker.actor, with copies of the given files of ../shared/mocap in
+/** Writes document as folderName/walker.actor, with copies of the given files of data/mocap in
   * folderName/motion; returns the .actor file's path. */
 std::string writeActorBesideMotionFiles(const std::string& folderName, const ActorDocument& document,
-                                        const std::vector<std::string>& sharedFiles)
+                                        const std::vector<std::string>& mocapFiles)
 {
     const std::string folder = std::string(OSGACTOR_TEST_BINARY_DIR) + "/" + folderName;
     osgDB::makeDirectory(folder + "/motion");
-    for (const std::string& file : sharedFiles)
+    for (const std::string& file : mocapFiles)
     {
-        std::ifstream in(sharedMocap(file), std::ios::binary);
+        std::ifstream in(repositoryMocap(file), std::ios::binary);
         std::ofstream out(folder + "/motion/" + osgDB::getSimpleFileName(file), std::ios::binary);
         out << in.rdbuf();
     }
@@ -78,7 +78,7 @@ ClipDocument walkFromFile(const std::string& fileReference, MotionFileOptions op
 template <class Edit>
 std::string writeActorWithClipFile(const std::string& folderName, const std::string& fileReference, Edit edit)
 {
-    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
+    const MocapImport imported = readBvhFile(repositoryMocap("bvh/12_03.bvh"));
     EXPECT_TRUE(imported) << imported.error;
     ActorDocument document = makeDocument(*imported.definition);
     document.clips.push_back(walkFromFile(fileReference));
@@ -101,24 +101,24 @@ TEST(MocapPseudoLoader, ReportsMissingAndBrokenFiles)
     EXPECT_NE(result.message().find("pseudo_broken.bvh:10: frame 0 has 2 values"), std::string::npos)
         << result.message();
 
-    osgDB::ReaderWriter::ReadResult badOption = readThroughOsgDB(sharedMocap("bvh/tpose.bvh.actor"), "scale=big");
+    osgDB::ReaderWriter::ReadResult badOption = readThroughOsgDB(repositoryMocap("bvh/tpose.bvh.actor"), "scale=big");
     EXPECT_FALSE(badOption.validNode());
     EXPECT_NE(badOption.message().find("scale needs a positive number"), std::string::npos) << badOption.message();
 
-    osgDB::ReaderWriter::ReadResult noAmc = readThroughOsgDB(sharedMocap("asfamc/11.asf.actor"), "amc=nothing.amc");
+    osgDB::ReaderWriter::ReadResult noAmc = readThroughOsgDB(repositoryMocap("asfamc/11.asf.actor"), "amc=nothing.amc");
     EXPECT_FALSE(noAmc.validNode());
     EXPECT_NE(noAmc.message().find("cannot find the AMC file 'nothing.amc'"), std::string::npos) << noAmc.message();
 }
 
 TEST(MocapPseudoLoader, LoadsABvhFileAsAPlayingActor)
 {
-    osgDB::ReaderWriter::ReadResult result = readThroughOsgDB(sharedMocap("bvh/12_03.bvh.actor"));
+    osgDB::ReaderWriter::ReadResult result = readThroughOsgDB(repositoryMocap("bvh/12_03.bvh.actor"));
     ASSERT_TRUE(result.validNode()) << result.message();
     ActorNode* actor = dynamic_cast<ActorNode*>(result.getNode());
     ASSERT_NE(actor, nullptr);
     EXPECT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("mocap")));
     // Posed at frame 0 at once, in OSG's Z-up frame.
-    const reference::Bvh bvh = reference::readBvh(sharedMocap("bvh/12_03.bvh"));
+    const reference::Bvh bvh = reference::readBvh(repositoryMocap("bvh/12_03.bvh"));
     const std::vector<glm::dvec3> expected = reference::bvhPositions(bvh, 0);
     const double size = extent(expected);
     for (std::size_t j = 0; j < bvh.joints.size(); ++j)
@@ -133,10 +133,10 @@ TEST(MocapPseudoLoader, LoadsABvhFileAsAPlayingActor)
 
 TEST(MocapPseudoLoader, LoadsAnAsfWithItsAmcNamedOrFound)
 {
-    osgDB::ReaderWriter::ReadResult found = readThroughOsgDB(sharedMocap("asfamc/charleston.asf.actor"));
+    osgDB::ReaderWriter::ReadResult found = readThroughOsgDB(repositoryMocap("asfamc/charleston.asf.actor"));
     ASSERT_TRUE(found.validNode()) << found.message();
     osgDB::ReaderWriter::ReadResult named =
-        readThroughOsgDB(sharedMocap("asfamc/11.asf.actor"), "amc=11_01.amc fps=60 rootMotion=inplace");
+        readThroughOsgDB(repositoryMocap("asfamc/11.asf.actor"), "amc=11_01.amc fps=60 rootMotion=inplace");
     ASSERT_TRUE(named.validNode()) << named.message();
     ActorNode* actor = dynamic_cast<ActorNode*>(named.getNode());
     ASSERT_NE(actor, nullptr);
@@ -148,7 +148,7 @@ TEST(MocapPseudoLoader, LoadsAnAsfWithItsAmcNamedOrFound)
 
 TEST(ActorFileClips, AnActorFileCarriesAndPlaysItsMotion)
 {
-    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
+    const MocapImport imported = readBvhFile(repositoryMocap("bvh/12_03.bvh"));
     ASSERT_TRUE(imported) << imported.error;
     ActorDocument document = makeDocument(*imported.definition);
     document.name = "walker";
@@ -169,7 +169,7 @@ TEST(ActorFileClips, AnActorFileCarriesAndPlaysItsMotion)
     EXPECT_TRUE(actor->getClipLibrary()->getClip("12_03"));
     ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("12_03")));
 
-    expectToFollowBvh(*actor, sharedMocap("bvh/12_03.bvh"), {0u, 5u}, false);
+    expectToFollowBvh(*actor, repositoryMocap("bvh/12_03.bvh"), {0u, 5u}, false);
 }
 
 TEST(ActorFileClips, ABrokenClipSectionFailsTheRead)
@@ -189,10 +189,10 @@ TEST(ActorFileClips, AClipReadFromABvhFileBesideTheActorFilePlaysTheFile)
     ClipPtr clip;
     readActorWithWalkClip(path, actor, clip);
     ASSERT_TRUE(clip);
-    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
+    const MocapImport imported = readBvhFile(repositoryMocap("bvh/12_03.bvh"));
     EXPECT_EQ(clip->getNumFrames(), imported.clip->getNumFrames());
     ASSERT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(actor->findController("walk")));
-    expectToFollowBvh(*actor, sharedMocap("bvh/12_03.bvh"), {0u, 5u}, false);
+    expectToFollowBvh(*actor, repositoryMocap("bvh/12_03.bvh"), {0u, 5u}, false);
 
     // The actor holds the motion, not where it came from: written out, the clip is frames.
     std::ostringstream written;
@@ -246,7 +246,7 @@ TEST(ActorFileClips, AnAmcClipReadAgainstItsAsfSkeletonAtAScalePlaysTheCapture)
     AsfImportOptions asfOptions;
     asfOptions.scale = kScale;
     asfOptions.applyLimits = false;
-    const AsfImport skeleton = readAsfFile(sharedMocap("asfamc/11.asf"), asfOptions);
+    const AsfImport skeleton = readAsfFile(repositoryMocap("asfamc/11.asf"), asfOptions);
     ASSERT_TRUE(skeleton) << skeleton.error;
     ActorDocument document = makeDocument(*skeleton.definition);
     MotionFileOptions options;
@@ -264,14 +264,14 @@ TEST(ActorFileClips, AnAmcClipReadAgainstItsAsfSkeletonAtAScalePlaysTheCapture)
 
     // Every bone where the independent reading of the files puts it, scaled. The root translates, so a root travel
     // left unscaled would be 20 times too far.
-    expectToFollowAsfAmc(*actor, sharedMocap("asfamc/11.asf"), sharedMocap("asfamc/11_01.amc"), kScale);
+    expectToFollowAsfAmc(*actor, repositoryMocap("asfamc/11.asf"), repositoryMocap("asfamc/11_01.amc"), kScale);
 }
 
 TEST(ActorFileClips, ABvhClipFileTakesItsScaleAndDropsItsFirstFrameWhenTold)
 {
     BvhImportOptions bvhOptions;
     bvhOptions.scale = 0.01;
-    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"), bvhOptions);
+    const MocapImport imported = readBvhFile(repositoryMocap("bvh/12_03.bvh"), bvhOptions);
     ASSERT_TRUE(imported) << imported.error;
     ActorDocument document = makeDocument(*imported.definition);
     MotionFileOptions options;
@@ -287,7 +287,7 @@ TEST(ActorFileClips, ABvhClipFileTakesItsScaleAndDropsItsFirstFrameWhenTold)
     ASSERT_EQ(clip->getNumFrames(), imported.clip->getNumFrames() - 1);
 
     // Frame 0 of the clip is the file's frame 1; the hips at update frame 5 (60 Hz) are at the file's frame 11.
-    const reference::Bvh bvh = reference::readBvh(sharedMocap("bvh/12_03.bvh"));
+    const reference::Bvh bvh = reference::readBvh(repositoryMocap("bvh/12_03.bvh"));
     const int hips = actor->getJointIndex(bvh.joints[0].name);
     ASSERT_GE(hips, 0);
     osg::ref_ptr<osg::Group> root = new osg::Group;
@@ -304,7 +304,7 @@ TEST(ActorFileClips, ABvhClipFileTakesItsScaleAndDropsItsFirstFrameWhenTold)
 
 TEST(ActorFileClips, AnAmcClipWhoseSkeletonIsMissingFailsTheReadAtItsLine)
 {
-    const AsfImport skeleton = readAsfFile(sharedMocap("asfamc/11.asf"));
+    const AsfImport skeleton = readAsfFile(repositoryMocap("asfamc/11.asf"));
     ASSERT_TRUE(skeleton) << skeleton.error;
     ActorDocument document = makeDocument(*skeleton.definition);
     MotionFileOptions options;
@@ -322,7 +322,7 @@ TEST(ActorFileClips, AnAmcClipWhoseSkeletonIsMissingFailsTheReadAtItsLine)
 TEST(ActorFileClips, ApplyingAnUnreadClipFileLeavesTheClipOutInsteadOfCrashing)
 {
     // Only createActorNode() reads clip files; applyClips() gets such a clip from a hand-edited embedded document.
-    const MocapImport imported = readBvhFile(sharedMocap("bvh/12_03.bvh"));
+    const MocapImport imported = readBvhFile(repositoryMocap("bvh/12_03.bvh"));
     ASSERT_TRUE(imported) << imported.error;
     ActorDocument document;
     ClipDocument unread;

@@ -1,4 +1,4 @@
-/* Error handling across the API (DESIGN.md section 3): a rejected input says what and where, the previous state is
+/* Error handling across the API (docs/architecture.md): a rejected input says what and where, the previous state is
  * kept, nothing half-built is returned. */
 #include "RobustnessUtil"
 #include "nodes/NodeTestUtil"

@@ -59,7 +59,7 @@ TEST(ParserFindings, Asf)
 
 TEST(ParserFindings, Amc)
 {
-    const std::string asf = std::string(OSGACTOR_TEST_SHARED_DIR) + "/mocap/asfamc/11.asf";
+    const std::string asf = std::string(OSGACTOR_TEST_MOCAP_DIR) + "/asfamc/11.asf";
     if (!std::filesystem::exists(asf)) GTEST_SKIP() << "no " << asf;
     const AsfImport skeleton = readAsfFile(asf);
     ASSERT_TRUE(skeleton) << skeleton.error;
