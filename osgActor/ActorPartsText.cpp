@@ -33,6 +33,26 @@ std::vector<std::string> sectionLines(const ActorDocument& document)
     return linesOf(text.str());
 }
 
+/** readActor() over lines, its error, if any, in error. */
+ActorReadResult readWholeText(const std::vector<std::string>& lines, const std::string& where, std::string& error)
+{
+    std::istringstream in(textOf(lines));
+    ActorReadResult read = readActor(in, where);
+    if (!read) error = read.error;
+    return read;
+}
+
+/** readActorMotion() over lines, its error, if any, in error. */
+ActorReadResult readMotionText(const std::vector<std::string>& lines, const std::string& where,
+                               const ActorDefinitionPtr& definition, const std::vector<ClipPtr>& knownClips,
+                               std::string& error)
+{
+    std::istringstream in(textOf(lines));
+    ActorReadResult read = readActorMotion(in, where, definition, knownClips);
+    if (!read) error = read.error;
+    return read;
+}
+
 bool holdsMotion(const ActorDocument& document)
 {
     return !document.clips.empty() || !document.trajectories.empty() || !document.players.empty() ||
@@ -60,13 +80,8 @@ std::vector<std::string> writeDefinitionLines(const ActorDefinition& definition)
 ActorDefinitionPtr readDefinitionLines(const std::vector<std::string>& lines, const std::string& where,
                                        std::string& error)
 {
-    std::istringstream in(textOf(lines));
-    const ActorReadResult read = readActor(in, where);
-    if (!read)
-    {
-        error = read.error;
-        return nullptr;
-    }
+    const ActorReadResult read = readWholeText(lines, where, error);
+    if (!read) return nullptr;
     // What the text holds besides the joints would be lost: refuse it rather than read part of it.
     if (holdsMotion(read.document) || !read.document.sections.empty())
     {
@@ -92,13 +107,8 @@ std::vector<std::string> writeClipLines(const ClipLibrary& library)
 ClipLibraryPtr readClipLines(const std::vector<std::string>& lines, const ActorDefinitionPtr& definition,
                              const std::string& where, std::string& error)
 {
-    std::istringstream in(textOf(lines));
-    const ActorReadResult read = readActorMotion(in, where, definition, {});
-    if (!read)
-    {
-        error = read.error;
-        return nullptr;
-    }
+    const ActorReadResult read = readMotionText(lines, where, definition, {}, error);
+    if (!read) return nullptr;
     ClipLibraryPtr library = std::make_shared<ClipLibrary>();
     for (const ClipDocument& clip : read.document.clips)
     {
@@ -138,13 +148,8 @@ bool readMotionLines(ActorNode& actor, const std::vector<std::string>& lines, co
 {
     if (lines.empty()) return true;
     const std::vector<ClipPtr> known = clipsOf(actor.getClipLibrary().get());
-    std::istringstream in(textOf(lines));
-    const ActorReadResult read = readActorMotion(in, where, actor.getDefinition(), known);
-    if (!read)
-    {
-        error = read.error;
-        return false;
-    }
+    const ActorReadResult read = readMotionText(lines, where, actor.getDefinition(), known, error);
+    if (!read) return false;
     if (read.document.clips.size() > known.size()) applyClips(actor, read.document);
     applyTrajectories(actor, read.document);
     applyPlayers(actor, read.document);
@@ -155,13 +160,8 @@ bool readMotionLines(ActorNode& actor, const std::vector<std::string>& lines, co
 bool readWholeActorLines(ActorNode& actor, const std::vector<std::string>& lines, const std::string& where,
                          std::string& error)
 {
-    std::istringstream in(textOf(lines));
-    const ActorReadResult read = readActor(in, where);
-    if (!read)
-    {
-        error = read.error;
-        return false;
-    }
+    const ActorReadResult read = readWholeText(lines, where, error);
+    if (!read) return false;
     if (!actor.setDefinition(read.definition, ActorNode::BIND_EXISTING_SKELETON_NODES))
     {
         error = "the skeleton nodes of actor '" + actor.getName() + "' do not match its definition";

@@ -16,6 +16,7 @@ docs="$build/docs"
 stage="$docs/stage"
 rm -rf "$stage" "$docs/api"
 mkdir -p "$docs"
+trap 'rm -rf "$stage"' EXIT # the installed copy (libraries too) is only read here
 # The public headers are the installed ones: what the install rules put under include/osgActor, nothing else.
 cmake --install "$build" --prefix "$stage" >/dev/null
 include="$(find "$stage" -maxdepth 2 -type d -name include | head -n 1)"
