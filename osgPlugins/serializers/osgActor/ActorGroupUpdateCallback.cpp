@@ -7,4 +7,5 @@ REGISTER_OBJECT_WRAPPER(osgActor_ActorGroupUpdateCallback, new osgActor::ActorGr
                         osgActor::ActorGroupUpdateCallback,
                         "osg::Object osg::Callback osg::NodeCallback osgActor::ActorGroupUpdateCallback")
 {
+    static_cast<void>(wrapper); // no fields to add
 }
