@@ -16,6 +16,7 @@ packages=(
     libgl1-mesa-dri                        # Mesa's software GL driver under Xvfb (the ASan run preloads it)
     clang libclang-rt-14-dev               # fuzzers (libFuzzer) and sanitizer builds
     gnuplot-nox                            # the benchmark's plot
+    doxygen                                # the API reference (scripts/docs.sh)
 )
 
 missing=()
