@@ -140,7 +140,8 @@ void RunSummary::printDifferingFrame(const FrameOutcome& outcome, std::ostream& 
         << 100.0 * c.getShareOverTolerance() << "%) over the tolerance of " << c.tolerance
         << ", largest difference " << c.maxChannelDifference << ", PSNR " << formatPsnr(c.psnr) << " dB";
     out.unsetf(std::ios::floatfield);
-    if (!_options.diffPattern.empty()) out << "; diff " << OutputPattern::fromChecked(_options.diffPattern).format(outcome.frame);
+    if (!_options.diffPattern.empty())
+        out << "; diff " << OutputPattern::fromChecked(_options.diffPattern).format(outcome.frame);
     out << "\n";
 }
 

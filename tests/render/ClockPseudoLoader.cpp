@@ -21,7 +21,8 @@ public:
         const auto micros = std::chrono::duration_cast<std::chrono::microseconds>(
                                 std::chrono::steady_clock::now().time_since_epoch())
                                 .count();
-        static_cast<osg::MatrixTransform*>(node)->setMatrix(osg::Matrix::translate(double(micros % 1000) / 1000.0, 0, 0));
+        const double offset = double(micros % 1000) / 1000.0; // metres
+        static_cast<osg::MatrixTransform*>(node)->setMatrix(osg::Matrix::translate(offset, 0.0, 0.0));
         traverse(node, visitor);
     }
 };

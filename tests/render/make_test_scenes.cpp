@@ -26,6 +26,7 @@
 #include <osgParticle/RandomRateCounter>
 #include <osgParticle/SectorPlacer>
 
+#include <cmath>
 #include <iostream>
 #include <string>
 
@@ -47,7 +48,7 @@ osg::ref_ptr<osg::Geode> floor()
     return box(osg::Vec3(0, 0, -0.05f), osg::Vec3(3, 3, 0.05f), osg::Vec4(0.75f, 0.8f, 0.7f, 1));
 }
 
-/** A loop of period seconds round the z axis: a quarter turn per quarter of the period, radius 1.5. */
+/** A loop round the z axis, radius metres from it, once every period seconds, the box turned along its way. */
 osg::ref_ptr<osg::AnimationPath> circlePath(double period, double radius)
 {
     osg::ref_ptr<osg::AnimationPath> path = new osg::AnimationPath;
@@ -55,9 +56,9 @@ osg::ref_ptr<osg::AnimationPath> circlePath(double period, double radius)
     for (int i = 0; i <= 8; ++i)
     {
         const double angle = osg::PI * 2.0 * i / 8.0;
+        const osg::Vec3d position(radius * std::cos(angle), radius * std::sin(angle), 0.5);
         path->insert(period * i / 8.0,
-                     osg::AnimationPath::ControlPoint(osg::Vec3d(radius * std::cos(angle), radius * std::sin(angle), 0.5),
-                                                      osg::Quat(angle, osg::Vec3d(0, 0, 1))));
+                     osg::AnimationPath::ControlPoint(position, osg::Quat(angle, osg::Vec3d(0, 0, 1))));
     }
     return path;
 }
@@ -169,8 +170,10 @@ osg::ref_ptr<osg::Node> twoBoxesScene(const osg::Vec4& rightColour)
     osg::ref_ptr<osg::AnimationPath> turning = new osg::AnimationPath;
     turning->setLoopMode(osg::AnimationPath::LOOP);
     for (int i = 0; i <= 12; ++i)
-        turning->insert(0.5 * i, osg::AnimationPath::ControlPoint(
-                                     osg::Vec3d(-1.2, 0, 0), osg::Quat(osg::DegreesToRadians(30.0 * i), osg::Vec3d(0, 0, 1))));
+    {
+        const osg::Quat turn(osg::DegreesToRadians(30.0 * i), osg::Vec3d(0, 0, 1));
+        turning->insert(0.5 * i, osg::AnimationPath::ControlPoint(osg::Vec3d(-1.2, 0, 0), turn));
+    }
     left->setUpdateCallback(new osg::AnimationPathCallback(turning.get()));
     osg::ref_ptr<osg::MatrixTransform> right = new osg::MatrixTransform(osg::Matrix::translate(1.2, 0, 0));
     right->addChild(box(osg::Vec3(), osg::Vec3(0.5f, 0.5f, 0.5f), rightColour).get());
