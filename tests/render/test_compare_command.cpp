@@ -127,8 +127,16 @@ TEST(CompareCommand, TwoProcessesReportAndDrawTheSameDifferences)
     std::string output1, output2;
     const std::string compare =
         " " + kScenes + "two_boxes_changed.osgt" + kFrames + " --compare " + kReferences + " --report ";
-    EXPECT_EQ(runRender(compare + one + "report.csv --diff " + one + "d_%04d.png", output1), 1) << output1;
-    EXPECT_EQ(runRender(compare + two + "report.csv --diff " + two + "d_%04d.png --jobs 2", output2), 1) << output2;
+    // No -o: the comparison sheet reads the differing renders back from a temporary folder.
+    EXPECT_EQ(runRender(compare + one + "report.csv --diff " + one + "d_%04d.png --compare-sheet " + one + "sheet.png",
+                        output1),
+              1)
+        << output1;
+    EXPECT_EQ(runRender(compare + two + "report.csv --diff " + two + "d_%04d.png --compare-sheet " + two +
+                            "sheet.png --jobs 2",
+                        output2),
+              1)
+        << output2;
     EXPECT_NE(output2.find("2 processes"), std::string::npos) << output2;
     for (unsigned frame = 0; frame < 4; ++frame)
     {
@@ -137,6 +145,10 @@ TEST(CompareCommand, TwoProcessesReportAndDrawTheSameDifferences)
         ASSERT_TRUE(a.valid() && b.valid());
         EXPECT_EQ(compareImages(*a, *b, 0).maxChannelDifference, 0) << "frame " << frame;
     }
+    const osg::ref_ptr<osg::Image> sheet1 = readImage(one + "sheet.png");
+    const osg::ref_ptr<osg::Image> sheet2 = readImage(two + "sheet.png");
+    ASSERT_TRUE(sheet1.valid() && sheet2.valid());
+    EXPECT_EQ(compareImages(*sheet1, *sheet2, 0).maxChannelDifference, 0);
     std::ifstream report1(one + "report.csv"), report2(two + "report.csv");
     std::stringstream text1, text2;
     text1 << report1.rdbuf();
