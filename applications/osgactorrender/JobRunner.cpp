@@ -77,6 +77,11 @@ std::vector<char*> pointersTo(std::vector<std::string>& strings)
 JobRunner::JobRunner(const std::vector<std::string>& arguments, unsigned numJobs)
     : _arguments(arguments), _numJobs(numJobs), _worstStatus(0)
 {
+    // The program's own file, read through the link rather than executed through it: the path is the same, but
+    // tools that run the program (valgrind) answer the read with the program and would have the link run them.
+    char path[4096];
+    const ssize_t length = readlink("/proc/self/exe", path, sizeof path - 1);
+    _program = length > 0 ? std::string(path, size_t(length)) : std::string("/proc/self/exe");
 }
 
 bool JobRunner::start(unsigned part, Child& child, std::string& error)
@@ -104,14 +109,15 @@ bool JobRunner::start(unsigned part, Child& child, std::string& error)
     std::vector<std::string> environment = childEnvironment(_numJobs);
     std::vector<char*> argvPointers = pointersTo(argv);
     std::vector<char*> environmentPointers = pointersTo(environment);
-    static const char kExecFailed[] = "osgactorrender: cannot start a job (/proc/self/exe)\n";
+    static const char kExecFailed[] = "osgactorrender: cannot start a job\n";
 
+    const std::string program = _program;
     child.pid = fork();
     if (child.pid == 0)
     {
         // The report descriptor stays open across exec() (its number is on the command line); the others close.
         if (dup2(errors[1], STDERR_FILENO) < 0 || fcntl(report[1], F_SETFD, 0) != 0) _exit(2);
-        execve("/proc/self/exe", argvPointers.data(), environmentPointers.data());
+        execve(program.c_str(), argvPointers.data(), environmentPointers.data());
         const ssize_t ignored = write(STDERR_FILENO, kExecFailed, sizeof kExecFailed - 1);
         (void)ignored;
         _exit(2);

@@ -8,7 +8,7 @@
 
 namespace osgActorRender {
 
-/** Runs this program (/proc/self/exe) numJobs times at once, child k with "--part k/numJobs --job-report-fd n"
+/** Runs this program (the file /proc/self/exe names) numJobs times at once, child k with "--part k/numJobs --job-report-fd n"
   * appended to the command line given, so that each renders its own part on its own OSMesa context. A child
   * reports each frame as a line on that descriptor; the runner hands every line over as it comes (the parent's
   * progress bar counts them) and keeps what the children write on their standard error, each line once.
@@ -36,6 +36,7 @@ private:
     void pump(std::vector<Child>& children, const std::function<void(const std::string&)>& onReport);
     void addMessage(const std::string& line);
 
+    std::string _program;
     std::vector<std::string> _arguments;
     unsigned _numJobs;
     int _worstStatus;

@@ -118,17 +118,23 @@ std::vector<std::string> withoutJobs(const std::vector<std::string>& commandLine
 }
 
 /** Runs the children, feeding the summary (frames) or the determinism result, and prints what they said on
-  * stderr. The exit status the children's endings call for (0, or 2 when one failed). */
-int runJobs(const std::vector<std::string>& arguments, unsigned numJobs, RunSummary& summary,
-            int& firstNondeterministic)
+  * stderr. The exit status the children's endings call for: 0, or 2 when one failed, crashed or ended without
+  * reporting every frame of its part. */
+int runJobs(const std::vector<std::string>& arguments, unsigned numJobs, unsigned numFrames, bool checkingDeterminism,
+            RunSummary& summary, int& firstNondeterministic)
 {
     JobRunner runner(arguments, numJobs);
     std::string error;
+    unsigned numSteps = 0;
     const bool started = runner.run(
         [&](const std::string& line) {
             FrameOutcome outcome;
             int frame = -1;
-            if (line == "step") summary.step();
+            if (line == "step")
+            {
+                ++numSteps;
+                summary.step();
+            }
             else if (std::sscanf(line.c_str(), "nondeterministic %d", &frame) == 1)
                 firstNondeterministic = firstNondeterministic < 0 ? frame : std::min(firstNondeterministic, frame);
             else if (decodeFrameOutcome(line, outcome)) summary.frameDone(outcome, nullptr);
@@ -137,7 +143,15 @@ int runJobs(const std::vector<std::string>& arguments, unsigned numJobs, RunSumm
     summary.endProgress();
     for (const std::string& message : runner.getMessages()) std::cerr << message << "\n";
     if (!started) return fail(error);
-    return runner.getWorstStatus() >= kFailed ? kFailed : 0;
+    if (runner.getWorstStatus() >= kFailed) return kFailed;
+    // A child that ended otherwise (killed, or not this program) must not pass for one whose frames all matched.
+    const bool complete = checkingDeterminism ? firstNondeterministic >= 0 || numSteps == 2 * numFrames
+                                              : summary.getNumFramesDone() == numFrames;
+    if (!complete)
+        return fail("the jobs ended without reporting every frame (" +
+                    std::to_string(checkingDeterminism ? numSteps : summary.getNumFramesDone()) + " of " +
+                    std::to_string(checkingDeterminism ? 2 * numFrames : numFrames) + ")");
+    return 0;
 }
 
 } // namespace
@@ -192,7 +206,8 @@ int main(int argc, char** argv)
             childArguments.insert(childArguments.end(), {"--job-scratch", scratch.getFramePattern()});
             if (scratchEveryFrame) childArguments.push_back("--job-scratch-all");
         }
-        status = runJobs(childArguments, numJobs, summary, firstNondeterministic);
+        status = runJobs(childArguments, numJobs, numFrames, options.checkDeterminism, summary,
+                         firstNondeterministic);
     }
     else if (options.checkDeterminism)
     {
