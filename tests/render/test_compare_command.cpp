@@ -29,7 +29,8 @@ const osg::Vec3d kEye(0.0, -6.0, 2.5);
 /** Runs osgactorrender with the arguments; its exit status (-1 if it did not exit), its output in output. */
 int runRender(const std::string& arguments, std::string& output)
 {
-    const std::string log = kOut + "last_run.log";
+    // One log per test: ctest runs the tests of this file at the same time.
+    const std::string log = kOut + ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".log";
     osgDB::makeDirectoryForFile(log);
     const int status = std::system((std::string(OSGACTOR_RENDER_PROGRAM) + arguments + " > " + log + " 2>&1").c_str());
     std::ifstream in(log);
