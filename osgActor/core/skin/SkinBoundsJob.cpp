@@ -1,0 +1,199 @@
+#include <osgActor/core/skin/SkinBoundsJob>
+
+#include <glm/ext/matrix_double3x3.hpp>
+#include <glm/ext/vector_double3.hpp>
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace osgActor {
+
+namespace {
+
+/** The margin around the bound, relative to the size of the numbers SkinningJob adds: its float rounding is a small
+  * multiple of 2^-24 of them, far below this. */
+constexpr float kRoundingMargin = 1e-5f;
+
+/** The eigenvectors of a symmetric 3x3 matrix, as the columns of a rotation (cyclic Jacobi sweeps). */
+glm::dmat3 eigenvectorsOf(glm::dmat3 a)
+{
+    glm::dmat3 vectors(1.0);
+    for (int sweep = 0; sweep < 32; ++sweep)
+    {
+        const double offDiagonal = a[1][0] * a[1][0] + a[2][0] * a[2][0] + a[2][1] * a[2][1];
+        if (offDiagonal < 1e-30 * (a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2]) || offDiagonal == 0.0)
+            break;
+        for (int p = 0; p < 2; ++p)
+            for (int q = p + 1; q < 3; ++q)
+            {
+                if (a[q][p] == 0.0) continue;
+                // The rotation in the (p, q) plane that zeroes a[q][p].
+                const double theta = (a[q][q] - a[p][p]) / (2.0 * a[q][p]);
+                const double t = (theta >= 0.0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
+                const double c = 1.0 / std::sqrt(t * t + 1.0);
+                const double s = t * c;
+                glm::dmat3 rotation(1.0);
+                rotation[p][p] = c;
+                rotation[q][q] = c;
+                rotation[q][p] = s;
+                rotation[p][q] = -s;
+                a = glm::transpose(rotation) * a * rotation;
+                vectors = vectors * rotation;
+            }
+    }
+    return vectors;
+}
+
+/** Columns made orthonormal (Gram-Schmidt), right-handed. */
+glm::dmat3 orthonormalised(const glm::dmat3& m)
+{
+    glm::dvec3 x = glm::normalize(m[0]);
+    glm::dvec3 y = m[1] - glm::dot(m[1], x) * x;
+    y = glm::normalize(y);
+    return glm::dmat3(x, y, glm::cross(x, y));
+}
+
+struct FrameBox
+{
+    glm::dmat3 axes{1.0};
+    glm::dvec3 min{0.0};
+    glm::dvec3 max{0.0};
+    double volume = std::numeric_limits<double>::infinity();
+};
+
+FrameBox boxInFrame(const glm::dmat3& axes, const std::vector<glm::dvec3>& points)
+{
+    FrameBox box;
+    box.axes = axes;
+    const glm::dmat3 toFrame = glm::transpose(axes);
+    box.min = box.max = toFrame * points[0];
+    for (const glm::dvec3& p : points)
+    {
+        const glm::dvec3 q = toFrame * p;
+        box.min = glm::min(box.min, q);
+        box.max = glm::max(box.max, q);
+    }
+    const glm::dvec3 size = box.max - box.min;
+    box.volume = size.x * size.y * size.z;
+    return box;
+}
+
+bool isUsableFrame(const glm::dmat3& axes)
+{
+    for (int c = 0; c < 3; ++c)
+        for (int r = 0; r < 3; ++r)
+            if (!std::isfinite(axes[c][r])) return false;
+    return true;
+}
+
+/** The smallest of the candidate boxes around one joint's points. */
+SkinJointBox smallestBox(const std::vector<glm::dvec3>& points, const glm::dmat4& inverseBind)
+{
+    glm::dvec3 mean(0.0);
+    for (const glm::dvec3& p : points) mean += p;
+    mean /= static_cast<double>(points.size());
+    glm::dmat3 covariance(0.0);
+    for (const glm::dvec3& p : points)
+    {
+        const glm::dvec3 d = p - mean;
+        for (int c = 0; c < 3; ++c)
+            for (int r = 0; r < 3; ++r) covariance[c][r] += d[c] * d[r];
+    }
+    const glm::dmat3 candidates[3] = {glm::dmat3(1.0), orthonormalised(glm::inverse(glm::dmat3(inverseBind))),
+                                      orthonormalised(eigenvectorsOf(covariance))};
+    FrameBox best;
+    for (const glm::dmat3& axes : candidates)
+    {
+        if (!isUsableFrame(axes)) continue;
+        const FrameBox box = boxInFrame(axes, points);
+        if (box.volume < best.volume) best = box;
+    }
+    // The box's frame has its origin at the box's centre (float keeps the centre's digits once, not in each
+    // corner); the half-size is rounded up so that the float box still holds every point.
+    const glm::dvec3 centre = best.axes * (0.5 * (best.min + best.max));
+    const glm::dvec3 half = 0.5 * (best.max - best.min);
+    SkinJointBox result;
+    result.boxToBind = glm::mat4(glm::dmat4(best.axes));
+    result.boxToBind[3] = glm::vec4(glm::vec3(centre), 1.0f);
+    const glm::vec3 halfFloat(half);
+    const glm::vec3 halfUp(std::nextafter(halfFloat.x, std::numeric_limits<float>::infinity()),
+                           std::nextafter(halfFloat.y, std::numeric_limits<float>::infinity()),
+                           std::nextafter(halfFloat.z, std::numeric_limits<float>::infinity()));
+    // Widen by the rounding of the frame's float columns and centre too: a few ulps of the points' distance from
+    // the bind-space origin.
+    const double reach = glm::length(centre) + glm::length(half);
+    const float slack = static_cast<float>(4.0 * std::numeric_limits<float>::epsilon() * reach);
+    result.box.min = -halfUp - glm::vec3(slack);
+    result.box.max = halfUp + glm::vec3(slack);
+    return result;
+}
+
+float largestAbs(const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+} // namespace
+
+std::vector<SkinJointBox> computeSkinJointBoxes(const SkinVertices& vertices,
+                                                Span<const glm::dmat4> inverseBindMatrices)
+{
+    // The bind positions each joint influences.
+    std::vector<std::vector<glm::dvec3>> points(inverseBindMatrices.size());
+    std::size_t influence = 0;
+    std::size_t vertex = 0;
+    for (unsigned k = 1; k <= kMaxSkinInfluences; ++k)
+        for (std::uint32_t i = 0; i < vertices.counts[k - 1]; ++i, ++vertex)
+            for (unsigned j = 0; j < k; ++j, ++influence)
+                if (vertices.weights[influence] > 0.0f)
+                    points[vertices.joints[influence]].push_back(glm::dvec3(vertices.positions[vertex]));
+
+    std::vector<SkinJointBox> boxes(inverseBindMatrices.size());
+    for (std::size_t j = 0; j < boxes.size(); ++j)
+        if (!points[j].empty()) boxes[j] = smallestBox(points[j], inverseBindMatrices[j]);
+    return boxes;
+}
+
+bool SkinBoundsJob::validate() const { return bound != nullptr && matrices.size() == jointBoxes.size(); }
+
+bool SkinBoundsJob::run() const
+{
+    if (!validate()) return false;
+    SkinBox result;
+    float magnitude = 0.0f;
+    for (std::size_t j = 0; j < jointBoxes.size(); ++j)
+    {
+        const SkinJointBox& joint = jointBoxes[j];
+        if (joint.box.isEmpty()) continue;
+        // The box's frame in model space, then the axis-aligned box around the moved box: its centre moves as a
+        // point, and its half-size along model axis r is sum over box axes c of |M[c][r]| halfSize[c].
+        const glm::mat4 boxToModel = matrices[j] * joint.boxToBind;
+        const glm::vec3 boxCentre = 0.5f * (joint.box.min + joint.box.max);
+        const glm::vec3 halfSize = 0.5f * (joint.box.max - joint.box.min);
+        const glm::vec3 centre = glm::vec3(boxToModel * glm::vec4(boxCentre, 1.0f));
+        glm::vec3 reach(0.0f);
+        for (int c = 0; c < 3; ++c) reach += glm::abs(glm::vec3(boxToModel[c])) * halfSize[c];
+        const glm::vec3 low = centre - reach;
+        const glm::vec3 high = centre + reach;
+        const bool first = result.isEmpty();
+        result.min = first ? low : glm::min(result.min, low);
+        result.max = first ? high : glm::max(result.max, high);
+        // How large the numbers SkinningJob adds for this joint's vertices can be: the translation and the linear
+        // part applied to the farthest bind position.
+        const glm::mat4& m = matrices[j];
+        const float linear = std::max({std::abs(m[0][0]) + std::abs(m[1][0]) + std::abs(m[2][0]),
+                                       std::abs(m[0][1]) + std::abs(m[1][1]) + std::abs(m[2][1]),
+                                       std::abs(m[0][2]) + std::abs(m[1][2]) + std::abs(m[2][2])});
+        const float bindReach = largestAbs(glm::vec3(joint.boxToBind[3])) + halfSize.x + halfSize.y + halfSize.z;
+        magnitude = std::max(magnitude, largestAbs(glm::vec3(m[3])) + linear * bindReach);
+    }
+    if (!result.isEmpty())
+    {
+        const glm::vec3 margin(kRoundingMargin * magnitude);
+        result.min -= margin;
+        result.max += margin;
+    }
+    *bound = result;
+    return true;
+}
+
+} // namespace osgActor
