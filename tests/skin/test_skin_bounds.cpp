@@ -66,6 +66,27 @@ TEST(SkinBoundsJob, RefusesAMissingBoundOrMatricesOfAnotherCount)
     EXPECT_TRUE(bound.isEmpty()); // no joint influences a vertex
 }
 
+TEST(SkinBoundsJob, RefusesBlendBoxesOutOfRangeOrOutOfOrder)
+{
+    std::vector<SkinJointBox> boxes(3);
+    std::vector<glm::mat4> matrices(3);
+    std::vector<SkinBlendBox> blends(2);
+    SkinBox bound;
+    SkinBoundsJob job;
+    job.jointBoxes = boxes;
+    job.matrices = matrices;
+    job.blendBoxes = blends;
+    job.bound = &bound;
+    blends[0].joint = 1;
+    blends[1].joint = 2;
+    blends[1].other = 3;
+    EXPECT_FALSE(job.validate());
+    blends[1].other = 0;
+    EXPECT_TRUE(job.validate());
+    blends[1].joint = 0;
+    EXPECT_FALSE(job.validate());
+}
+
 // --- what it computes ---
 
 TEST(SkinBoundsJob, MovesAJointsBoxByItsMatrixAsDerivedByHand)
@@ -170,6 +191,7 @@ TEST_P(SkinBoundsOnAClip, HoldEveryVertexOnEveryFrameAndStayClose)
         SkinBox bound;
         SkinBoundsJob bounds;
         bounds.jointBoxes = skin.getJointBoxes();
+        bounds.blendBoxes = skin.getBlendBoxes();
         bounds.matrices = matrices;
         bounds.bound = &bound;
         ASSERT_TRUE(bounds.run());

@@ -132,59 +132,130 @@ SkinJointBox smallestBox(const std::vector<glm::dvec3>& points, const glm::dmat4
 
 float largestAbs(const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
+/** The model-space axis-aligned box around a box moved by an affine map (or a difference of two, whose bottom row
+  * is zero): the centre moves as a point, and the half-size along model axis r is the sum over the box's axes c of
+  * |boxToModel[c][r]| halfSize[c]. */
+SkinBox boxAround(const glm::mat4& boxToModel, const SkinBox& box)
+{
+    const glm::vec3 boxCentre = 0.5f * (box.min + box.max);
+    const glm::vec3 halfSize = 0.5f * (box.max - box.min);
+    const glm::vec3 centre = glm::vec3(boxToModel[3]) + glm::mat3(boxToModel) * boxCentre;
+    glm::vec3 reach(0.0f);
+    for (int c = 0; c < 3; ++c) reach += glm::abs(glm::vec3(boxToModel[c])) * halfSize[c];
+    SkinBox moved;
+    moved.min = centre - reach;
+    moved.max = centre + reach;
+    return moved;
+}
+
+/** How large the numbers SkinningJob adds for a vertex in the box can be under the matrix: the translation and the
+  * linear part applied to the farthest bind position. */
+float magnitudeUnder(const glm::mat4& m, const SkinJointBox& joint)
+{
+    const float linear = std::max({std::abs(m[0][0]) + std::abs(m[1][0]) + std::abs(m[2][0]),
+                                   std::abs(m[0][1]) + std::abs(m[1][1]) + std::abs(m[2][1]),
+                                   std::abs(m[0][2]) + std::abs(m[1][2]) + std::abs(m[2][2])});
+    const glm::vec3 halfSize = 0.5f * (joint.box.max - joint.box.min);
+    const float bindReach = largestAbs(glm::vec3(joint.boxToBind[3])) + halfSize.x + halfSize.y + halfSize.z;
+    return largestAbs(glm::vec3(m[3])) + linear * bindReach;
+}
+
 } // namespace
 
-std::vector<SkinJointBox> computeSkinJointBoxes(const SkinVertices& vertices,
-                                                Span<const glm::dmat4> inverseBindMatrices)
+SkinBoundBoxes computeSkinBoundBoxes(const SkinVertices& vertices, Span<const glm::dmat4> inverseBindMatrices)
 {
-    // The bind positions each joint influences.
-    std::vector<std::vector<glm::dvec3>> points(inverseBindMatrices.size());
+    // Per vertex, its first (largest-weight) joint: influences come largest first (the builder's order).
+    const std::size_t numJoints = inverseBindMatrices.size();
+    std::vector<std::vector<glm::dvec3>> firstOf(numJoints);
+    struct Pair
+    {
+        std::vector<glm::dvec3> points;
+        float maxWeight = 0.0f;
+    };
+    std::vector<std::vector<std::pair<std::uint32_t, Pair>>> pairsOf(numJoints); // per first joint, by other joint
     std::size_t influence = 0;
     std::size_t vertex = 0;
     for (unsigned k = 1; k <= kMaxSkinInfluences; ++k)
-        for (std::uint32_t i = 0; i < vertices.counts[k - 1]; ++i, ++vertex)
-            for (unsigned j = 0; j < k; ++j, ++influence)
-                if (vertices.weights[influence] > 0.0f)
-                    points[vertices.joints[influence]].push_back(glm::dvec3(vertices.positions[vertex]));
+        for (std::uint32_t i = 0; i < vertices.counts[k - 1]; ++i, ++vertex, influence += k)
+        {
+            const glm::dvec3 position(vertices.positions[vertex]);
+            const std::uint32_t first = vertices.joints[influence];
+            firstOf[first].push_back(position);
+            for (unsigned j = 1; j < k; ++j)
+            {
+                const std::uint32_t other = vertices.joints[influence + j];
+                auto& pairs = pairsOf[first];
+                auto found = std::find_if(pairs.begin(), pairs.end(), [&](const auto& p) { return p.first == other; });
+                if (found == pairs.end())
+                {
+                    pairs.emplace_back(other, Pair());
+                    found = pairs.end() - 1;
+                }
+                found->second.points.push_back(position);
+                found->second.maxWeight = std::max(found->second.maxWeight, vertices.weights[influence + j]);
+            }
+        }
 
-    std::vector<SkinJointBox> boxes(inverseBindMatrices.size());
-    for (std::size_t j = 0; j < boxes.size(); ++j)
-        if (!points[j].empty()) boxes[j] = smallestBox(points[j], inverseBindMatrices[j]);
+    SkinBoundBoxes boxes;
+    boxes.joints.resize(numJoints);
+    for (std::size_t a = 0; a < numJoints; ++a)
+    {
+        if (!firstOf[a].empty()) boxes.joints[a] = smallestBox(firstOf[a], inverseBindMatrices[a]);
+        std::sort(pairsOf[a].begin(), pairsOf[a].end(), [](const auto& p, const auto& q) { return p.first < q.first; });
+        for (const auto& pair : pairsOf[a])
+        {
+            SkinBlendBox blend;
+            blend.joint = static_cast<std::uint32_t>(a);
+            blend.other = pair.first;
+            blend.maxWeight = pair.second.maxWeight;
+            blend.box = smallestBox(pair.second.points, inverseBindMatrices[a]);
+            boxes.blends.push_back(blend);
+        }
+    }
     return boxes;
 }
 
-bool SkinBoundsJob::validate() const { return bound != nullptr && matrices.size() == jointBoxes.size(); }
+bool SkinBoundsJob::validate() const
+{
+    if (bound == nullptr || matrices.size() != jointBoxes.size()) return false;
+    for (std::size_t i = 0; i < blendBoxes.size(); ++i)
+    {
+        const SkinBlendBox& blend = blendBoxes[i];
+        if (blend.joint >= matrices.size() || blend.other >= matrices.size()) return false;
+        if (i > 0 && blend.joint < blendBoxes[i - 1].joint) return false;
+    }
+    return true;
+}
 
 bool SkinBoundsJob::run() const
 {
     if (!validate()) return false;
     SkinBox result;
     float magnitude = 0.0f;
-    for (std::size_t j = 0; j < jointBoxes.size(); ++j)
+    std::size_t nextBlend = 0;
+    for (std::size_t a = 0; a < jointBoxes.size(); ++a)
     {
-        const SkinJointBox& joint = jointBoxes[j];
-        if (joint.box.isEmpty()) continue;
-        // The box's frame in model space, then the axis-aligned box around the moved box: its centre moves as a
-        // point, and its half-size along model axis r is sum over box axes c of |M[c][r]| halfSize[c].
-        const glm::mat4 boxToModel = matrices[j] * joint.boxToBind;
-        const glm::vec3 boxCentre = 0.5f * (joint.box.min + joint.box.max);
-        const glm::vec3 halfSize = 0.5f * (joint.box.max - joint.box.min);
-        const glm::vec3 centre = glm::vec3(boxToModel * glm::vec4(boxCentre, 1.0f));
-        glm::vec3 reach(0.0f);
-        for (int c = 0; c < 3; ++c) reach += glm::abs(glm::vec3(boxToModel[c])) * halfSize[c];
-        const glm::vec3 low = centre - reach;
-        const glm::vec3 high = centre + reach;
+        const SkinJointBox& joint = jointBoxes[a];
+        if (joint.box.isEmpty())
+        {
+            while (nextBlend < blendBoxes.size() && blendBoxes[nextBlend].joint == a) ++nextBlend;
+            continue;
+        }
+        SkinBox box = boxAround(matrices[a] * joint.boxToBind, joint.box);
+        magnitude = std::max(magnitude, magnitudeUnder(matrices[a], joint));
+        // Widened by what the joint's vertices owe to the other joints they follow.
+        for (; nextBlend < blendBoxes.size() && blendBoxes[nextBlend].joint == a; ++nextBlend)
+        {
+            const SkinBlendBox& blend = blendBoxes[nextBlend];
+            const glm::mat4 difference = matrices[blend.other] - matrices[a];
+            const SkinBox moved = boxAround(difference * blend.box.boxToBind, blend.box.box);
+            box.min += glm::min(glm::vec3(0.0f), blend.maxWeight * moved.min);
+            box.max += glm::max(glm::vec3(0.0f), blend.maxWeight * moved.max);
+            magnitude = std::max(magnitude, magnitudeUnder(matrices[blend.other], blend.box));
+        }
         const bool first = result.isEmpty();
-        result.min = first ? low : glm::min(result.min, low);
-        result.max = first ? high : glm::max(result.max, high);
-        // How large the numbers SkinningJob adds for this joint's vertices can be: the translation and the linear
-        // part applied to the farthest bind position.
-        const glm::mat4& m = matrices[j];
-        const float linear = std::max({std::abs(m[0][0]) + std::abs(m[1][0]) + std::abs(m[2][0]),
-                                       std::abs(m[0][1]) + std::abs(m[1][1]) + std::abs(m[2][1]),
-                                       std::abs(m[0][2]) + std::abs(m[1][2]) + std::abs(m[2][2])});
-        const float bindReach = largestAbs(glm::vec3(joint.boxToBind[3])) + halfSize.x + halfSize.y + halfSize.z;
-        magnitude = std::max(magnitude, largestAbs(glm::vec3(m[3])) + linear * bindReach);
+        result.min = first ? box.min : glm::min(result.min, box.min);
+        result.max = first ? box.max : glm::max(result.max, box.max);
     }
     if (!result.isEmpty())
     {

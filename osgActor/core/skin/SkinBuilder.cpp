@@ -330,7 +330,9 @@ SkinBuildResult SkinBuilder::build() const
         box.min = v == 0 ? _positions[v] : glm::min(box.min, _positions[v]);
         box.max = v == 0 ? _positions[v] : glm::max(box.max, _positions[v]);
     }
-    skin->_jointBoxes = computeSkinJointBoxes(skin->getVertices(), skin->_inverseBindMatrices);
+    SkinBoundBoxes boxes = computeSkinBoundBoxes(skin->getVertices(), skin->_inverseBindMatrices);
+    skin->_jointBoxes = std::move(boxes.joints);
+    skin->_blendBoxes = std::move(boxes.blends);
 
     SkinBuildResult result;
     result.skin = skin;
