@@ -26,7 +26,10 @@ struct Float4
 };
 inline Float4 operator+(const Float4& a, const Float4& b) { return {{a[0] + b[0], a[1] + b[1], a[2] + b[2], a[3] + b[3]}}; }
 inline Float4 operator*(const Float4& a, const Float4& b) { return {{a[0] * b[0], a[1] * b[1], a[2] * b[2], a[3] * b[3]}}; }
+inline Float4 operator-(const Float4& a, const Float4& b) { return {{a[0] - b[0], a[1] - b[1], a[2] - b[2], a[3] - b[3]}}; }
+inline Float4 operator-(const Float4& a) { return {{-a[0], -a[1], -a[2], -a[3]}}; }
 inline Float4 operator*(const Float4& a, float s) { return {{a[0] * s, a[1] * s, a[2] * s, a[3] * s}}; }
+inline Float4 operator*(float s, const Float4& a) { return a * s; }
 inline Float4& operator+=(Float4& a, const Float4& b) { return a = a + b; }
 #endif
 
@@ -46,6 +49,21 @@ OSGACTOR_SKIN_INLINE Float4 makeFloat4(float x, float y, float z, float w)
     value[2] = z;
     value[3] = w;
     return value;
+}
+
+/** The vector (pick(A), pick(B), pick(C), pick(D)) where pick(i) is a[i] for i < 4 and b[i - 4] otherwise. */
+template <int A, int B, int C, int D>
+OSGACTOR_SKIN_INLINE Float4 shuffle(const Float4& a, const Float4& b)
+{
+#if defined(__clang__)
+    return __builtin_shufflevector(a, b, A, B, C, D);
+#elif defined(__GNUC__)
+    typedef int Int4 __attribute__((vector_size(16)));
+    return __builtin_shuffle(a, b, Int4{A, B, C, D});
+#else
+    const auto pick = [&](int i) { return i < 4 ? a[i] : b[i - 4]; };
+    return makeFloat4(pick(A), pick(B), pick(C), pick(D));
+#endif
 }
 
 OSGACTOR_SKIN_INLINE float dot4(const Float4& a, const Float4& b)

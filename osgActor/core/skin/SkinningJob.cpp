@@ -47,14 +47,22 @@ OSGACTOR_SKIN_INLINE void loadColumns(const glm::mat4& m, unsigned numColumns, F
     for (unsigned c = 0; c < numColumns; ++c) columns[c] = loadFloat4(&m[c][0]);
 }
 
-/** columns = sum over the vertex's K influences of weight x matrix (the first numColumns columns). */
+/** columns = sum over the vertex's K influences of weight x matrix (the first numColumns columns). Summed as two
+  * halves (even and odd influences) added at the end: half the chain of dependent additions, so that more vertices
+  * are in flight at once. */
 template <unsigned K>
 OSGACTOR_SKIN_INLINE void blendColumns(const glm::mat4* matrices, const std::uint16_t* joints, const float* weights,
                                        unsigned numColumns, Float4* columns)
 {
+    Float4 odd[4];
     for (unsigned c = 0; c < numColumns; ++c) columns[c] = loadFloat4(&matrices[joints[0]][c][0]) * weights[0];
-    for (unsigned k = 1; k < K; ++k)
-        for (unsigned c = 0; c < numColumns; ++c) columns[c] += loadFloat4(&matrices[joints[k]][c][0]) * weights[k];
+    for (unsigned c = 0; c < numColumns; ++c) odd[c] = loadFloat4(&matrices[joints[1]][c][0]) * weights[1];
+    for (unsigned k = 2; k < K; ++k)
+    {
+        Float4* sum = k % 2 == 0 ? columns : odd;
+        for (unsigned c = 0; c < numColumns; ++c) sum[c] += loadFloat4(&matrices[joints[k]][c][0]) * weights[k];
+    }
+    for (unsigned c = 0; c < numColumns; ++c) columns[c] += odd[c];
 }
 
 /** Linear blend skinning, normals by the blended matrix's linear part. */
@@ -108,24 +116,36 @@ struct DualQuaternionBlend
             // blend takes the short way between them.
             const SkinDualQuaternion& q = dualQuaternions[joints[k]];
             const Float4 qReal = load(q.real);
-            const float weight = skin::dot4(qReal, firstReal) < 0.0f ? -weights[k] : weights[k];
+            const float weight = std::copysign(weights[k], skin::dot4(qReal, firstReal));
             real += qReal * weight;
             dual += load(q.dual) * weight;
         }
-        // Normalise by the real part's length (the dual part's component along the real part does not affect the
-        // translation formula below).
-        const float inverseLength = 1.0f / std::sqrt(skin::dot4(real, real));
-        real = real * inverseLength;
-        dual = dual * inverseLength;
-        const float x = real[0], y = real[1], z = real[2], w = real[3];
-        const float dx = dual[0], dy = dual[1], dz = dual[2], dw = dual[3];
-        // The rotation matrix of the unit quaternion (x, y, z, w), column by column.
-        t.normal[0] = makeFloat4(1.0f - 2.0f * (y * y + z * z), 2.0f * (x * y + w * z), 2.0f * (x * z - w * y), 0.0f);
-        t.normal[1] = makeFloat4(2.0f * (x * y - w * z), 1.0f - 2.0f * (x * x + z * z), 2.0f * (y * z + w * x), 0.0f);
-        t.normal[2] = makeFloat4(2.0f * (x * z + w * y), 2.0f * (y * z - w * x), 1.0f - 2.0f * (x * x + y * y), 0.0f);
-        // translation = 2 (dual real*), vector part: 2 (w d - dw r + r x d) with r = (x, y, z), d = (dx, dy, dz).
-        t.point[3] = makeFloat4(2.0f * (w * dx - dw * x + (y * dz - z * dy)), 2.0f * (w * dy - dw * y + (z * dx - x * dz)),
-                                2.0f * (w * dz - dw * z + (x * dy - y * dx)), 1.0f);
+        // The blend is normalised by dividing by the real part's length; every entry of the rotation matrix and the
+        // translation is a product of two parts, so one division by the squared length does it all (no square root).
+        const float s = 2.0f / skin::dot4(real, real);
+        // The rotation matrix of the quaternion q = (x, y, z, w) / length, column by column, each entry the sum of
+        // two products of q's components (their lanes picked from q and -q); the fourth lanes are unused.
+        //   column 0: 1 - (y y + z z),  x y + w z,       x z - w y
+        //   column 1: x y - w z,        1 - (x x + z z), y z + w x
+        //   column 2: x z + w y,        y z - w x,       1 - (x x + y y)
+        using skin::shuffle;
+        const Float4& q = real;
+        const Float4 n = -real;
+        t.normal[0] = skin::makeFloat4(1.0f, 0.0f, 0.0f, 0.0f) +
+                      s * (shuffle<5, 0, 0, 3>(q, n) * shuffle<1, 1, 2, 3>(q, n) +
+                           shuffle<6, 3, 7, 3>(q, n) * shuffle<2, 2, 1, 3>(q, n));
+        t.normal[1] = skin::makeFloat4(0.0f, 1.0f, 0.0f, 0.0f) +
+                      s * (shuffle<1, 4, 1, 3>(q, n) * shuffle<0, 0, 2, 3>(q, n) +
+                           shuffle<7, 6, 3, 3>(q, n) * shuffle<2, 2, 0, 3>(q, n));
+        t.normal[2] = skin::makeFloat4(0.0f, 0.0f, 1.0f, 0.0f) +
+                      s * (shuffle<2, 2, 4, 3>(q, n) * shuffle<0, 1, 0, 3>(q, n) +
+                           shuffle<3, 7, 5, 3>(q, n) * shuffle<1, 0, 1, 3>(q, n));
+        // translation = 2 (dual real*) / length^2, vector part: w d - dw r + r x d, with r and d the vector parts,
+        // and r x d = r.yzx d.zxy - r.zxy d.yzx.
+        const Float4 cross = shuffle<1, 2, 0, 3>(q, q) * shuffle<2, 0, 1, 3>(dual, dual) -
+                             shuffle<2, 0, 1, 3>(q, q) * shuffle<1, 2, 0, 3>(dual, dual);
+        t.point[3] = s * (dual * q[3] - q * dual[3] + cross);
+        t.point[3][3] = 1.0f;
         for (unsigned c = 0; c < 3; ++c)
         {
             t.tangent[c] = t.normal[c];
@@ -134,14 +154,36 @@ struct DualQuaternionBlend
     }
 };
 
+// Both sum in pairs, for a shorter chain of dependent operations than left to right.
 OSGACTOR_SKIN_INLINE Float4 transformPoint(const Float4* columns, const glm::vec3& p)
 {
-    return columns[0] * p.x + columns[1] * p.y + columns[2] * p.z + columns[3];
+    return (columns[0] * p.x + columns[3]) + (columns[1] * p.y + columns[2] * p.z);
 }
 
 OSGACTOR_SKIN_INLINE Float4 transformVector(const Float4* columns, float x, float y, float z)
 {
-    return columns[0] * x + columns[1] * y + columns[2] * z;
+    return columns[0] * x + (columns[1] * y + columns[2] * z);
+}
+
+/** Writes vertex v's outputs, moved by t. */
+template <bool Normals, bool Tangents>
+OSGACTOR_SKIN_INLINE void writeVertex(const Group& group, const Outputs& out, std::size_t v, const VertexTransform& t)
+{
+    const std::uint32_t at = group.outputIndices[v];
+    const Float4 position = transformPoint(t.point, group.positions[v]);
+    out.positions[at] = glm::vec3(position[0], position[1], position[2]);
+    if (Normals)
+    {
+        const glm::vec3& n = group.normals[v];
+        const Float4 normal = transformVector(t.normal, n.x, n.y, n.z);
+        out.normals[at] = glm::vec3(normal[0], normal[1], normal[2]);
+    }
+    if (Tangents)
+    {
+        const glm::vec4& bindTangent = group.tangents[v];
+        const Float4 tangent = transformVector(t.tangent, bindTangent.x, bindTangent.y, bindTangent.z);
+        out.tangents[at] = glm::vec4(tangent[0], tangent[1], tangent[2], bindTangent.w);
+    }
 }
 
 template <unsigned K, bool Normals, bool Tangents, class Blend>
@@ -153,21 +195,7 @@ OSGACTOR_SKIN_INLINE void skinGroup(const Group& group, const Outputs& out, cons
     {
         VertexTransform t;
         blend.template operator()<K>(joints, weights, t);
-        const std::uint32_t at = group.outputIndices[v];
-        const Float4 position = transformPoint(t.point, group.positions[v]);
-        out.positions[at] = glm::vec3(position[0], position[1], position[2]);
-        if (Normals)
-        {
-            const glm::vec3& n = group.normals[v];
-            const Float4 normal = transformVector(t.normal, n.x, n.y, n.z);
-            out.normals[at] = glm::vec3(normal[0], normal[1], normal[2]);
-        }
-        if (Tangents)
-        {
-            const glm::vec4& bindTangent = group.tangents[v];
-            const Float4 tangent = transformVector(t.tangent, bindTangent.x, bindTangent.y, bindTangent.z);
-            out.tangents[at] = glm::vec4(tangent[0], tangent[1], tangent[2], bindTangent.w);
-        }
+        writeVertex<Normals, Tangents>(group, out, v, t);
     }
 }
 
@@ -222,13 +250,25 @@ OSGACTOR_HOT_PATH void skinDualQuaternion(Attributes attributes, unsigned influe
     skinAny(attributes, influences, group, out, blend);
 }
 
-/** The largest element of a run of indices, or -1 for none (a plain loop the compiler vectorises). */
+/** The largest element of a run of indices, or -1 for none: plain loops the compiler vectorises (the baseline has
+  * no unsigned 16- or 32-bit maximum instruction, x86-64-v3 has both). validate() scans every joint and output index
+  * each run, so this is on the hot path too. */
 template <class Index>
-long long largestOf(Span<const Index> indices)
+OSGACTOR_SKIN_INLINE long long largestIndexOf(const Index* __restrict indices, std::size_t count)
 {
     Index largest = 0;
-    for (const Index index : indices) largest = index > largest ? index : largest;
-    return indices.empty() ? -1 : static_cast<long long>(largest);
+    for (std::size_t i = 0; i < count; ++i) largest = indices[i] > largest ? indices[i] : largest;
+    return count == 0 ? -1 : static_cast<long long>(largest);
+}
+
+OSGACTOR_HOT_PATH long long largestOf(Span<const std::uint16_t> indices)
+{
+    return largestIndexOf(indices.data(), indices.size());
+}
+
+OSGACTOR_HOT_PATH long long largestOf(Span<const std::uint32_t> indices)
+{
+    return largestIndexOf(indices.data(), indices.size());
 }
 
 } // namespace
