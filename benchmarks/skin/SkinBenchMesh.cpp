@@ -43,13 +43,10 @@ osgActor::SkinPtr makeSkin(unsigned numVertices, unsigned influences, osgActor::
         const glm::vec3 tangent = glm::normalize(glm::cross(normal, other));
         normals.push_back(normal);
         tangents.push_back(glm::vec4(tangent, 1.0f));
-        // Distinct joints from a window of eight around this vertex's place in the skeleton.
+        // The `influences` joints nearest this vertex's place along the skeleton, with random weights.
         const unsigned centre = static_cast<unsigned>(std::uint64_t(v) * kSkinJoints / numVertices);
-        const unsigned first = std::min(centre > 4 ? centre - 4 : 0u, kSkinJoints - 8);
-        unsigned window[8];
-        for (unsigned k = 0; k < 8; ++k) window[k] = first + k;
-        std::shuffle(window, window + 8, random);
-        for (unsigned k = 0; k < influences; ++k) builder.addInfluence(v, window[k], weight(random));
+        const unsigned first = std::min(centre > influences / 2 ? centre - influences / 2 : 0u, kSkinJoints - influences);
+        for (unsigned k = 0; k < influences; ++k) builder.addInfluence(v, first + k, weight(random));
     }
     builder.setPositions(positions);
     builder.setNormals(normals);

@@ -91,15 +91,22 @@ void BM_SkinningMatricesJob(benchmark::State& state)
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * bench::kSkinJoints);
 }
 
-/** The bound of a 64-joint, 16384-vertex skin with 4 influences (joint and blend boxes): once per frame per skin. */
+/** The bound of a 64-joint, 16384-vertex skin with 4 influences (joint and blend boxes; for dual quaternions, blend
+  * sets too): once per frame per skin. Argument: 0 linear blend, 1 dual quaternions. */
 void BM_SkinBoundsJob(benchmark::State& state)
 {
-    const osgActor::SkinPtr skin = bench::makeSkin(16384, 4, osgActor::SkinningMethod::LinearBlend);
+    const osgActor::SkinningMethod method =
+        state.range(0) != 0 ? osgActor::SkinningMethod::DualQuaternion : osgActor::SkinningMethod::LinearBlend;
+    const osgActor::SkinPtr skin = bench::makeSkin(16384, 4, method);
     const bench::SkinBenchPose pose;
     osgActor::SkinBox bound;
     osgActor::SkinBoundsJob job;
+    job.method = method;
     job.jointBoxes = skin->getJointBoxes();
     job.blendBoxes = skin->getBlendBoxes();
+    job.blendSets = skin->getBlendSets();
+    job.blendSetJoints = skin->getBlendSetJoints();
+    job.blendSetWeights = skin->getBlendSetWeights();
     job.matrices = pose.matrices;
     job.bound = &bound;
     for (auto _ : state)
@@ -108,6 +115,7 @@ void BM_SkinBoundsJob(benchmark::State& state)
         benchmark::DoNotOptimize(bound);
     }
     state.counters["blend_boxes"] = static_cast<double>(skin->getBlendBoxes().size());
+    state.counters["blend_sets"] = static_cast<double>(skin->getBlendSets().size());
 }
 
 /** The console output, then per configuration and size osgActor's vertices per second and, where ozz ran, ozz's
@@ -164,7 +172,7 @@ int main(int argc, char** argv)
     bench::registerOzzSkinning();
 #endif
     benchmark::RegisterBenchmark("frame/skinning_matrices", BM_SkinningMatricesJob)->Arg(0)->Arg(1);
-    benchmark::RegisterBenchmark("frame/bounds", BM_SkinBoundsJob);
+    benchmark::RegisterBenchmark("frame/bounds", BM_SkinBoundsJob)->Arg(0)->Arg(1);
     RateReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
     reporter.printSummary();

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <iostream>
 #include <sstream>
+#include <tuple>
 #include <vector>
 
 using namespace osgActor;
@@ -143,13 +144,16 @@ TEST(SkinBoundsJob, BoxesEachJointInTheFrameWhereItsVerticesFitTightest)
     EXPECT_LT(size.x * size.y * size.z, 0.01f * bindSize.x * bindSize.y * bindSize.z);
 }
 
-class SkinBoundsOnAClip : public ::testing::TestWithParam<std::string>
+class SkinBoundsOnAClip : public ::testing::TestWithParam<std::tuple<std::string, SkinningMethod>>
 {
 };
 
 TEST_P(SkinBoundsOnAClip, HoldEveryVertexOnEveryFrameAndStayClose)
 {
-    const MocapImport motion = loadClip(GetParam());
+    const std::string clipName = std::get<0>(GetParam());
+    const SkinningMethod method = std::get<1>(GetParam());
+    const bool dualQuaternions = method == SkinningMethod::DualQuaternion;
+    const MocapImport motion = loadClip(clipName);
     ASSERT_TRUE(motion) << motion.error;
     ASSERT_TRUE(motion.clip && motion.clip->isUniform());
     const ActorDefinition& definition = *motion.definition;
@@ -162,7 +166,7 @@ TEST_P(SkinBoundsOnAClip, HoldEveryVertexOnEveryFrameAndStayClose)
     for (unsigned j = 0; j < definition.getNumJoints(); ++j)
         longest = std::max(longest, glm::length(definition.getOffsetTranslation(j)));
     const SkinSource source = makeTubeSkin(definition, 8, 12, 0.15, 0.1 * longest);
-    const SkinBuildResult built = source.toBuilder("tubes").build();
+    const SkinBuildResult built = source.toBuilder("tubes", method).build();
     ASSERT_TRUE(built) << built.error;
     const Skin& skin = *built.skin;
     ASSERT_GT(skin.getNumVertices(), 1000u);
@@ -170,6 +174,7 @@ TEST_P(SkinBoundsOnAClip, HoldEveryVertexOnEveryFrameAndStayClose)
     ASSERT_TRUE(binding) << binding.error;
 
     std::vector<glm::mat4> matrices(skin.getNumJoints());
+    std::vector<SkinDualQuaternion> dualQuaternionsOfJoints(skin.getNumJoints());
     std::vector<glm::vec3> positions(skin.getNumVertices());
     std::vector<double> ratios;
     unsigned outside = 0;
@@ -182,14 +187,21 @@ TEST_P(SkinBoundsOnAClip, HoldEveryVertexOnEveryFrameAndStayClose)
         matricesJob.definitionJoints = binding.definitionJoints;
         matricesJob.inverseBindMatrices = skin.getInverseBindMatrices();
         matricesJob.matrices = matrices;
+        if (dualQuaternions) matricesJob.dualQuaternions = dualQuaternionsOfJoints;
         ASSERT_TRUE(matricesJob.run());
         SkinningJob skinning;
+        skinning.method = method;
         skinning.vertices = skin.getVertices();
         skinning.matrices = matrices;
+        skinning.dualQuaternions = dualQuaternionsOfJoints;
         skinning.positions = positions;
         ASSERT_TRUE(skinning.run());
         SkinBox bound;
         SkinBoundsJob bounds;
+        bounds.method = method;
+        bounds.blendSets = skin.getBlendSets();
+        bounds.blendSetJoints = skin.getBlendSetJoints();
+        bounds.blendSetWeights = skin.getBlendSetWeights();
         bounds.jointBoxes = skin.getJointBoxes();
         bounds.blendBoxes = skin.getBlendBoxes();
         bounds.matrices = matrices;
@@ -214,7 +226,7 @@ TEST_P(SkinBoundsOnAClip, HoldEveryVertexOnEveryFrameAndStayClose)
     const double within = static_cast<double>(std::count_if(ratios.begin(), ratios.end(), [](double r) { return r <= 1.5; })) /
                           ratios.size();
     std::ostringstream distribution;
-    distribution << GetParam() << ": " << ratios.size() << " frames, " << skin.getNumVertices()
+    distribution << clipName << (dualQuaternions ? ", dual quaternions" : ", linear blend") << ": " << ratios.size() << " frames, " << skin.getNumVertices()
                  << " vertices; bound volume / exact box volume: min " << sorted.front() << ", median " << at(0.5)
                  << ", 95th percentile " << at(0.95) << ", max " << sorted.back() << "; " << 100.0 * within
                  << "% of frames <= 1.5";
@@ -224,8 +236,11 @@ TEST_P(SkinBoundsOnAClip, HoldEveryVertexOnEveryFrameAndStayClose)
     EXPECT_GE(within, 0.95);
 }
 
-INSTANTIATE_TEST_SUITE_P(MotionCapture, SkinBoundsOnAClip, ::testing::Values("12_03.bvh", "charleston1.amc"),
-                         [](const ::testing::TestParamInfo<std::string>& info) {
-                             return info.param == "12_03.bvh" ? std::string("Cmu12_03Bvh")
-                                                              : std::string("CharlestonAmc");
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    MotionCapture, SkinBoundsOnAClip,
+    ::testing::Combine(::testing::Values("12_03.bvh", "charleston1.amc"),
+                       ::testing::Values(SkinningMethod::LinearBlend, SkinningMethod::DualQuaternion)),
+    [](const ::testing::TestParamInfo<std::tuple<std::string, SkinningMethod>>& info) {
+        return std::string(std::get<0>(info.param) == "12_03.bvh" ? "Cmu12_03Bvh" : "CharlestonAmc") +
+               (std::get<1>(info.param) == SkinningMethod::DualQuaternion ? "DualQuaternions" : "LinearBlend");
+    });

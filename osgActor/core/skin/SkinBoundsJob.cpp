@@ -1,5 +1,8 @@
 #include <osgActor/core/skin/SkinBoundsJob>
 
+#include "../HotPath.h"
+#include "Float4.h"
+
 #include <glm/ext/matrix_double3x3.hpp>
 #include <glm/ext/vector_double3.hpp>
 #include <glm/gtc/matrix_inverse.hpp>
@@ -7,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 namespace osgActor {
 
@@ -130,34 +134,76 @@ SkinJointBox smallestBox(const std::vector<glm::dvec3>& points, const glm::dmat4
     return result;
 }
 
-float largestAbs(const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+OSGACTOR_SKIN_INLINE float largestAbs(const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
-/** The model-space axis-aligned box around a box moved by an affine map (or a difference of two, whose bottom row
-  * is zero): the centre moves as a point, and the half-size along model axis r is the sum over the box's axes c of
-  * |boxToModel[c][r]| halfSize[c]. */
-SkinBox boxAround(const glm::mat4& boxToModel, const SkinBox& box)
+/** The model-space axis-aligned box around a joint box moved by m, an affine map (or a difference of two, whose
+  * bottom row is zero): the box's centre moves as a point, and its half-size along model axis r is the sum over the
+  * box's axes c of |(m boxToBind)[c][r]| halfSize[c]. Only the 3x3 and translation parts are multiplied. */
+OSGACTOR_SKIN_INLINE SkinBox boxAround(const glm::mat4& m, const SkinJointBox& joint)
 {
-    const glm::vec3 boxCentre = 0.5f * (box.min + box.max);
-    const glm::vec3 halfSize = 0.5f * (box.max - box.min);
-    const glm::vec3 centre = glm::vec3(boxToModel[3]) + glm::mat3(boxToModel) * boxCentre;
+    const glm::mat3 linear(m);
+    const glm::vec3 boxCentre = 0.5f * (joint.box.min + joint.box.max);
+    const glm::vec3 halfSize = 0.5f * (joint.box.max - joint.box.min);
+    const glm::vec3 bindCentre = glm::vec3(joint.boxToBind[3]) + glm::mat3(joint.boxToBind) * boxCentre;
+    const glm::vec3 centre = glm::vec3(m[3]) + linear * bindCentre;
     glm::vec3 reach(0.0f);
-    for (int c = 0; c < 3; ++c) reach += glm::abs(glm::vec3(boxToModel[c])) * halfSize[c];
+    for (int c = 0; c < 3; ++c) reach += glm::abs(linear * glm::vec3(joint.boxToBind[c])) * halfSize[c];
     SkinBox moved;
     moved.min = centre - reach;
     moved.max = centre + reach;
     return moved;
 }
 
-/** How large the numbers SkinningJob adds for a vertex in the box can be under the matrix: the translation and the
-  * linear part applied to the farthest bind position. */
-float magnitudeUnder(const glm::mat4& m, const SkinJointBox& joint)
+/** The largest absolute row sum of the matrix's linear part: how much it can lengthen a vector's largest
+  * coordinate. */
+OSGACTOR_SKIN_INLINE float rowSumNorm(const glm::mat4& m)
 {
-    const float linear = std::max({std::abs(m[0][0]) + std::abs(m[1][0]) + std::abs(m[2][0]),
-                                   std::abs(m[0][1]) + std::abs(m[1][1]) + std::abs(m[2][1]),
-                                   std::abs(m[0][2]) + std::abs(m[1][2]) + std::abs(m[2][2])});
+    return std::max({std::abs(m[0][0]) + std::abs(m[1][0]) + std::abs(m[2][0]),
+                     std::abs(m[0][1]) + std::abs(m[1][1]) + std::abs(m[2][1]),
+                     std::abs(m[0][2]) + std::abs(m[1][2]) + std::abs(m[2][2])});
+}
+
+/** The farthest a point of the box can be from the bind-space origin, coordinate-wise (at most). */
+OSGACTOR_SKIN_INLINE float bindReachOf(const SkinJointBox& joint)
+{
     const glm::vec3 halfSize = 0.5f * (joint.box.max - joint.box.min);
-    const float bindReach = largestAbs(glm::vec3(joint.boxToBind[3])) + halfSize.x + halfSize.y + halfSize.z;
-    return largestAbs(glm::vec3(m[3])) + linear * bindReach;
+    const glm::vec3 centre = glm::vec3(joint.boxToBind[3]) + glm::mat3(joint.boxToBind) * (0.5f * (joint.box.min + joint.box.max));
+    return largestAbs(centre) + halfSize.x + halfSize.y + halfSize.z;
+}
+
+/** The rotation between two skinning matrices that share a uniform scale s: the cosine of its angle, from
+  * trace(La^T Lk) = s^2 (1 + 2 cos angle). */
+OSGACTOR_SKIN_INLINE float cosineBetween(const glm::mat4& a, const glm::mat4& k, float scaleSquared)
+{
+    float trace = 0.0f;
+    for (int c = 0; c < 3; ++c) trace += glm::dot(glm::vec3(a[c]), glm::vec3(k[c]));
+    return glm::clamp(0.5f * (trace / scaleSquared - 1.0f), -1.0f, 1.0f);
+}
+
+/** How far from M_a v dual-quaternion skinning can take a vertex v of the set (see SkinBoundsJob):
+  * 2 sin(phi / 2) s r + sum_k W_k tau_k / m. */
+OSGACTOR_SKIN_INLINE float dualQuaternionReachOf(const glm::mat4& ma, const SkinBlendSet& set, Span<const std::uint32_t> setJoints,
+                            Span<const float> setWeights, Span<const glm::mat4> matrices)
+{
+    const float scale = glm::length(glm::vec3(ma[0]));
+    const glm::vec3 centre = glm::vec3(ma * glm::vec4(set.centre, 1.0f));
+    float scalarLoss = 0.0f;  // sum_k W_k (1 - cos(theta_k / 2))
+    float vectorPart = 0.0f;  // sum_k W_k sin(theta_k / 2)
+    float displacement = 0.0f; // sum_k W_k tau_k
+    for (std::uint32_t i = 1; i < set.numJoints; ++i)
+    {
+        const glm::mat4& mk = matrices[setJoints[set.firstJoint + i]];
+        const float weight = setWeights[set.firstJoint + i];
+        const float cosine = cosineBetween(ma, mk, scale * scale);
+        scalarLoss += weight * (1.0f - std::sqrt(0.5f * (1.0f + cosine)));
+        vectorPart += weight * std::sqrt(0.5f * (1.0f - cosine));
+        displacement += weight * glm::length(glm::vec3(mk * glm::vec4(set.centre, 1.0f)) - centre);
+    }
+    const float m = std::max(1.0f - scalarLoss, setWeights[set.firstJoint]);
+    // sin(phi / 2) from tan(phi / 2) = vectorPart / m.
+    const float tangent = vectorPart / m;
+    const float sinePhi = tangent / std::sqrt(1.0f + tangent * tangent);
+    return 2.0f * sinePhi * scale * set.radius + displacement / m;
 }
 
 } // namespace
@@ -173,6 +219,14 @@ SkinBoundBoxes computeSkinBoundBoxes(const SkinVertices& vertices, Span<const gl
         float maxWeight = 0.0f;
     };
     std::vector<std::vector<std::pair<std::uint32_t, Pair>>> pairsOf(numJoints); // per first joint, by other joint
+    // Per set of joints (the first joint, then the others in increasing order), its vertices and their largest sum
+    // of weights other than the first joint's.
+    struct BlendSetPoints
+    {
+        std::vector<glm::dvec3> points;
+        std::vector<float> weights; // per joint of the key: the largest weight (the first joint's smallest)
+    };
+    std::map<std::vector<std::uint32_t>, BlendSetPoints> sets;
     std::size_t influence = 0;
     std::size_t vertex = 0;
     for (unsigned k = 1; k <= kMaxSkinInfluences; ++k)
@@ -181,6 +235,25 @@ SkinBoundBoxes computeSkinBoundBoxes(const SkinVertices& vertices, Span<const gl
             const glm::dvec3 position(vertices.positions[vertex]);
             const std::uint32_t first = vertices.joints[influence];
             firstOf[first].push_back(position);
+            if (k > 1)
+            {
+                std::vector<std::uint32_t> key(vertices.joints.begin() + influence, vertices.joints.begin() + influence + k);
+                std::sort(key.begin() + 1, key.end());
+                BlendSetPoints& set = sets[key];
+                if (set.weights.empty())
+                {
+                    set.weights.assign(k, 0.0f);
+                    set.weights[0] = 1.0f;
+                }
+                set.points.push_back(position);
+                for (unsigned j = 0; j < k; ++j)
+                {
+                    const float weight = vertices.weights[influence + j];
+                    const std::size_t at = j == 0 ? 0 : std::size_t(std::find(key.begin() + 1, key.end(),
+                                                                               vertices.joints[influence + j]) - key.begin());
+                    set.weights[at] = j == 0 ? std::min(set.weights[0], weight) : std::max(set.weights[at], weight);
+                }
+            }
             for (unsigned j = 1; j < k; ++j)
             {
                 const std::uint32_t other = vertices.joints[influence + j];
@@ -212,12 +285,47 @@ SkinBoundBoxes computeSkinBoundBoxes(const SkinVertices& vertices, Span<const gl
             boxes.blends.push_back(blend);
         }
     }
+    for (const auto& entry : sets)
+    {
+        // Centred on the points' box (close enough to the smallest sphere), the radius rounded up.
+        const std::vector<glm::dvec3>& points = entry.second.points;
+        glm::dvec3 low = points[0], high = points[0];
+        for (const glm::dvec3& p : points)
+        {
+            low = glm::min(low, p);
+            high = glm::max(high, p);
+        }
+        const glm::vec3 centre(0.5 * (low + high));
+        double radius = 0.0;
+        for (const glm::dvec3& p : points) radius = std::max(radius, glm::length(p - glm::dvec3(centre)));
+        SkinBlendSet set;
+        set.box = smallestBox(points, inverseBindMatrices[entry.first[0]]);
+        set.centre = centre;
+        set.radius = static_cast<float>(radius * (1.0 + 1e-6));
+        set.firstJoint = static_cast<std::uint32_t>(boxes.setJoints.size());
+        set.numJoints = static_cast<std::uint32_t>(entry.first.size());
+        boxes.setJoints.insert(boxes.setJoints.end(), entry.first.begin(), entry.first.end());
+        // Weights sum to 1 within float rounding: the other joints' weights rounded up by as much.
+        for (std::size_t j = 0; j < entry.first.size(); ++j)
+            boxes.setWeights.push_back(j == 0 ? entry.second.weights[0]
+                                              : entry.second.weights[j] + 4.0f * std::numeric_limits<float>::epsilon());
+        boxes.sets.push_back(set);
+    }
     return boxes;
 }
 
 bool SkinBoundsJob::validate() const
 {
     if (bound == nullptr || matrices.size() != jointBoxes.size()) return false;
+    if (blendSetWeights.size() != blendSetJoints.size()) return false;
+    for (const SkinBlendSet& set : blendSets)
+    {
+        if (set.numJoints == 0 || set.firstJoint > blendSetJoints.size() ||
+            set.numJoints > blendSetJoints.size() - set.firstJoint)
+            return false;
+        for (std::uint32_t i = 0; i < set.numJoints; ++i)
+            if (blendSetJoints[set.firstJoint + i] >= matrices.size()) return false;
+    }
     for (std::size_t i = 0; i < blendBoxes.size(); ++i)
     {
         const SkinBlendBox& blend = blendBoxes[i];
@@ -227,11 +335,21 @@ bool SkinBoundsJob::validate() const
     return true;
 }
 
-bool SkinBoundsJob::run() const
+namespace {
+
+/** run()'s work, built for x86-64-v3 and the baseline (OSGACTOR_HOT_PATH): a few hundred small matrix products per
+  * frame. */
+OSGACTOR_HOT_PATH SkinBox computeBound(const SkinBoundsJob& job)
 {
-    if (!validate()) return false;
+    const SkinningMethod method = job.method;
+    const Span<const SkinJointBox> jointBoxes = job.jointBoxes;
+    const Span<const SkinBlendBox> blendBoxes = job.blendBoxes;
+    const Span<const SkinBlendSet> blendSets = job.blendSets;
+    const Span<const std::uint32_t> blendSetJoints = job.blendSetJoints;
+    const Span<const float> blendSetWeights = job.blendSetWeights;
+    const Span<const glm::mat4> matrices = job.matrices;
     SkinBox result;
-    float magnitude = 0.0f;
+    float bindReach = 0.0f; // over every joint box, so over every vertex
     std::size_t nextBlend = 0;
     for (std::size_t a = 0; a < jointBoxes.size(); ++a)
     {
@@ -241,29 +359,54 @@ bool SkinBoundsJob::run() const
             while (nextBlend < blendBoxes.size() && blendBoxes[nextBlend].joint == a) ++nextBlend;
             continue;
         }
-        SkinBox box = boxAround(matrices[a] * joint.boxToBind, joint.box);
-        magnitude = std::max(magnitude, magnitudeUnder(matrices[a], joint));
+        SkinBox box = boxAround(matrices[a], joint);
+        bindReach = std::max(bindReach, bindReachOf(joint));
         // Widened by what the joint's vertices owe to the other joints they follow.
         for (; nextBlend < blendBoxes.size() && blendBoxes[nextBlend].joint == a; ++nextBlend)
         {
+            if (method == SkinningMethod::DualQuaternion) continue;
             const SkinBlendBox& blend = blendBoxes[nextBlend];
-            const glm::mat4 difference = matrices[blend.other] - matrices[a];
-            const SkinBox moved = boxAround(difference * blend.box.boxToBind, blend.box.box);
+            const SkinBox moved = boxAround(matrices[blend.other] - matrices[a], blend.box);
             box.min += glm::min(glm::vec3(0.0f), blend.maxWeight * moved.min);
             box.max += glm::max(glm::vec3(0.0f), blend.maxWeight * moved.max);
-            magnitude = std::max(magnitude, magnitudeUnder(matrices[blend.other], blend.box));
         }
         const bool first = result.isEmpty();
         result.min = first ? box.min : glm::min(result.min, box.min);
         result.max = first ? box.max : glm::max(result.max, box.max);
     }
+    if (method == SkinningMethod::DualQuaternion)
+        for (const SkinBlendSet& set : blendSets)
+        {
+            const glm::mat4& first = matrices[blendSetJoints[set.firstJoint]];
+            const SkinBox moved = boxAround(first, set.box);
+            const glm::vec3 reach(dualQuaternionReachOf(first, set, blendSetJoints, blendSetWeights, matrices));
+            const bool empty = result.isEmpty();
+            result.min = empty ? moved.min - reach : glm::min(result.min, moved.min - reach);
+            result.max = empty ? moved.max + reach : glm::max(result.max, moved.max + reach);
+        }
     if (!result.isEmpty())
     {
-        const glm::vec3 margin(kRoundingMargin * magnitude);
+        // How large the numbers SkinningJob adds can be: a joint's translation plus its linear part applied to the
+        // farthest bind position.
+        float translation = 0.0f, linear = 0.0f;
+        for (const glm::mat4& m : matrices)
+        {
+            translation = std::max(translation, largestAbs(glm::vec3(m[3])));
+            linear = std::max(linear, rowSumNorm(m));
+        }
+        const glm::vec3 margin(kRoundingMargin * (translation + linear * bindReach));
         result.min -= margin;
         result.max += margin;
     }
-    *bound = result;
+    return result;
+}
+
+} // namespace
+
+bool SkinBoundsJob::run() const
+{
+    if (!validate()) return false;
+    *bound = computeBound(*this);
     return true;
 }
 
