@@ -100,13 +100,7 @@ void BM_SkinBoundsJob(benchmark::State& state)
     const osgActor::SkinPtr skin = bench::makeSkin(16384, 4, method);
     const bench::SkinBenchPose pose;
     osgActor::SkinBox bound;
-    osgActor::SkinBoundsJob job;
-    job.method = method;
-    job.jointBoxes = skin->getJointBoxes();
-    job.blendBoxes = skin->getBlendBoxes();
-    job.blendSets = skin->getBlendSets();
-    job.blendSetJoints = skin->getBlendSetJoints();
-    job.blendSetWeights = skin->getBlendSetWeights();
+    osgActor::SkinBoundsJob job = osgActor::makeSkinBoundsJob(*skin);
     job.matrices = pose.matrices;
     job.bound = &bound;
     for (auto _ : state)

@@ -88,6 +88,34 @@ TEST(SkinBoundsJob, RefusesBlendBoxesOutOfRangeOrOutOfOrder)
     EXPECT_FALSE(job.validate());
 }
 
+TEST(SkinBoundsJob, RefusesBlendSetsNamingJointsOrWeightsOutOfRange)
+{
+    std::vector<SkinJointBox> boxes(3);
+    std::vector<glm::mat4> matrices(3);
+    std::vector<SkinBlendSet> sets(1);
+    std::vector<std::uint32_t> setJoints{0, 2};
+    std::vector<float> setWeights{0.6f, 0.4f};
+    SkinBox bound;
+    SkinBoundsJob job;
+    job.method = SkinningMethod::DualQuaternion;
+    job.jointBoxes = boxes;
+    job.matrices = matrices;
+    job.blendSets = sets;
+    job.blendSetJoints = setJoints;
+    job.blendSetWeights = setWeights;
+    job.bound = &bound;
+    sets[0].numJoints = 2;
+    EXPECT_TRUE(job.validate());
+    setJoints[1] = 3; // no such joint
+    EXPECT_FALSE(job.validate());
+    setJoints[1] = 2;
+    sets[0].numJoints = 3; // past the end of the joint list
+    EXPECT_FALSE(job.validate());
+    sets[0].numJoints = 2;
+    job.blendSetWeights = Span<const float>(setWeights.data(), 1); // a weight short
+    EXPECT_FALSE(job.validate());
+}
+
 // --- what it computes ---
 
 TEST(SkinBoundsJob, MovesAJointsBoxByItsMatrixAsDerivedByHand)
@@ -197,13 +225,7 @@ TEST_P(SkinBoundsOnAClip, HoldEveryVertexOnEveryFrameAndStayClose)
         skinning.positions = positions;
         ASSERT_TRUE(skinning.run());
         SkinBox bound;
-        SkinBoundsJob bounds;
-        bounds.method = method;
-        bounds.blendSets = skin.getBlendSets();
-        bounds.blendSetJoints = skin.getBlendSetJoints();
-        bounds.blendSetWeights = skin.getBlendSetWeights();
-        bounds.jointBoxes = skin.getJointBoxes();
-        bounds.blendBoxes = skin.getBlendBoxes();
+        SkinBoundsJob bounds = makeSkinBoundsJob(skin);
         bounds.matrices = matrices;
         bounds.bound = &bound;
         ASSERT_TRUE(bounds.run());

@@ -314,6 +314,18 @@ SkinBoundBoxes computeSkinBoundBoxes(const SkinVertices& vertices, Span<const gl
     return boxes;
 }
 
+SkinBoundsJob makeSkinBoundsJob(const Skin& skin)
+{
+    SkinBoundsJob job;
+    job.method = skin.getMethod();
+    job.jointBoxes = skin.getJointBoxes();
+    job.blendBoxes = skin.getBlendBoxes();
+    job.blendSets = skin.getBlendSets();
+    job.blendSetJoints = skin.getBlendSetJoints();
+    job.blendSetWeights = skin.getBlendSetWeights();
+    return job;
+}
+
 bool SkinBoundsJob::validate() const
 {
     if (bound == nullptr || matrices.size() != jointBoxes.size()) return false;
