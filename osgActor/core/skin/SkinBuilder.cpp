@@ -128,7 +128,14 @@ SkinBuildResult SkinBuilder::build() const
         return refuse.general(what.str());
     }
     if (numVertices == 0) return refuse.general("has no vertices");
-    if (numVertices > std::numeric_limits<std::uint32_t>::max()) return refuse.general("has too many vertices");
+    // Influences are indexed with 32 bits.
+    if (numVertices > std::numeric_limits<std::uint32_t>::max() / kMaxSkinInfluences)
+    {
+        std::ostringstream what;
+        what << "has " << numVertices << " vertices; at most " << std::numeric_limits<std::uint32_t>::max() / kMaxSkinInfluences
+             << " are supported";
+        return refuse.general(what.str());
+    }
     if (!_normals.empty() && _normals.size() != numVertices)
     {
         std::ostringstream what;

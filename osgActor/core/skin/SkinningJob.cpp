@@ -123,11 +123,11 @@ struct DualQuaternionBlend
         // The blend is normalised by dividing by the real part's length; every entry of the rotation matrix and the
         // translation is a product of two parts, so one division by the squared length does it all (no square root).
         const float s = 2.0f / skin::dot4(real, real);
-        // The rotation matrix of the quaternion q = (x, y, z, w) / length, column by column, each entry the sum of
-        // two products of q's components (their lanes picked from q and -q); the fourth lanes are unused.
-        //   column 0: 1 - (y y + z z),  x y + w z,       x z - w y
-        //   column 1: x y - w z,        1 - (x x + z z), y z + w x
-        //   column 2: x z + w y,        y z - w x,       1 - (x x + y y)
+        // The rotation matrix of the blend q = (x, y, z, w) normalised, column by column, with s = 2 / |q|^2; each
+        // entry's products come from lanes picked from q and -q (the fourth lanes are unused):
+        //   column 0: 1 - s (y y + z z),  s (x y + w z),      s (x z - w y)
+        //   column 1: s (x y - w z),      1 - s (x x + z z),  s (y z + w x)
+        //   column 2: s (x z + w y),      s (y z - w x),      1 - s (x x + y y)
         using skin::shuffle;
         const Float4& q = real;
         const Float4 n = -real;
@@ -140,8 +140,8 @@ struct DualQuaternionBlend
         t.normal[2] = skin::makeFloat4(0.0f, 0.0f, 1.0f, 0.0f) +
                       s * (shuffle<2, 2, 4, 3>(q, n) * shuffle<0, 1, 0, 3>(q, n) +
                            shuffle<3, 7, 5, 3>(q, n) * shuffle<1, 0, 1, 3>(q, n));
-        // translation = 2 (dual real*) / length^2, vector part: w d - dw r + r x d, with r and d the vector parts,
-        // and r x d = r.yzx d.zxy - r.zxy d.yzx.
+        // translation = 2 (dual real*) / |q|^2, vector part: s (w d - dw r + r x d), with r and d the vector parts
+        // of real and dual, and r x d = r.yzx d.zxy - r.zxy d.yzx.
         const Float4 cross = shuffle<1, 2, 0, 3>(q, q) * shuffle<2, 0, 1, 3>(dual, dual) -
                              shuffle<2, 0, 1, 3>(q, q) * shuffle<1, 2, 0, 3>(dual, dual);
         t.point[3] = s * (dual * q[3] - q * dual[3] + cross);
