@@ -65,6 +65,7 @@ set(OSGACTOR_CORE_SOURCES
 set(OSGACTOR_CORE_SKIN_HEADERS
     core/skin/Skin
     core/skin/SkinBinding
+    core/skin/SkinBoundBoxes
     core/skin/SkinBoundsJob
     core/skin/SkinBuilder
     core/skin/SkinningJob
@@ -72,6 +73,7 @@ set(OSGACTOR_CORE_SKIN_HEADERS
 set(OSGACTOR_CORE_SKIN_SOURCES
     core/skin/Skin.cpp
     core/skin/SkinBinding.cpp
+    core/skin/SkinBoundBoxes.cpp
     core/skin/SkinBoundsJob.cpp
     core/skin/SkinBuilder.cpp
     core/skin/SkinningJob.cpp

@@ -1,6 +1,6 @@
 #include <osgActor/core/skin/SkinBuilder>
 
-#include <osgActor/core/skin/SkinBoundsJob>
+#include <osgActor/core/skin/SkinBoundBoxes>
 
 #include <glm/ext/matrix_double3x3.hpp>
 #include <glm/ext/vector_double3.hpp>
