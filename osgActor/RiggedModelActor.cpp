@@ -74,6 +74,7 @@ bool parseRiggedModelOptionString(const std::string& text, RiggedModelActorOptio
             else return bad("above or lengths");
         }
         else if (word == "noFigure") options.addFigure = false;
+        else if (word == "yUp") options.zUp = false;
         // anything else belongs to another plugin
     }
     return true;
@@ -91,6 +92,7 @@ RiggedModelActor readRiggedModelActor(const std::string& path, const RiggedModel
     }
     RiggedActorOptions mapping;
     mapping.rootScale = options.rootScale;
+    mapping.zUp = options.zUp;
     RiggedActor rigged = buildRiggedActor(read.model, mapping);
     if (!rigged)
     {
@@ -133,9 +135,10 @@ RiggedModelActor readRiggedModelActor(const std::string& path, const RiggedModel
 
     result.actor = actor;
     result.sceneNode = actor;
-    if (rigged.modelToScene != glm::dmat4(1.0))
+    if (rigged.rootScale != 1.0)
     {
-        osg::ref_ptr<osg::MatrixTransform> above = new osg::MatrixTransform(toOsg(rigged.modelToScene));
+        osg::ref_ptr<osg::MatrixTransform> above = new osg::MatrixTransform(osg::Matrixd::scale(
+            rigged.rootScale, rigged.rootScale, rigged.rootScale));
         above->setName(actor->getName() + " scale");
         above->getOrCreateStateSet()->setMode(GL_RESCALE_NORMAL, osg::StateAttribute::ON);
         above->addChild(actor.get());

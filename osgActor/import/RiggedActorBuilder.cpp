@@ -2,6 +2,7 @@
 
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/core/ClipBuilder>
+#include <osgActor/core/skin/SkinBuilder>
 #include <osgActor/import/ChannelSampling>
 #include <osgActor/import/EulerFit>
 #include <osgActor/mocap/MocapImport>
@@ -73,8 +74,7 @@ public:
         if (!buildDefinition()) return false;
         for (std::size_t a = 0; a < _model.animations.size(); ++a)
             if (!buildClip(a)) return false;
-        bindMeshes();
-        return true;
+        return bindMeshes();
     }
 
 private:
@@ -163,8 +163,12 @@ private:
             const glm::dvec3& s = _model.nodes[_plans.front().node].scale;
             if (isUniform(s)) k = (s.x + s.y + s.z) / 3.0;
         }
-        _result.modelToScene = glm::dmat4(1.0);
-        _result.modelToScene[0][0] = _result.modelToScene[1][1] = _result.modelToScene[2][2] = k;
+        _up = _options.zUp ? upAxisToZUp(UpAxis::Y) : glm::dquat(1.0, 0.0, 0.0, 0.0);
+        _result.rootScale = k;
+        _result.modelToScene = glm::mat4_cast(glm::inverse(_up));
+        _result.modelToScene[0] *= k;
+        _result.modelToScene[1] *= k;
+        _result.modelToScene[2] *= k;
         for (unsigned j = 0; j < _plans.size(); ++j)
         {
             JointPlan& plan = _plans[j];
@@ -196,7 +200,8 @@ private:
             const RiggedNode& node = _model.nodes[_plans[j].node];
             glm::dmat4 local = glm::mat4_cast(node.rotation);
             local[3] = glm::dvec4(_plans[j].lengthScale * node.translation, 1.0);
-            _restModel[j] = _plans[j].parentJoint >= 0 ? _restModel[_plans[j].parentJoint] * local : local;
+            _restModel[j] = _plans[j].parentJoint >= 0 ? _restModel[_plans[j].parentJoint] * local
+                                                       : glm::mat4_cast(_up) * local;
             low = glm::min(low, glm::dvec3(_restModel[j][3]));
             high = glm::max(high, glm::dvec3(_restModel[j][3]));
         }
@@ -296,9 +301,15 @@ private:
             const RiggedNode& node = _model.nodes[plan.node];
             JointSpec spec;
             spec.name = node.name;
-            if (plan.parentJoint >= 0) spec.parent = _model.nodes[_plans[plan.parentJoint].node].name;
             spec.translation = plan.lengthScale * node.translation;
             spec.rotation = plan.reference;
+            if (plan.parentJoint >= 0) spec.parent = _model.nodes[_plans[plan.parentJoint].node].name;
+            else
+            {
+                // A root's offset is in the actor's model space: turned up there.
+                spec.translation = _up * spec.translation;
+                spec.rotation = _up * spec.rotation;
+            }
             spec.eulerOrder = plan.order;
             spec.translationMode = TranslationMode::BeforeRotation;
             if (plan.rotates)
@@ -481,7 +492,7 @@ private:
 
     // --- meshes ---
 
-    void bindMeshes()
+    bool bindMeshes()
     {
         for (std::size_t m = 0; m < _model.meshes.size(); ++m)
             for (std::size_t p = 0; p < _model.meshes[m].primitives.size(); ++p)
@@ -490,35 +501,74 @@ private:
                     const RiggedNode& node = _model.nodes[n];
                     if (node.mesh != int(m) || !inScene(int(n))) continue;
                     const RiggedPrimitive& primitive = _model.meshes[m].primitives[p];
-                    if (isSkinnedAt(int(n), primitive)) bindSkin(int(m), int(p), int(n));
-                    else
+                    if (isSkinnedAt(int(n), primitive))
                     {
-                        RigidBinding rigid;
-                        rigid.mesh = int(m);
-                        rigid.primitive = int(p);
-                        rigid.node = int(n);
-                        rigid.joint = unsigned(_jointOfNode[n]);
-                        rigid.jointFromMesh = _plans[rigid.joint].residual;
-                        _result.rigidMeshes.push_back(rigid);
+                        if (!bindSkin(int(m), int(p), int(n))) return false;
+                        continue;
                     }
+                    RigidBinding rigid;
+                    rigid.mesh = int(m);
+                    rigid.primitive = int(p);
+                    rigid.node = int(n);
+                    rigid.joint = unsigned(_jointOfNode[n]);
+                    rigid.jointFromMesh = _plans[rigid.joint].residual;
+                    _result.rigidMeshes.push_back(rigid);
                 }
+        return true;
     }
 
-    void bindSkin(int mesh, int primitive, int node)
+    /** Whether every vector is one the skin takes: unit length within a loose bound (normals, tangents' xyz), and a
+      * tangent's w +-1. */
+    template <class Vec>
+    static bool usableDirections(const std::vector<Vec>& directions)
     {
-        const RiggedSkin& skin = _model.skins[_model.nodes[node].skin];
-        SkinBinding binding;
-        binding.mesh = mesh;
-        binding.primitive = primitive;
-        binding.node = node;
-        binding.skin = _model.nodes[node].skin;
+        for (const Vec& d : directions)
+        {
+            const float length = glm::length(glm::vec3(d));
+            if (!(length > 1e-6f)) return false;
+            if constexpr (sizeof(Vec) == sizeof(glm::vec4))
+                if (std::abs(d[3]) != 1.0f) return false;
+        }
+        return true;
+    }
+
+    bool bindSkin(int mesh, int primitiveIndex, int node)
+    {
+        const RiggedPrimitive& primitive = _model.meshes[mesh].primitives[primitiveIndex];
+        const int fileSkin = _model.nodes[node].skin;
+        const RiggedSkin& skin = _model.skins[fileSkin];
+        SkinBuilder builder(_model.nodes[node].name + " " + primitive.place);
         for (std::size_t j = 0; j < skin.joints.size(); ++j)
         {
             const JointPlan& plan = _plans[_jointOfNode[skin.joints[j]]];
-            binding.jointNames.push_back(_model.nodes[plan.node].name);
-            binding.inverseBindMatrices.push_back(plan.residual * skin.inverseBindMatrices[j]);
+            builder.addJoint(_model.nodes[plan.node].name, plan.residual * skin.inverseBindMatrices[j]);
         }
-        _result.skins.push_back(std::move(binding));
+        builder.setPositions(primitive.positions);
+        if (usableDirections(primitive.normals)) builder.setNormals(primitive.normals);
+        else if (!primitive.normals.empty())
+            warn(primitive.place + ": a normal of zero length; the skin moves no normals");
+        if (!primitive.normals.empty() && usableDirections(primitive.normals))
+        {
+            if (usableDirections(primitive.tangents)) builder.setTangents(primitive.tangents);
+            else if (!primitive.tangents.empty())
+                warn(primitive.place + ": a tangent of zero length or with w not +-1; the skin moves no tangents");
+        }
+        // Zero weights are glTF's padding, and may name any joint: only the others are influences.
+        const unsigned count = primitive.influencesPerVertex;
+        for (std::size_t v = 0; v < primitive.getNumVertices(); ++v)
+            for (unsigned i = 0; i < count; ++i)
+                if (primitive.weights[v * count + i] > 0.0f)
+                    builder.addInfluence(unsigned(v), primitive.joints[v * count + i], primitive.weights[v * count + i]);
+        const SkinBuildResult built = builder.build();
+        if (!built) return fail(primitive.place + ": " + built.error);
+        SkinnedPrimitive skinned;
+        skinned.mesh = mesh;
+        skinned.primitive = primitiveIndex;
+        skinned.node = node;
+        skinned.fileSkin = fileSkin;
+        skinned.skin = built.skin;
+        _result.skins.push_back(std::move(skinned));
+        return true;
     }
 
     const RiggedModel& _model;
@@ -527,6 +577,8 @@ private:
     std::vector<JointPlan> _plans;
     std::vector<int> _jointOfNode;
     std::vector<glm::dmat4> _restModel;
+    /** The turn from the file's axes to the actor's model space at the roots (identity, or Y up to Z up). */
+    glm::dquat _up{1.0, 0.0, 0.0, 0.0};
 };
 
 } // namespace

@@ -59,6 +59,9 @@ TEST(RiggedActorFidelity, CesiumManWalksAsTheFileSays)
     RiggedActorOptions lengths;
     lengths.rootScale = RootScale::InLengths;
     expectFaithful("CesiumMan (root scale in lengths)", measureFidelity(cesiumMan(), lengths));
+    RiggedActorOptions zUp;
+    zUp.zUp = true;
+    expectFaithful("CesiumMan (turned Z up)", measureFidelity(cesiumMan(), zUp));
 }
 
 TEST(RiggedActorFidelity, SimpleSkinBendsAsTheFileSays)

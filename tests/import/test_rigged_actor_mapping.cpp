@@ -5,6 +5,7 @@
 #include "TestMath"
 
 #include <osgActor/core/ActorPose>
+#include <osgActor/core/skin/SkinBinding>
 #include <osgActor/import/GltfReader>
 #include <osgActor/import/RiggedActorBuilder>
 #include <osgActor/import/UniformClip>
@@ -78,24 +79,27 @@ TEST(RiggedActorMapping, CesiumManSkinIsBoundByJointName)
     const RiggedActor actor = import(cesiumMan());
     ASSERT_TRUE(actor) << actor.error;
     ASSERT_EQ(actor.skins.size(), 1u);
-    const SkinBinding& skin = actor.skins[0];
-    EXPECT_EQ(skin.mesh, 0);
-    EXPECT_EQ(skin.primitive, 0);
-    EXPECT_EQ(skin.node, 2);
-    ASSERT_EQ(skin.jointNames.size(), 19u);
-    EXPECT_EQ(skin.jointNames[0], "Skeleton_torso_joint_1");
-    for (const std::string& name : skin.jointNames) EXPECT_GE(actor.definition->findJoint(name), 0) << name;
+    const SkinnedPrimitive& skinned = actor.skins[0];
+    EXPECT_EQ(skinned.mesh, 0);
+    EXPECT_EQ(skinned.primitive, 0);
+    EXPECT_EQ(skinned.node, 2);
+    ASSERT_TRUE(skinned.skin);
+    const Skin& skin = *skinned.skin;
+    ASSERT_EQ(skin.getNumJoints(), 19u);
+    EXPECT_EQ(skin.getNumVertices(), 3273u);
+    EXPECT_EQ(skin.getJointName(0), "Skeleton_torso_joint_1");
+    const SkinBinding binding = bindSkinToDefinition(skin, *actor.definition);
+    ASSERT_TRUE(binding) << binding.error;
     // At rest, every joint's skinning matrix (model matrix times inverse bind) is what the file gives: its scene
-    // matrix times its inverse bind matrix, ~ the identity for a model bound in its rest pose.
+    // matrix times its inverse bind matrix.
     ActorPose rest(actor.definition);
     rest.updateMatrices();
     const RiggedModel& model = *actor.model;
-    for (std::size_t j = 0; j < skin.jointNames.size(); ++j)
+    for (unsigned j = 0; j < skin.getNumJoints(); ++j)
     {
-        const int joint = actor.definition->findJoint(skin.jointNames[j]);
-        const glm::dmat4 skinning = rest.getModelMatrix(unsigned(joint)) * skin.inverseBindMatrices[j];
+        const glm::dmat4 skinning = rest.getModelMatrix(binding.definitionJoints[j]) * skin.getInverseBindMatrix(j);
         const glm::dmat4 expected = restSceneMatrix(model, model.skins[0].joints[j]) * model.skins[0].inverseBindMatrices[j];
-        EXPECT_TRUE(matricesNear(skinning, expected, 1e-6)) << skin.jointNames[j];
+        EXPECT_TRUE(matricesNear(skinning, expected, 1e-6)) << skin.getJointName(j);
     }
     EXPECT_TRUE(actor.rigidMeshes.empty());
 }

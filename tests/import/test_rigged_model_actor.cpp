@@ -63,7 +63,8 @@ TEST(RiggedModelActor, OptionStringsSetTheImport)
     EXPECT_FALSE(parseRiggedModelOptionString("mode=sideways", options, error));
     EXPECT_EQ(error, "option mode must be loop, once or pingpong, not 'sideways'");
     EXPECT_FALSE(parseRiggedModelOptionString("rootScale=big", options, error));
-    ASSERT_TRUE(parseRiggedModelOptionString("clip=Walk mode=once rootScale=lengths noFigure scale=2", options, error));
+    ASSERT_TRUE(parseRiggedModelOptionString("clip=Walk mode=once rootScale=lengths noFigure yUp scale=2", options, error));
+    EXPECT_FALSE(options.zUp);
     EXPECT_EQ(options.clip, "Walk");
     EXPECT_EQ(options.playMode, PlayMode::Once);
     EXPECT_EQ(options.rootScale, RootScale::InLengths);
@@ -84,6 +85,11 @@ TEST(RiggedModelActor, CesiumManPlaysItsFirstAnimation)
     ASSERT_TRUE(player);
     EXPECT_EQ(player->getClip()->getName(), "animation0");
     EXPECT_EQ(player->getPlayMode(), PlayMode::Loop);
+    // It stands in OSG's frame: the neck (Skeleton_neck_joint_2) 1 to 1.5 above the feet, along +Z.
+    const osg::Vec3d head = read.actor->getJointWorldPosition(unsigned(read.actor->getDefinition()->findJoint("Skeleton_neck_joint_2")));
+    EXPECT_GT(head.z(), 1.0);
+    EXPECT_LT(head.z(), 1.5);
+    EXPECT_LT(std::abs(head.y()), 0.3);
     // The skin is kept for the skinned drawables, bound to the actor's joints.
     ASSERT_EQ(read.rigged.skins.size(), 1u);
     EXPECT_EQ(read.rigged.definition, read.actor->getDefinition());
