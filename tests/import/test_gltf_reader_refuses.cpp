@@ -1,7 +1,7 @@
 // The glTF reader refuses broken files with the file and the place, and gives no model: real broken files from
 // Debian's assimp-testmodels, and files written here with one thing wrong each.
 #include "GltfTestFile"
-#include "ImportTestPaths"
+#include "ImportTestUtil"
 
 #include <osgActor/import/GltfReader>
 
@@ -57,6 +57,17 @@ struct SkinnedStrip
     RiggedModelRead read(const std::string& name, const std::string& body) const
     {
         file.write(written(name), body);
+        return readGltfFile(written(name));
+    }
+    /** Reads the file with the text from "before" (the first after "buffers" when inBuffers) up to the next comma
+      * replaced by "after". */
+    RiggedModelRead readEdited(const std::string& name, const std::string& before, const std::string& after,
+                               bool inBuffers = false) const
+    {
+        std::string json = file.json(body());
+        const std::size_t at = json.find(before, inBuffers ? json.find("\"buffers\"") : 0);
+        json.replace(at, json.find(',', at) - at, after);
+        std::ofstream(written(name)) << json;
         return readGltfFile(written(name));
     }
 };
@@ -134,13 +145,10 @@ TEST(GltfReaderRefuses, ATruncatedGlb)
 
 TEST(GltfReaderRefuses, AShortEmbeddedBuffer)
 {
-    SkinnedStrip strip;
-    std::string json = strip.file.json(strip.body());
-    // Claim more bytes than the data URI holds.
-    const std::size_t at = json.find("\"byteLength\":", json.find("\"buffers\""));
-    json.replace(at, json.find(',', at) - at, "\"byteLength\":100000");
-    std::ofstream(written("short_buffer.gltf")) << json;
-    EXPECT_TRUE(refused(readGltfFile(written("short_buffer.gltf")), written("short_buffer.gltf") + ": ", ""));
+    // The buffer claims more bytes than its data URI holds.
+    const SkinnedStrip strip;
+    EXPECT_TRUE(refused(strip.readEdited("short_buffer.gltf", "\"byteLength\":", "\"byteLength\":100000", true),
+                        written("short_buffer.gltf") + ": ", ""));
 }
 
 TEST(GltfReaderRefuses, WeightsThatSumToZero)
@@ -197,13 +205,9 @@ TEST(GltfReaderRefuses, AnIndexCountThatIsNotWholeTriangles)
 
 TEST(GltfReaderRefuses, AnAccessorThatReachesPastItsBufferView)
 {
-    SkinnedStrip strip;
-    std::string json = strip.file.json(strip.body());
     // The positions accessor claims 30 vertices over a 36-byte view.
-    const std::size_t at = json.find("\"count\":3,");
-    json.replace(at, 10, "\"count\":30,");
-    std::ofstream(written("long_accessor.gltf")) << json;
-    EXPECT_TRUE(refused(readGltfFile(written("long_accessor.gltf")),
+    const SkinnedStrip strip;
+    EXPECT_TRUE(refused(strip.readEdited("long_accessor.gltf", "\"count\":3,", "\"count\":30"),
                         written("long_accessor.gltf") + ": accessors[0] (POSITION of meshes[0].primitives[0]): ",
                         "reach past the end of bufferViews[0]"));
 }

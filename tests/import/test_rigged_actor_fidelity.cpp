@@ -4,7 +4,7 @@
 // through a joint's gimbal lock).
 #include "FidelityCheck"
 #include "GltfTestFile"
-#include "ImportTestPaths"
+#include "ImportTestUtil"
 
 #include <glm/ext/quaternion_trigonometric.hpp>
 

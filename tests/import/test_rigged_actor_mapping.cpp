@@ -1,7 +1,7 @@
 // What the mapping makes of a rigged model: joints and their order, DOFs, offsets, the root scale, skins bound by
 // joint name, rigid meshes on their joints, and the warnings for what the DOF model cannot hold.
 #include "GltfTestFile"
-#include "ImportTestPaths"
+#include "ImportTestUtil"
 #include "TestMath"
 
 #include <osgActor/core/ActorPose>
@@ -24,12 +24,6 @@ RiggedActor import(const std::string& path, const RiggedActorOptions& options = 
     return read.model ? buildRiggedActor(read.model, options) : RiggedActor();
 }
 
-bool anyWarningSays(const RiggedActor& actor, const std::string& text)
-{
-    for (const std::string& warning : actor.warnings)
-        if (warning.find(text) != std::string::npos) return true;
-    return false;
-}
 
 } // namespace
 
@@ -157,10 +151,10 @@ TEST(RiggedActorMapping, WarnsAboutAnimatedScaleAndNonUniformScaleAboveJoints)
     file.write(written("scales.gltf"), body);
     const RiggedActor actor = import(written("scales.gltf"));
     ASSERT_TRUE(actor) << actor.error;
-    EXPECT_TRUE(anyWarningSays(actor, "animations[0] 'grow': the scale of nodes[1] 'arm' is animated"));
-    EXPECT_FALSE(anyWarningSays(actor, "nodes[2] 'hand' is animated")); // within 1e-5 of its rest scale
-    EXPECT_TRUE(anyWarningSays(actor, "nodes[0] 'root': its scale (1.000000, 2.000000, 1.000000) is not uniform"));
-    EXPECT_TRUE(anyWarningSays(actor, "'grow' moves no joint and is left out"));
+    EXPECT_TRUE(anyWarningSays(actor.warnings, "animations[0] 'grow': the scale of nodes[1] 'arm' is animated"));
+    EXPECT_FALSE(anyWarningSays(actor.warnings, "nodes[2] 'hand' is animated")); // within 1e-5 of its rest scale
+    EXPECT_TRUE(anyWarningSays(actor.warnings, "nodes[0] 'root': its scale (1.000000, 2.000000, 1.000000) is not uniform"));
+    EXPECT_TRUE(anyWarningSays(actor.warnings, "'grow' moves no joint and is left out"));
     EXPECT_TRUE(actor.clips.empty());
 }
 

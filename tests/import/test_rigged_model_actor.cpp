@@ -1,7 +1,7 @@
 // The OSG layer: an ActorNode made from a glTF file (readRiggedModelActor), and the pseudo-loader that gives it to
 // osgDB ("hero.gltf.actor", as osgviewer reads it).
 #include "GltfTestFile"
-#include "ImportTestPaths"
+#include "ImportTestUtil"
 
 #include <osgActor/RiggedModelActor>
 #include <osgActor/core/ClipPlayer>
@@ -19,10 +19,10 @@ using namespace osgActor::test;
 
 namespace {
 
-osgDB::ReaderWriter::ReadResult readThroughOsgDB(const std::string& file, const std::string& optionString = "")
+/** Reads through osgDB's registry, with an option string, as osgviewer does. */
+osgDB::ReaderWriter::ReadResult readAsOsgviewerDoes(const std::string& file, const char* optionString = "")
 {
-    osg::ref_ptr<osgDB::Options> options = new osgDB::Options(optionString);
-    return osgDB::Registry::instance()->readNode(file, options.get());
+    return osgDB::Registry::instance()->readNode(file, osg::ref_ptr<osgDB::Options>(new osgDB::Options(optionString)).get());
 }
 
 /** The geometries drawn below a node. */
@@ -118,7 +118,7 @@ TEST(RiggedModelActor, ARigidTexturedMeshIsDrawnOnItsJoint)
 
 TEST(RiggedModelPseudoLoader, ReadsAGltfFileAsAnActor)
 {
-    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(cesiumMan() + ".actor");
+    osgDB::ReaderWriter::ReadResult read = readAsOsgviewerDoes(cesiumMan() + ".actor");
     ASSERT_TRUE(read.validNode()) << read.message();
     const ActorNode* actor = dynamic_cast<ActorNode*>(read.getNode());
     ASSERT_TRUE(actor);
@@ -133,7 +133,7 @@ TEST(RiggedModelPseudoLoader, PutsARootScaleAboveTheActor)
                R"("scenes":[{"nodes":[0]}],"nodes":[{"name":"armature","scale":[0.01,0.01,0.01],"children":[1]},)"
                R"({"name":"hips","mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":)" +
                    std::to_string(triangle) + "}}]}]");
-    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(written("armature_box.gltf.actor"));
+    osgDB::ReaderWriter::ReadResult read = readAsOsgviewerDoes(written("armature_box.gltf.actor"));
     ASSERT_TRUE(read.validNode()) << read.message();
     const osg::MatrixTransform* above = dynamic_cast<osg::MatrixTransform*>(read.getNode());
     ASSERT_TRUE(above);
@@ -145,11 +145,11 @@ TEST(RiggedModelPseudoLoader, PutsARootScaleAboveTheActor)
 TEST(RiggedModelPseudoLoader, PassesOnTheReadersErrorAndOptions)
 {
     const std::string broken = gltf2("RecursiveNodes/RecursiveNodes.gltf");
-    osgDB::ReaderWriter::ReadResult read = readThroughOsgDB(broken + ".actor");
+    osgDB::ReaderWriter::ReadResult read = readAsOsgviewerDoes(broken + ".actor");
     EXPECT_FALSE(read.validNode());
     EXPECT_NE(read.message().find(broken + ": nodes["), std::string::npos) << read.message();
 
-    osgDB::ReaderWriter::ReadResult badOption = readThroughOsgDB(cesiumMan() + ".actor", "mode=never");
+    osgDB::ReaderWriter::ReadResult badOption = readAsOsgviewerDoes(cesiumMan() + ".actor", "mode=never");
     EXPECT_FALSE(badOption.validNode());
     EXPECT_NE(badOption.message().find("option mode must be"), std::string::npos) << badOption.message();
 }
