@@ -211,3 +211,26 @@ TEST(GltfReaderRefuses, AnAccessorThatReachesPastItsBufferView)
                         written("long_accessor.gltf") + ": accessors[0] (POSITION of meshes[0].primitives[0]): ",
                         "reach past the end of bufferViews[0]"));
 }
+
+TEST(GltfReaderRefuses, NothingWorseThanAnErrorForAnyCorruptedByteOfAGlb)
+{
+    // Every eleventh byte of the .glb (header, JSON, binary chunk) replaced in turn, by three values: each read gives a
+    // model or an error naming the file, never a crash (the sanitizer build checks every access).
+    std::ifstream in(gltf2("BoxTextured-glTF-Binary/BoxTextured.glb"), std::ios::binary);
+    const std::vector<char> original((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(original.size(), 1000u);
+    const std::string path = written("corrupted.glb");
+    unsigned refusals = 0;
+    for (std::size_t i = 0; i < original.size(); i += 11)
+        for (char replacement : {'\0', '9', '\xff'})
+        {
+            std::vector<char> bytes = original;
+            bytes[i] = replacement;
+            std::ofstream(path, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+            const RiggedModelRead read = readGltfFile(path);
+            if (read.model) continue;
+            ++refusals;
+            ASSERT_EQ(read.error.compare(0, path.size() + 2, path + ": "), 0) << "byte " << i << ": " << read.error;
+        }
+    EXPECT_GT(refusals, 0u);
+}
