@@ -7,6 +7,7 @@ packages=(
     build-essential cmake pkg-config git
     libopenscenegraph-dev openscenegraph   # OSG 3.6 headers, libraries, osgDB plugins, osgviewer/osgconv
     libglm-dev                             # the core's math
+    libtinygltf-dev                        # the glTF reader (osgActor/import)
     libosmesa6-dev                         # offscreen rendering
     fonts-dejavu-core                      # the viewer panel's font
     libgtest-dev libgmock-dev googletest   # unit tests
