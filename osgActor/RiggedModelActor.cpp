@@ -16,17 +16,31 @@ namespace osgActor {
 
 namespace {
 
-/** Hangs every rigid primitive under the skeleton node of its joint, placed by the binding's matrix. */
-void addRigidMeshes(ActorNode& actor, const RiggedActor& rigged)
+/** One state set per material, made as the meshes ask for them. */
+class MaterialStates
 {
-    std::map<int, osg::ref_ptr<osg::StateSet>> states; // one per material
+public:
+    explicit MaterialStates(const RiggedModel& model) : _model(model) {}
+    osg::StateSet* of(int material)
+    {
+        osg::ref_ptr<osg::StateSet>& state = _states[material];
+        if (!state) state = createMaterialStateSet(_model, material);
+        return state.get();
+    }
+
+private:
+    const RiggedModel& _model;
+    std::map<int, osg::ref_ptr<osg::StateSet>> _states;
+};
+
+/** Hangs every rigid primitive under the skeleton node of its joint, placed by the binding's matrix. */
+void addRigidMeshes(ActorNode& actor, const RiggedActor& rigged, MaterialStates& states)
+{
     for (const RigidBinding& binding : rigged.rigidMeshes)
     {
         const RiggedPrimitive& primitive = rigged.model->meshes[binding.mesh].primitives[binding.primitive];
         osg::ref_ptr<osg::Geometry> geometry = createPrimitiveGeometry(*rigged.model, primitive);
-        osg::ref_ptr<osg::StateSet>& state = states[primitive.material];
-        if (!state) state = createMaterialStateSet(*rigged.model, primitive.material);
-        geometry->setStateSet(state.get());
+        geometry->setStateSet(states.of(primitive.material));
         osg::ref_ptr<osg::Geode> geode = new osg::Geode;
         geode->setName(primitive.place);
         geode->addDrawable(geometry.get());
@@ -36,6 +50,26 @@ void addRigidMeshes(ActorNode& actor, const RiggedActor& rigged)
             placement->getOrCreateStateSet()->setMode(GL_NORMALIZE, osg::StateAttribute::ON);
         actor.getSkeletonNode(binding.joint)->addChild(placement.get());
     }
+}
+
+/** Puts a SkinnedMesh per skinned primitive in a Geode below the actor, in its model space; returns them. */
+std::vector<osg::ref_ptr<SkinnedMesh>> addSkinnedMeshes(ActorNode& actor, const RiggedActor& rigged,
+                                                        MaterialStates& states, SkinnedMesh::SkinningPath path)
+{
+    std::vector<osg::ref_ptr<SkinnedMesh>> meshes;
+    if (rigged.skins.empty()) return meshes;
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->setName("skins");
+    for (const SkinnedPrimitive& skinned : rigged.skins)
+    {
+        osg::ref_ptr<SkinnedMesh> mesh = createSkinnedMesh(*rigged.model, skinned);
+        mesh->setSkinningPath(path);
+        mesh->setStateSet(states.of(rigged.model->meshes[skinned.mesh].primitives[skinned.primitive].material));
+        geode->addDrawable(mesh.get());
+        meshes.push_back(mesh);
+    }
+    actor.addChild(geode.get());
+    return meshes;
 }
 
 /** The clip of that name, or the first; null when there is none of that name. */
@@ -73,6 +107,13 @@ bool parseRiggedModelOptionString(const std::string& text, RiggedModelActorOptio
             else if (value == "lengths") options.rootScale = RootScale::InLengths;
             else return bad("above or lengths");
         }
+        else if (key == "skinning" && equals != std::string::npos)
+        {
+            if (value == "gpu") options.skinning = SkinnedMesh::GPU_SKINNING;
+            else if (value == "cpu") options.skinning = SkinnedMesh::CPU_SKINNING;
+            else return bad("gpu or cpu");
+        }
+        else if (word == "figure") options.addFigure = true;
         else if (word == "noFigure") options.addFigure = false;
         else if (word == "yUp") options.zUp = false;
         // anything else belongs to another plugin
@@ -130,7 +171,9 @@ RiggedModelActor readRiggedModelActor(const std::string& path, const RiggedModel
         actor->setDofs(dofs);
         actor->updatePose();
     }
-    addRigidMeshes(*actor, rigged);
+    MaterialStates states(*rigged.model);
+    addRigidMeshes(*actor, rigged, states);
+    result.skinnedMeshes = addSkinnedMeshes(*actor, rigged, states, options.skinning);
     if (options.addFigure) addStickFigure(*actor);
 
     result.actor = actor;
