@@ -42,6 +42,10 @@ std::string checkSkinnedSurface(const Skin& skin, const osg::Geometry& surface)
                 << numVertices << " vertices";
     });
     if (why.tellp() > 0) return why.str();
+    for (unsigned unit = 5; unit < surface.getNumTexCoordArrays(); ++unit)
+        if (surface.getTexCoordArray(unit))
+            return "the surface has texture coordinates " + std::to_string(unit) +
+                   "; units 5-7 alias the joint and weight attributes in the core profile (skinAttributeSlots())";
     for (unsigned p = 0; p < surface.getNumPrimitiveSets(); ++p)
     {
         const osg::PrimitiveSet* primitives = surface.getPrimitiveSet(p);

@@ -105,7 +105,7 @@ SkinningProfile skinningProfileOf(const osg::State* state)
 
 SkinAttributeSlots skinAttributeSlots(SkinningProfile profile)
 {
-    return profile == SkinningProfile::Core ? SkinAttributeSlots{13, 14, 15} : SkinAttributeSlots{6, 7, 1};
+    return profile == SkinningProfile::Core ? SkinAttributeSlots{8, 9, 10} : SkinAttributeSlots{6, 7, 1};
 }
 
 bool SkinningProgramKey::operator<(const SkinningProgramKey& other) const
