@@ -15,13 +15,24 @@ namespace test {
 
 namespace {
 
-/** The leaves of a render bin and of the bins inside it. */
-void collectLeaves(const osgUtil::RenderBin& bin, std::vector<const osg::Drawable*>& drawables)
+FrameDriver::CulledLeaf culledLeafOf(const osgUtil::RenderLeaf& leaf)
 {
-    for (const osgUtil::RenderLeaf* leaf : bin.getRenderLeafList()) drawables.push_back(leaf->getDrawable());
+    FrameDriver::CulledLeaf culled{leaf.getDrawable(), {}, leaf._dynamic};
+    for (const osgUtil::StateGraph* graph = leaf._parent; graph; graph = graph->_parent)
+    {
+        if (graph->getStateSet()) culled.stateSets.insert(culled.stateSets.begin(), graph->getStateSet());
+        culled.dynamic = culled.dynamic || graph->_dynamic;
+    }
+    return culled;
+}
+
+/** The leaves of a render bin and of the bins inside it. */
+void collectLeaves(const osgUtil::RenderBin& bin, std::vector<FrameDriver::CulledLeaf>& leaves)
+{
+    for (const osgUtil::RenderLeaf* leaf : bin.getRenderLeafList()) leaves.push_back(culledLeafOf(*leaf));
     for (const osgUtil::StateGraph* graph : bin.getStateGraphList())
-        for (const osg::ref_ptr<osgUtil::RenderLeaf>& leaf : graph->_leaves) drawables.push_back(leaf->getDrawable());
-    for (const auto& child : bin.getRenderBinList()) collectLeaves(*child.second, drawables);
+        for (const osg::ref_ptr<osgUtil::RenderLeaf>& leaf : graph->_leaves) leaves.push_back(culledLeafOf(*leaf));
+    for (const auto& child : bin.getRenderBinList()) collectLeaves(*child.second, leaves);
 }
 
 /** A SkinnedMesh of a source's skin in a Geode below a new actor of the definition; triangles as given. */
@@ -165,10 +176,17 @@ void FrameDriver::frame(double t)
     cull();
 }
 
+std::vector<FrameDriver::CulledLeaf> FrameDriver::culledLeaves() const
+{
+    std::vector<CulledLeaf> leaves;
+    collectLeaves(*_sceneView->getRenderStage(), leaves);
+    return leaves;
+}
+
 std::vector<const osg::Drawable*> FrameDriver::culledDrawables() const
 {
     std::vector<const osg::Drawable*> drawables;
-    collectLeaves(*_sceneView->getRenderStage(), drawables);
+    for (const CulledLeaf& leaf : culledLeaves()) drawables.push_back(leaf.drawable);
     return drawables;
 }
 
