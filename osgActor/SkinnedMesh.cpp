@@ -36,6 +36,18 @@ unsigned frameOf(const osg::NodeVisitor& nv)
     return nv.getFrameStamp() ? nv.getFrameStamp()->getFrameNumber() : nv.getTraversalNumber();
 }
 
+/** What fixed function needs to light the CPU path's output as the skinning program does: linear blend shortens the
+  * skinned normals a little (SkinningJob does not renormalise them), so GL normalises them. */
+const osg::StateSet* cpuSkinnedFixedFunctionState()
+{
+    static const osg::ref_ptr<osg::StateSet> state = [] {
+        osg::ref_ptr<osg::StateSet> made = new osg::StateSet;
+        made->setMode(GL_NORMALIZE, osg::StateAttribute::ON);
+        return made;
+    }();
+    return state.get();
+}
+
 /** Pushes state sets on a cull visitor and pops them all when it goes. */
 class StateSetPusher
 {
@@ -346,6 +358,10 @@ void SkinnedMesh::cull(osgUtil::CullVisitor& cv, ActorNode& actor)
             key.profile = profile;
             key.skinning = false;
             states.push(getSkinningProgramStateSet(key));
+        }
+        else
+        {
+            states.push(cpuSkinnedFixedFunctionState());
         }
         geometry = instance->prepareSkinnedGeometry(frame, *_skin,
                                                     *getBindPoseGeometry(SkinningProfile::Compatibility));
