@@ -195,12 +195,12 @@ SkinnedMeshInstance* SkinnedMesh::instanceFor(ActorNode& actor) const
     std::lock_guard<std::mutex> lock(_instancesMutex);
     auto found = std::find_if(_instances.begin(), _instances.end(),
                               [&actor](const osg::ref_ptr<SkinnedMeshInstance>& i) { return i->isOf(actor); });
-    if (found != _instances.end() && (*found)->isBound(actor)) return found->get();
-    // New, or its definition was replaced since it was bound (or could not be bound; it warns again).
+    // Kept, bound or not, until the actor's definition changes: a skin that does not fit warns once.
+    if (found != _instances.end() && (*found)->isFor(actor.getDefinition()))
+        return (*found)->isBound(actor) ? found->get() : nullptr;
     osg::ref_ptr<SkinnedMeshInstance> instance = new SkinnedMeshInstance(actor, *_skin);
     if (found != _instances.end())
     {
-        if (!(*found)->isBound(actor) && actor.getDefinition() == nullptr) return nullptr;
         instance->hasOwnPath = (*found)->hasOwnPath;
         instance->ownPath = (*found)->ownPath;
         *found = instance;

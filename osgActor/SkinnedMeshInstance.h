@@ -39,6 +39,8 @@ public:
     bool isAlive() const { return _actor.valid(); }
     /** The actor, or null once it is gone. */
     const ActorNode* getActor() const { return _actor.get(); }
+    /** Whether this state was made for that definition (bound to it or not). */
+    bool isFor(const ActorDefinitionPtr& definition) const { return _definition == definition; }
     /** Whether the actor's definition has every joint of the skin, and is still the one bound. */
     bool isBound(const ActorNode& actor) const;
 
