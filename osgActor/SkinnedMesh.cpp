@@ -167,7 +167,7 @@ void SkinnedMesh::setUp()
             _path = CPU_SKINNING;
         }
     }
-    else if (_skin || _surface)
+    else if (_skin && _surface)
     {
         OSG_WARN << "osgActor: skinned mesh '" << getName() << "' cannot be drawn: " << _setupError << std::endl;
     }

@@ -11,6 +11,7 @@
  *   Definition <n> { <n lines of one whole .actor text> }                                         still read
  * An old file's count is never 0 (its text has a header), which tells the two apart in the binary format too. */
 #include "SerializedLines"
+#include "SerializedNumbers"
 
 #include <osgActor/ActorNode>
 #include <osgActor/ActorPartsText>
@@ -19,38 +20,10 @@
 #include <osgDB/ObjectWrapper>
 #include <osgDB/OutputStream>
 
-#include <charconv>
-
 namespace {
 
-// Text formats write doubles with the stream's precision (6 digits unless the "precision" option says otherwise),
-// which would move a read-back actor. The actor's own numbers are therefore written as their shortest exact text
-// in .osgt and .osgx, and as raw doubles in .osgb.
-void writeExact(osgDB::OutputStream& os, double value)
-{
-    if (os.isBinary())
-    {
-        os << value;
-        return;
-    }
-    char buffer[32];
-    const std::to_chars_result written = std::to_chars(buffer, buffer + sizeof(buffer), value);
-    os << std::string(buffer, written.ptr);
-}
-
-double readExact(osgDB::InputStream& is)
-{
-    double value = 0.0;
-    if (is.isBinary())
-    {
-        is >> value;
-        return value;
-    }
-    std::string text;
-    is >> text;
-    std::from_chars(text.data(), text.data() + text.size(), value);
-    return value;
-}
+using osgActorSerializers::readExact;
+using osgActorSerializers::writeExact;
 
 void writeExact(osgDB::OutputStream& os, const osg::Vec3d& v)
 {
