@@ -89,10 +89,22 @@ SkinnedMesh::SkinnedMesh(SkinPtr skin, osg::Geometry* surface) : SkinnedMesh()
 SkinnedMesh::SkinnedMesh(const SkinnedMesh& mesh, const osg::CopyOp& copyop)
     : osg::Drawable(mesh, copyop), _skin(mesh._skin),
       _surface(static_cast<osg::Geometry*>(copyop(static_cast<const osg::Drawable*>(mesh._surface.get())))),
-      _path(mesh._path), _paletteStorage(mesh._paletteStorage), _warnedNotInModelSpace(false)
+      _path(mesh._path), _paletteStorage(mesh._paletteStorage), _setupError(mesh._setupError),
+      _programKey(mesh._programKey), _warnedNotInModelSpace(false)
 {
     setNumChildrenRequiringUpdateTraversal(1);
-    setUp();
+    if (_surface != mesh._surface)
+    {
+        setUp(); // a surface of its own: geometries of its own
+        return;
+    }
+    // The static arrays and geometries never change once built: shared. Their boxes are the mesh's: new shells.
+    for (unsigned profile = 0; profile < 2; ++profile)
+    {
+        if (!mesh._bindPoseGeometry[profile]) continue;
+        _bindPoseGeometry[profile] = new osg::Geometry(*mesh._bindPoseGeometry[profile], osg::CopyOp::SHALLOW_COPY);
+        _bindPoseGeometry[profile]->setComputeBoundingBoxCallback(new FixedBoundingBox);
+    }
 }
 
 SkinnedMesh::~SkinnedMesh() = default;
@@ -138,7 +150,6 @@ void SkinnedMesh::setUp()
     {
         std::lock_guard<std::mutex> lock(_instancesMutex);
         _instances.clear();
-        _unionBound.init();
     }
     if (!_skin) _setupError = "no skin";
     else if (!_surface) _setupError = "no surface";
@@ -184,31 +195,25 @@ osg::Geometry* SkinnedMesh::getBindPoseGeometry(SkinningProfile profile)
 SkinnedMeshInstance* SkinnedMesh::findInstance(const ActorNode& actor) const
 {
     std::lock_guard<std::mutex> lock(_instancesMutex);
-    for (const osg::ref_ptr<SkinnedMeshInstance>& instance : _instances)
-        if (instance->isOf(actor)) return instance.get();
-    return nullptr;
+    const auto found = _instances.find(&actor);
+    return found != _instances.end() && found->second->isOf(actor) ? found->second.get() : nullptr;
 }
 
 SkinnedMeshInstance* SkinnedMesh::instanceFor(ActorNode& actor) const
 {
     if (!_setupError.empty()) return nullptr;
     std::lock_guard<std::mutex> lock(_instancesMutex);
-    auto found = std::find_if(_instances.begin(), _instances.end(),
-                              [&actor](const osg::ref_ptr<SkinnedMeshInstance>& i) { return i->isOf(actor); });
+    osg::ref_ptr<SkinnedMeshInstance>& slot = _instances[&actor];
+    const bool same = slot && slot->isOf(actor);
     // Kept, bound or not, until the actor's definition changes: a skin that does not fit warns once.
-    if (found != _instances.end() && (*found)->isFor(actor.getDefinition()))
-        return (*found)->isBound(actor) ? found->get() : nullptr;
+    if (same && slot->isFor(actor.getDefinition())) return slot->isBound(actor) ? slot.get() : nullptr;
     osg::ref_ptr<SkinnedMeshInstance> instance = new SkinnedMeshInstance(actor, *_skin);
-    if (found != _instances.end())
+    if (same)
     {
-        instance->hasOwnPath = (*found)->hasOwnPath;
-        instance->ownPath = (*found)->ownPath;
-        *found = instance;
+        instance->hasOwnPath = slot->hasOwnPath;
+        instance->ownPath = slot->ownPath;
     }
-    else
-    {
-        _instances.push_back(instance);
-    }
+    slot = instance;
     return instance->isBound(actor) ? instance.get() : nullptr;
 }
 
@@ -296,37 +301,40 @@ void SkinnedMesh::update(osg::NodeVisitor& /*nv*/, ActorNode& actor)
     if (!instance) return;
     // The pose's model matrices (the per-frame path keeps only the local ones current).
     actor.updatePose();
+    const osg::BoundingBox before = instance->getBound();
     instance->updateMatrices(*_skin, actor.getPose());
-    updateUnionBound();
+    // The union is recomputed once, when the bound is next asked for (at the end of update, in a viewer).
+    if (!(instance->getBound()._min == before._min && instance->getBound()._max == before._max)) dirtyBound();
 }
 
-void SkinnedMesh::updateUnionBound()
+osg::BoundingBox SkinnedMesh::computeUnionBound() const
 {
     osg::BoundingBox bound;
+    for (auto entry = _instances.begin(); entry != _instances.end();)
     {
-        std::lock_guard<std::mutex> lock(_instancesMutex);
-        // Actors that are gone leave.
-        _instances.erase(std::remove_if(_instances.begin(), _instances.end(),
-                                        [](const osg::ref_ptr<SkinnedMeshInstance>& i) { return !i->isAlive(); }),
-                         _instances.end());
-        for (const osg::ref_ptr<SkinnedMeshInstance>& instance : _instances)
-            if (instance->hasMatrices()) bound.expandBy(instance->getBound());
-        if (bound._min == _unionBound._min && bound._max == _unionBound._max) return;
-        _unionBound = bound;
+        if (!entry->second->isAlive())
+        {
+            entry = _instances.erase(entry); // the actor is gone
+            continue;
+        }
+        if (entry->second->hasMatrices()) bound.expandBy(entry->second->getBound());
+        ++entry;
     }
     for (const osg::ref_ptr<osg::Geometry>& geometry : _bindPoseGeometry)
     {
+        if (!geometry) continue;
         static_cast<FixedBoundingBox*>(geometry->getComputeBoundingBoxCallback())->box = bound;
         geometry->dirtyBound();
-        geometry->getBoundingBox(); // now, in update, rather than lazily in cull threads
+        geometry->getBoundingBox(); // now, with the mesh's, rather than lazily in cull threads
     }
-    dirtyBound();
+    return bound;
 }
 
 osg::BoundingBox SkinnedMesh::computeBoundingBox() const
 {
     std::lock_guard<std::mutex> lock(_instancesMutex);
-    if (_unionBound.valid()) return _unionBound;
+    const osg::BoundingBox bound = computeUnionBound();
+    if (bound.valid()) return bound;
     return _skin ? toBoundingBox(_skin->getBindBox()) : osg::BoundingBox();
 }
 
@@ -382,11 +390,9 @@ void SkinnedMesh::accept(osg::PrimitiveFunctor& functor) const
         // Called outside a traversal: the one actor that draws the mesh, if there is only one.
         std::lock_guard<std::mutex> lock(_instancesMutex);
         unsigned alive = 0;
-        for (const osg::ref_ptr<SkinnedMeshInstance>& instance : _instances)
-            if (instance->isAlive()) ++alive;
-        if (alive == 1)
-            for (const osg::ref_ptr<SkinnedMeshInstance>& instance : _instances)
-                if (instance->isAlive()) actor = instance->getActor();
+        for (const auto& entry : _instances)
+            if (entry.second->isAlive()) ++alive, actor = entry.second->getActor();
+        if (alive != 1) actor = nullptr;
     }
     osg::ref_ptr<osg::Vec3Array> positions = new osg::Vec3Array;
     if (!actor || !computeSkinnedVertices(*actor, *positions))
@@ -413,7 +419,7 @@ void SkinnedMesh::resizeGLObjectBuffers(unsigned int maxSize)
         if (geometry) geometry->resizeGLObjectBuffers(maxSize);
     {
         std::lock_guard<std::mutex> lock(_instancesMutex);
-        for (const osg::ref_ptr<SkinnedMeshInstance>& instance : _instances) instance->resizeGLObjectBuffers(maxSize);
+        for (const auto& entry : _instances) entry.second->resizeGLObjectBuffers(maxSize);
     }
     resizeSkinningProgramsGLObjectBuffers(maxSize);
 }
@@ -425,7 +431,7 @@ void SkinnedMesh::releaseGLObjects(osg::State* state) const
         if (geometry) geometry->releaseGLObjects(state);
     {
         std::lock_guard<std::mutex> lock(_instancesMutex);
-        for (const osg::ref_ptr<SkinnedMeshInstance>& instance : _instances) instance->releaseGLObjects(state);
+        for (const auto& entry : _instances) entry.second->releaseGLObjects(state);
     }
     releaseSkinningProgramsGLObjects(state);
 }
