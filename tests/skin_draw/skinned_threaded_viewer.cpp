@@ -5,6 +5,8 @@
  * frame is drawn; the main thread turns actors' paths between frames. Run under xvfb-run by ctest and under
  * ThreadSanitizer by scripts/test-sanitizers.sh. Exit status 0 after the frames (and every actor's mesh skinned or
  * uploaded once per frame it was seen), 1 otherwise. */
+#include "ViewerThreadingModel"
+
 #include <osgActor/ActorGroup>
 #include <osgActor/RiggedModelActor>
 
@@ -17,23 +19,10 @@ using namespace osgActor;
 
 int main(int argc, char** argv)
 {
-    if (argc < 2)
-    {
-        std::cerr << "usage: " << argv[0] << " <threading model> [frames]\n";
-        return 1;
-    }
-    const std::string modelName = argv[1];
     osgViewer::ViewerBase::ThreadingModel model;
-    if (modelName == "DrawThreadPerContext") model = osgViewer::ViewerBase::DrawThreadPerContext;
-    else if (modelName == "CullDrawThreadPerContext") model = osgViewer::ViewerBase::CullDrawThreadPerContext;
-    else if (modelName == "CullThreadPerCameraDrawThreadPerContext")
-        model = osgViewer::ViewerBase::CullThreadPerCameraDrawThreadPerContext;
-    else
-    {
-        std::cerr << "unknown threading model " << modelName << "\n";
-        return 1;
-    }
-    const int frames = argc > 2 ? std::atoi(argv[2]) : 60;
+    int frames = 0;
+    if (!test::parseThreadedViewerArguments(argc, argv, 60, model, frames)) return 1;
+    const std::string modelName = argv[1];
 
     std::string error;
     const RiggedModelActor read = readRiggedModelActor(std::string(OSGACTOR_TEST_DATA_DIR) +
@@ -55,15 +44,7 @@ int main(int argc, char** argv)
     }
 
     osgViewer::Viewer viewer;
-    viewer.setThreadingModel(model);
-    viewer.setUpViewInWindow(0, 0, 320, 240);
-    viewer.setSceneData(actors.get());
-    viewer.realize();
-    if (!viewer.isRealized())
-    {
-        std::cerr << "the viewer did not start (no display?)\n";
-        return 1;
-    }
+    if (!test::startViewer(viewer, model, actors.get())) return 1;
     // A second camera on the same window: its own cull (on its own thread with CullThreadPerCamera...).
     osg::ref_ptr<osg::Camera> slave = new osg::Camera;
     slave->setGraphicsContext(viewer.getCamera()->getGraphicsContext());
