@@ -2,6 +2,7 @@
 #ifndef OSGACTORAPPS_CAMERAVIEW_H
 #define OSGACTORAPPS_CAMERAVIEW_H 1
 
+#include <osg/BoundingBox>
 #include <osg/BoundingSphere>
 #include <osg/Node>
 #include <osg/Vec3d>
@@ -20,6 +21,18 @@ struct CameraView
   * sphere fits a perspective camera of the given vertical field of view (degrees) and aspect ratio (width /
   * height). An invalid or empty bound gives the default view. */
 CameraView frameBoundingSphere(const osg::BoundingSphere& bound, double fovyDegrees, double aspect);
+
+/** The same view direction as frameBoundingSphere(), at the distance where all eight corners of the box (world
+  * space) lie inside the perspective camera's frustum, looking at the box's centre: a wide, flat box (a stage seen
+  * from the front) fills the picture, where its bounding sphere would leave it small. An invalid box gives the
+  * default view. */
+CameraView frameBox(const osg::BoundingBox& box, double fovyDegrees, double aspect);
+
+/** The box (world space) that holds what the scene's actors (osgActor::ActorNode) draw as posed now, grown to hold
+  * them anywhere along the stored paths their controllers follow (Controller::getFollowedPath(), such as a
+  * TrajectoryPlayer's): each key's position, plus the actor's reach about its reference point at any heading.
+  * Invalid when the scene has no actor drawing anything. */
+osg::BoundingBox actorsBox(osg::Node& scene);
 
 /** The sphere about the box that holds the scene's drawables as posed now, for framing. Tighter than the scene's
   * own bound, which holds each node's bound (an actor's, by default, holds every rotation of its joints); the

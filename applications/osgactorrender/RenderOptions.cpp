@@ -20,6 +20,9 @@ void describeRenderOptions(osg::ArgumentParser& arguments)
     usage->addCommandLineOption("--size <width> <height>", "Image size in pixels (default 640 480).");
     usage->addCommandLineOption("--fov <degrees>", "Vertical field of view (default 30).");
     usage->addCommandLineOption("--eye <x> <y> <z>", "Camera position (default: framed from what the scene draws).");
+    usage->addCommandLineOption("--frame-actors", "Without --eye, frame the actors and the stored paths they follow "
+                                                  "(the rest of the stage may be cropped) rather than everything "
+                                                  "drawn.");
     usage->addCommandLineOption("--center <x> <y> <z>",
                                 "Point looked at (default: the centre of what the scene draws).");
     usage->addCommandLineOption("--up <x> <y> <z>", "Camera up direction (default 0 0 1).");
@@ -109,6 +112,7 @@ bool parseRenderOptions(osg::ArgumentParser& arguments, RenderOptions& options, 
     while (readVec3(arguments, "--eye", settings.eye)) settings.hasEye = true;
     while (readVec3(arguments, "--center", settings.center)) settings.hasCenter = true;
     while (readVec3(arguments, "--up", settings.up)) {}
+    while (arguments.read("--frame-actors")) settings.frameActors = true;
     while (arguments.read("--time", options.time)) options.hasTime = true;
     bool hasFrames = false;
     int first = 0;

@@ -147,12 +147,22 @@ int main(int argc, char** argv)
     panelSize(viewer, width, height);
     panel->resize(width, height);
 
-    // Home: the scene from the front, a little above (as osgactorrender frames it), not edge-on to a floor.
-    const osgActorApps::CameraView home =
-        osgActorApps::frameBoundingSphere(osgActorApps::shownBound(*scene), 30.0, double(width) / height);
-    manipulators->setAutoComputeHomePosition(false);
-    manipulators->setHomePosition(home.eye, home.center, home.up);
-    viewer.home();
+    // Home: the scene from the front, a little above, not edge-on to a floor: the actors and the stored paths they
+    // follow fill the picture (as osgactorrender --frame-actors frames them), or what the scene draws when it has no
+    // actor (as osgactorrender frames it).
+    const double fovyDegrees = 30.0;
+    const double aspect = double(width) / height;
+    const auto goHome = [&]() {
+        const osg::BoundingBox actorsBox = osgActorApps::actorsBox(*scene);
+        const osgActorApps::CameraView home =
+            actorsBox.valid()
+                ? osgActorApps::frameBox(actorsBox, fovyDegrees, aspect)
+                : osgActorApps::frameBoundingSphere(osgActorApps::shownBound(*scene), fovyDegrees, aspect);
+        manipulators->setAutoComputeHomePosition(false);
+        manipulators->setHomePosition(home.eye, home.center, home.up);
+        viewer.home();
+    };
+    goHome();
 
     // The frame loop of osgViewer::Viewer::run(), with the simulation time taken from the playback clock.
     const osg::Timer* timer = osg::Timer::instance();
@@ -167,6 +177,9 @@ int main(int argc, char** argv)
         if (lastFrame && !captureFile.empty()) capture->arm();
         viewer.frame(clock.getTime());
         ++numFrames;
+        // The first update gave the actors their controllers (a scene's rigs add the players of their paths): home
+        // again, now that the paths are known.
+        if (numFrames == 1) goHome();
     }
     if (!captureFile.empty())
     {

@@ -30,6 +30,13 @@ std::shared_ptr<osgActor::TrajectoryPlayer> PathWalker::findKeptPathPlayer(const
     return nullptr;
 }
 
+bool PathWalker::playsOwnClip(const osgActor::ActorNode& actor)
+{
+    for (const osgActor::ControllerPtr& controller : actor.getControllers())
+        if (std::dynamic_pointer_cast<osgActor::ClipPlayer>(controller)) return true;
+    return false;
+}
+
 bool PathWalker::rig(osgActor::ActorNode& actor) const
 {
     if (!_path || !actor.getDefinition())
@@ -48,8 +55,10 @@ bool PathWalker::rig(osgActor::ActorNode& actor) const
         actor.addController(path);
     }
 
-    // A file keeps clip players with their names and state.
+    // A file keeps clip players with their names and state; an actor that plays a clip of its own (a rigged model's
+    // walk, readRiggedModelActor's "clip") walks with it rather than with the procedural cycle.
     if (std::dynamic_pointer_cast<osgActor::ClipPlayer>(actor.findController(kWalkControllerName))) return true;
+    if (playsOwnClip(actor)) return true;
     // An actor without legs still follows the path.
     const osgActor::ClipBuildResult walk = makeWalkCycleClip(*actor.getDefinition(), _cycleDuration);
     if (!walk)

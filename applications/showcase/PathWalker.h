@@ -10,9 +10,10 @@ namespace osgActorShowcase {
 
 /** Walks the actors of its group along a stored path (an osgActor::Trajectory, stored with the scene): each actor
   * gets a TrajectoryPlayer that loops the path on its reference point (the pre-transform: position, and the heading
-  * that turns the actor's forward direction, -Y, along the path), and a ClipPlayer that loops the walk cycle
-  * (makeWalkCycleClip()), one full cycle per cycle duration. Make the path at the walking speed the cycle suits:
-  * stride length = speed x cycle duration. */
+  * that turns the actor's forward direction, -Y, along the path), and, unless it plays a clip of its own (a rigged
+  * model's walk, such as Cesium Man's), a ClipPlayer that loops the procedural walk cycle (makeWalkCycleClip()), one
+  * full cycle per cycle duration. Make the path at the walking speed the walk suits: for the procedural cycle,
+  * stride length = speed x cycle duration; for an actor's own clip, the speed at which its planted feet stay put. */
 class OSGACTORSHOWCASE_EXPORT PathWalker : public ControllerRig
 {
 public:
@@ -32,16 +33,19 @@ public:
     static const char* const kWalkControllerName;
 
     const char* getRigControllerName() const override { return kPathControllerName; }
-    /** Adds the path's TrajectoryPlayer and, for an actor with the walk's joints, the walk cycle's ClipPlayer. An
-      * actor read from a file may play them already: a walk cycle under the walk's name is kept as it is, and a
-      * path player a file's trajectory shorthand made (named after the trajectory, findKeptPathPlayer()) is taken
-      * and named as the rig names it, so the actor does not play two copies of either. (An actor written after it
-      * was rigged comes back with both players under the rig's names, so it counts as rigged.) */
+    /** Adds the path's TrajectoryPlayer and, for an actor with the walk's joints and no clip of its own, the walk
+      * cycle's ClipPlayer. An actor read from a file may play them already: a walk cycle under the walk's name is
+      * kept as it is, and a path player a file's trajectory shorthand made (named after the trajectory,
+      * findKeptPathPlayer()) is taken and named as the rig names it, so the actor does not play two copies of
+      * either. (An actor written after it was rigged comes back with both players under the rig's names, so it
+      * counts as rigged.) */
     bool rig(osgActor::ActorNode& actor) const override;
 
 protected:
     ~PathWalker() override = default;
 
+    /** True when the actor has a ClipPlayer not named as the rig's walk cycle (its own motion). */
+    static bool playsOwnClip(const osgActor::ActorNode& actor);
     /** The actor's TrajectoryPlayer of a trajectory named as this rig's path (one a file kept), or null. */
     std::shared_ptr<osgActor::TrajectoryPlayer> findKeptPathPlayer(const osgActor::ActorNode& actor) const;
 

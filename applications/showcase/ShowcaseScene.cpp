@@ -1,4 +1,5 @@
 #include "ShowcaseScene.h"
+#include "LightNumberShadowMap.h"
 #include "LoopTrajectory.h"
 #include "PathWalker.h"
 #include "TripodGait.h"
@@ -11,6 +12,7 @@
 #include <osg/Notify>
 #include <osg/ProxyNode>
 #include <osg/ShapeDrawable>
+#include <osgShadow/ShadowedScene>
 
 #include <cmath>
 #include <functional>
@@ -23,6 +25,9 @@ namespace {
 const osg::Vec3d kDancerSpot(0.0, 1.5, 0.0);
 const osg::Vec3d kInsectArea(6.6, 2.0, 0.0);
 const double kInsectScale = 0.8;
+const int kSunLightNumber = 1; // the viewer's headlight is 0
+// Texels of the shadow map each way: over the casters' bound (about 14 m across), a texel of about 7 mm.
+const int kShadowMapSize = 2048;
 
 osg::ref_ptr<osg::Material> makeMaterial(const osg::Vec4& colour)
 {
@@ -75,11 +80,12 @@ osg::ref_ptr<osg::Geode> makeFloor(const osg::Vec3d& centre, int tilesX, int til
     return geode;
 }
 
-/** The sun: a directional light (number 1; the viewer's headlight is 0) from the front left, high up. */
+/** The sun: a directional light (number 1; the viewer's headlight is 0) from the left and a little in front, high
+  * up, so that the actors' shadows fall to the right of them, where the camera sees them. */
 osg::ref_ptr<osg::LightSource> makeSun(osg::StateSet& rootState)
 {
-    osg::ref_ptr<osg::Light> light = new osg::Light(1);
-    light->setPosition(osg::Vec4(-0.4f, -0.7f, 1.0f, 0.0f)); // w = 0: a direction, towards the light
+    osg::ref_ptr<osg::Light> light = new osg::Light(kSunLightNumber);
+    light->setPosition(osg::Vec4(-0.8f, -0.45f, 1.0f, 0.0f)); // w = 0: a direction, towards the light
     light->setDiffuse(osg::Vec4(0.75f, 0.72f, 0.65f, 1.0f));
     light->setAmbient(osg::Vec4(0.2f, 0.2f, 0.22f, 1.0f));
     light->setSpecular(osg::Vec4(0.0f, 0.0f, 0.0f, 1.0f));
@@ -128,23 +134,23 @@ osgActor::TrajectoryPtr makeStoredLoop(const std::string& name, const std::funct
     return built.trajectory;
 }
 
-osg::ref_ptr<osg::Group> makeWalkingHumanoid(const std::string& file)
+osg::ref_ptr<osg::Group> makeWalker(const ShowcaseSources& sources)
 {
     osg::ref_ptr<osg::Group> group = new osg::Group;
-    group->setName("walking humanoid");
+    group->setName("walker");
     osg::ref_ptr<PathWalker> walker = new PathWalker;
     const double a = 3.0;
     const double b = 2.0;
-    // Anticlockwise round the dancer, at 1.1 m/s: a stride of about 1.2 m per 1.1 s cycle.
+    // Anticlockwise round the dancer, at the speed the walker's walk suits.
     walker->setPath(makeStoredLoop(
-        "humanoid round the dancer",
+        "walker round the dancer",
         [&](double s) {
             return kDancerSpot + osg::Vec3d(a * std::cos(2.0 * osg::PI * s), b * std::sin(2.0 * osg::PI * s), 0.0);
         },
-        1.1));
-    walker->setCycleDuration(1.1);
+        sources.walkerSpeed));
+    walker->setCycleDuration(sources.walkerCycleDuration);
     group->setUpdateCallback(walker.get());
-    group->addChild(makeProxy(file, "humanoid").get());
+    group->addChild(makeProxy(sources.walker, "walker").get());
     return group;
 }
 
@@ -189,12 +195,21 @@ osg::ref_ptr<osg::Node> makeDancer(const ShowcaseSources& sources)
 
 osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources)
 {
-    osg::ref_ptr<osg::Group> root = new osg::Group;
+    // The sun casts the shadows (not a viewer's headlight). Everything casts and receives, but the floor, which only
+    // receives (it would shadow nothing, and the shadow map then holds the actors and obstacles alone).
+    osg::ref_ptr<LightNumberShadowMap> shadowMap = new LightNumberShadowMap;
+    shadowMap->setLightNumber(kSunLightNumber);
+    shadowMap->setTextureSize(osg::Vec2s(kShadowMapSize, kShadowMapSize));
+    osg::ref_ptr<osgShadow::ShadowedScene> root = new osgShadow::ShadowedScene(shadowMap.get());
     root->setName("osgActor showcase");
+    root->setReceivesShadowTraversalMask(kReceivesShadowMask);
+    root->setCastsShadowTraversalMask(kCastsShadowMask);
     root->addChild(makeSun(*root->getOrCreateStateSet()).get());
-    root->addChild(makeFloor(osg::Vec3d(2.0, 2.0, 0.0), 18, 11).get());
+    osg::ref_ptr<osg::Geode> floor = makeFloor(osg::Vec3d(2.0, 2.0, 0.0), 18, 11);
+    floor->setNodeMask(kReceivesShadowMask);
+    root->addChild(floor.get());
     root->addChild(makeObstacles().get());
-    root->addChild(makeWalkingHumanoid(sources.humanoid).get());
+    root->addChild(makeWalker(sources).get());
     root->addChild(makeWanderingInsect(sources.insect).get());
     if (!sources.dancer.empty()) root->addChild(makeDancer(sources).get());
     return root;

@@ -1,6 +1,7 @@
-// osgDB wrappers of the showcase's rigs, so that scenes using them are written to and read from .osgt/.osgb.
-// They live in the library itself: osgDB finds them by loading libosgActorShowcase.so for the osgActorShowcase::
-// class names.
+// osgDB wrappers of the showcase's rigs and of its shadow map, so that scenes using them are written to and read
+// from .osgt/.osgb. They live in the library itself: osgDB finds them by loading libosgActorShowcase.so for the
+// osgActorShowcase:: class names.
+#include "LightNumberShadowMap.h"
 #include "PathWalker.h"
 #include "TripodGait.h"
 
@@ -89,3 +90,14 @@ REGISTER_OBJECT_WRAPPER(osgActorShowcase_TripodGait, new osgActorShowcase::Tripo
     ADD_DOUBLE_SERIALIZER(StepHeight, 0.08);
 }
 } // namespace TripodGaitWrapper
+
+namespace LightNumberShadowMapWrapper {
+// ShadowMap's own properties (texture unit and size, polygon offset, ambient bias) come from osgShadow's wrapper.
+REGISTER_OBJECT_WRAPPER(osgActorShowcase_LightNumberShadowMap, new osgActorShowcase::LightNumberShadowMap,
+                        osgActorShowcase::LightNumberShadowMap,
+                        "osg::Object osgShadow::ShadowTechnique osgShadow::ShadowMap "
+                        "osgActorShowcase::LightNumberShadowMap")
+{
+    ADD_INT_SERIALIZER(LightNumber, 0);
+}
+} // namespace LightNumberShadowMapWrapper

@@ -64,6 +64,8 @@ public:
     void update(const osgActor::ControllerContext& context, osgActor::ControllerTarget& target) override;
     std::shared_ptr<osgActor::Controller> cloneController() const override;
     bool usesWorldSpace() const override { return true; }
+    /** The body's path. */
+    const osgActor::Trajectory* getFollowedPath() const override { return _body.getTrajectory().get(); }
 
 private:
     /** Where the leg's foot stands during the stance of one of its steps (parent frame). */

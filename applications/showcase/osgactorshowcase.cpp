@@ -17,6 +17,9 @@ int main(int argc, char** argv)
     usage->setApplicationName(arguments.getApplicationName());
     usage->setDescription(arguments.getApplicationName() + " writes the osgActor showcase scene.");
     usage->setCommandLineUsage(arguments.getApplicationName() + " [options] output.osgt");
+    usage->addCommandLineOption("--walker <file>", "The actor walking round the dancer, as osgDB reads it, relative "
+                                                   "to the output's folder (default: Cesium Man, data/models).");
+    usage->addCommandLineOption("--walker-speed <m/s>", "Its speed along its path (default: Cesium Man's).");
     usage->addCommandLineOption("--dancer <file>", "The motion-capture dancer, as osgDB reads it, relative to the "
                                                    "output's folder (default: the CMU Charleston in data/mocap).");
     usage->addCommandLineOption("--no-dancer", "Leave the dancer out.");
@@ -29,6 +32,8 @@ int main(int argc, char** argv)
     }
 
     osgActorShowcase::ShowcaseSources sources;
+    while (arguments.read("--walker", sources.walker)) {}
+    while (arguments.read("--walker-speed", sources.walkerSpeed)) {}
     while (arguments.read("--dancer", sources.dancer)) {}
     while (arguments.read("--no-dancer")) sources.dancer.clear();
     while (arguments.read("--dancer-scale", sources.dancerScale)) {}

@@ -83,6 +83,22 @@ void OffscreenRenderer::computeFramingView(osg::Vec3d& eye, osg::Vec3d& center, 
     up = view.up;
 }
 
+void OffscreenRenderer::computeActorFramingView(osg::Vec3d& eye, osg::Vec3d& center, osg::Vec3d& up) const
+{
+    osg::Node* scene = const_cast<osg::Node*>(_viewer->getSceneData());
+    const osg::BoundingBox actors = scene ? osgActorApps::actorsBox(*scene) : osg::BoundingBox();
+    if (!actors.valid())
+    {
+        computeFramingView(eye, center, up);
+        return;
+    }
+    const osgActorApps::CameraView view = osgActorApps::frameBox(
+        actors, _fovyDegrees, double(_context->getWidth()) / double(_context->getHeight()));
+    eye = view.eye;
+    center = view.center;
+    up = view.up;
+}
+
 void OffscreenRenderer::frameScene()
 {
     osg::Vec3d eye, center, up;

@@ -51,7 +51,8 @@ bool validateTimes(const std::vector<double>& times, const RenderSettings& setti
 void placeCamera(OffscreenRenderer& renderer, const RenderSettings& settings)
 {
     osg::Vec3d eye, center, up;
-    renderer.computeFramingView(eye, center, up);
+    if (settings.frameActors) renderer.computeActorFramingView(eye, center, up);
+    else renderer.computeFramingView(eye, center, up);
     if (settings.hasEye)
     {
         eye = settings.eye;

@@ -2,7 +2,10 @@
 #include "CameraView.h"
 #include "OutputPattern.h"
 
+#include <osgActor/ActorNode>
 #include <osgActor/Offscreen/ContactSheet>
+#include <osgActor/core/ActorDefinitionBuilder>
+#include <osgActor/core/Trajectory>
 
 #include <osg/Geode>
 #include <osg/MatrixTransform>
@@ -89,6 +92,105 @@ TEST(CameraView, ShownBoundHoldsTheDrawablesAsPlacedNotTheNodesBounds)
     empty->setInitialBound(osg::BoundingSphere(osg::Vec3(1, 2, 3), 4.0f));
     EXPECT_EQ(shownBound(*empty).center(), osg::Vec3(1, 2, 3));
     EXPECT_FLOAT_EQ(shownBound(*empty).radius(), 4.0f);
+}
+
+namespace {
+
+/** Where a world point lands in a look-at camera's picture: x and y in units of the half field of view (inside
+  * when both lie in [-1, 1]), and its depth in front of the eye. */
+struct PicturePoint
+{
+    double x;
+    double y;
+    double depth;
+};
+
+PicturePoint project(const CameraView& view, const osg::Vec3d& point, double fovyDegrees, double aspect)
+{
+    osg::Vec3d forward = view.center - view.eye;
+    forward.normalize();
+    osg::Vec3d right = forward ^ view.up;
+    right.normalize();
+    const osg::Vec3d up = right ^ forward;
+    const osg::Vec3d offset = point - view.eye;
+    const double depth = offset * forward;
+    const double tanHalfY = std::tan(osg::DegreesToRadians(fovyDegrees) * 0.5);
+    return PicturePoint{(offset * right) / (depth * tanHalfY * aspect), (offset * up) / (depth * tanHalfY), depth};
+}
+
+} // namespace
+
+TEST(CameraView, FramedBoxOfNothingGivesTheDefaultView)
+{
+    const CameraView view = frameBox(osg::BoundingBox(), 30.0, 16.0 / 9.0);
+    EXPECT_EQ(view.eye, CameraView().eye);
+    EXPECT_EQ(view.center, CameraView().center);
+}
+
+TEST(CameraView, FramedBoxHasEveryCornerInViewAndTouchesTheMargin)
+{
+    // A stage 12 m wide, 5 m deep and 2 m high: its sphere (radius 6.6 m) would leave it small in a wide picture.
+    const osg::BoundingBox stage(-3.0, -1.0, 0.0, 9.0, 4.0, 2.0);
+    for (double aspect : {16.0 / 9.0, 1.0, 0.5})
+    {
+        const CameraView view = frameBox(stage, 30.0, aspect);
+        EXPECT_EQ(view.center, osg::Vec3d(stage.center()));
+        EXPECT_GT(view.eye.z(), view.center.z()) << "from above";
+        EXPECT_LT(view.eye.y(), view.center.y()) << "from the front (-Y)";
+        double widest = 0.0;
+        for (unsigned i = 0; i < 8; ++i)
+        {
+            const PicturePoint p = project(view, osg::Vec3d(stage.corner(i)), 30.0, aspect);
+            EXPECT_GT(p.depth, 0.0);
+            EXPECT_LE(std::fabs(p.x), 0.95 + 1e-9) << "corner " << i << ", aspect " << aspect;
+            EXPECT_LE(std::fabs(p.y), 0.95 + 1e-9) << "corner " << i << ", aspect " << aspect;
+            widest = std::max({widest, std::fabs(p.x), std::fabs(p.y)});
+        }
+        EXPECT_NEAR(widest, 0.95, 1e-9) << "the nearest the camera can be: a corner on the margin";
+        // Nearer than the sphere's framing from the same direction.
+        const CameraView sphere = frameBoundingSphere(osg::BoundingSphere(stage), 30.0, aspect);
+        EXPECT_LT((view.eye - view.center).length(), (sphere.eye - sphere.center).length());
+    }
+}
+
+TEST(CameraView, ActorsBoxHoldsTheActorsAlongTheirStoredPathsAndNothingElse)
+{
+    // An actor whose one joint carries a 0.2 m cube 1 m above its reference point, placed 10 m along X by its
+    // parent, following a path from (0, 0, 0) to (4, 0, 0) in that parent's frame; beside it, a large stage.
+    osgActor::ActorDefinitionBuilder builder("cube");
+    builder.addJoint("root").offset(0, 0, 1);
+    osg::ref_ptr<osgActor::ActorNode> actor = new osgActor::ActorNode(builder.build().definition);
+    osg::ref_ptr<osg::Geode> cube = new osg::Geode;
+    cube->addDrawable(new osg::ShapeDrawable(new osg::Box(osg::Vec3(), 0.2f)));
+    actor->getSkeletonNode("root")->addChild(cube.get());
+    std::vector<osgActor::TrajectoryKey> keys(2);
+    keys[1].time = 4.0;
+    keys[1].position = glm::dvec3(4.0, 0.0, 0.0);
+    actor->addController(std::make_shared<osgActor::TrajectoryPlayer>(
+        osgActor::TrajectoryBuilder::build("line", keys).trajectory));
+    osg::ref_ptr<osg::MatrixTransform> placed = new osg::MatrixTransform(osg::Matrixd::translate(10, 0, 0));
+    placed->addChild(actor.get());
+    osg::ref_ptr<osg::Geode> stage = new osg::Geode;
+    stage->addDrawable(new osg::ShapeDrawable(new osg::Box(osg::Vec3(), 50.0f)));
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    scene->addChild(stage.get());
+    scene->addChild(placed.get());
+
+    const osg::BoundingBox box = actorsBox(*scene);
+    ASSERT_TRUE(box.valid());
+    // The cube's corners reach 0.1 * sqrt(2) from the reference point horizontally, at any heading.
+    const double reach = 0.1 * std::sqrt(2.0);
+    EXPECT_NEAR(box.xMin(), 10.0 - reach, 1e-5);
+    EXPECT_NEAR(box.xMax(), 14.0 + reach, 1e-5);
+    EXPECT_NEAR(box.yMin(), -reach, 1e-5);
+    EXPECT_NEAR(box.yMax(), reach, 1e-5);
+    EXPECT_NEAR(box.zMin(), 0.9, 1e-5);
+    EXPECT_NEAR(box.zMax(), 1.1, 1e-5);
+
+    // No actor: nothing to frame.
+    osg::ref_ptr<osg::Group> noActors = new osg::Group;
+    noActors->addChild(stage.get());
+    EXPECT_FALSE(actorsBox(*noActors).valid());
 }
 
 namespace {

@@ -1,5 +1,7 @@
 // The showcase's rigs: the insect's feet planted by the library's leg IK on a stored path (TripodGait), the
-// humanoid's stored path and walk clip (PathWalker), their paths and their osgDB wrappers.
+// walker's stored path and walk (PathWalker: the procedural cycle, or Cesium Man's own clip), their paths and their
+// osgDB wrappers; the scene's shadows and the camera that frames its actors.
+#include "LightNumberShadowMap.h"
 #include "LoopTrajectory.h"
 #include "PathWalker.h"
 #include "ShowcaseScene.h"
@@ -9,6 +11,7 @@
 
 #include <osgActor/ActorNode>
 #include <osgActor/ActorSceneIO>
+#include <osgActor/SkinnedMesh>
 #include <osgActor/GlmOsg>
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/io/ActorReader>
@@ -19,10 +22,15 @@
 #include <osg/MatrixTransform>
 #include <osgDB/ReadFile>
 #include <osgDB/Registry>
+#include <osg/LightSource>
+#include <osgShadow/ShadowedScene>
 #include <osgUtil/UpdateVisitor>
+
+#include "CameraView.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -354,6 +362,62 @@ TEST(PathWalker, TakesThePathPlayerAFileOfTheTrajectoryShorthandMade)
     EXPECT_EQ(made.actor->findController(PathWalker::kPathControllerName), shorthand);
 }
 
+TEST(PathWalker, LetsAnActorThatPlaysAClipOfItsOwnWalkWithIt)
+{
+    // A rigged model's actor plays its own walk (readRiggedModelActor's "clip"): the rig adds the path alone.
+    osg::ref_ptr<ActorNode> humanoid = readActor("humanoid.actor");
+    ASSERT_TRUE(humanoid.valid());
+    const ClipBuildResult ownWalk = makeWalkCycleClip(*humanoid->getDefinition(), 0.9);
+    ASSERT_TRUE(ownWalk) << ownWalk.error;
+    auto own = std::make_shared<ClipPlayer>(ownWalk.clip);
+    own->setName("clip");
+    humanoid->addController(own);
+    osg::ref_ptr<PathWalker> walker = new PathWalker;
+    walker->setPath(straightPath(0.9));
+    osg::ref_ptr<osg::Group> group = groupWithRig(humanoid.get(), walker.get());
+    for (unsigned frame = 0; frame <= 3; ++frame) runUpdate(*group, frame * 0.05, frame + 1);
+    ASSERT_EQ(humanoid->getControllers().size(), 2u) << "its own clip and the path";
+    EXPECT_EQ(humanoid->getControllers()[0], own);
+    EXPECT_TRUE(std::dynamic_pointer_cast<TrajectoryPlayer>(humanoid->findController(PathWalker::kPathControllerName)));
+    EXPECT_FALSE(humanoid->findController(PathWalker::kWalkControllerName)) << "no procedural cycle on top";
+    EXPECT_NEAR(humanoid->getPreTranslation().x(), 0.9 * 0.15, 1e-9) << "it follows the path";
+}
+
+TEST(ShowcaseScene, CastsTheShadowsOfEverythingButTheFloorOnTheFloor)
+{
+    ShowcaseSources sources;
+    sources.dancer.clear();
+    const osg::ref_ptr<osg::Group> scene = makeShowcaseScene(sources);
+    const osgShadow::ShadowedScene* shadowed = dynamic_cast<const osgShadow::ShadowedScene*>(scene.get());
+    ASSERT_NE(shadowed, nullptr) << "the root is a shadowed scene";
+    const LightNumberShadowMap* shadowMap = dynamic_cast<const LightNumberShadowMap*>(shadowed->getShadowTechnique());
+    ASSERT_NE(shadowMap, nullptr);
+    const unsigned casts = shadowed->getCastsShadowTraversalMask();
+    const unsigned receives = shadowed->getReceivesShadowTraversalMask();
+    EXPECT_EQ(casts & receives, 0u) << "one bit each, so that a node can receive without casting";
+    unsigned floors = 0;
+    unsigned suns = 0;
+    for (unsigned i = 0; i < scene->getNumChildren(); ++i)
+    {
+        const osg::Node& child = *scene->getChild(i);
+        if (const osg::LightSource* sun = dynamic_cast<const osg::LightSource*>(&child))
+        {
+            ++suns;
+            EXPECT_EQ(sun->getLight()->getLightNum(), shadowMap->getLightNumber()) << "the sun casts the shadows";
+            EXPECT_EQ(sun->getLight()->getPosition().w(), 0.0f) << "a directional light";
+        }
+        EXPECT_NE(child.getNodeMask() & receives, 0u) << child.getName() << " receives";
+        if (child.getName() == "floor")
+        {
+            ++floors;
+            EXPECT_EQ(child.getNodeMask() & casts, 0u) << "the floor casts nothing";
+        }
+        else EXPECT_NE(child.getNodeMask() & casts, 0u) << child.getName() << " casts";
+    }
+    EXPECT_EQ(floors, 1u);
+    EXPECT_EQ(suns, 1u);
+}
+
 TEST(ShowcaseScene, HasItsPartsAndRigsEvenWithoutADancer)
 {
     ShowcaseSources sources;
@@ -430,10 +494,10 @@ TEST(ShowcaseFile, LoadsAndItsInsectKeepsItsFeetPlantedAllRoundItsPath)
     scene->accept(counter);
     EXPECT_EQ(counter.walkers, 1u);
     EXPECT_EQ(counter.gaits, 1u);
-    ASSERT_EQ(counter.actors.size(), 3u) << "the humanoid, the insect and the motion-capture dancer";
+    ASSERT_EQ(counter.actors.size(), 3u) << "Cesium Man, the insect and the motion-capture dancer";
     ActorNode& humanoid = *counter.actors[0];
     ActorNode& insect = *counter.actors[1];
-    EXPECT_EQ(humanoid.getDefinition()->getName(), "humanoid");
+    EXPECT_GE(humanoid.getJointIndex("leg_joint_L_5"), 0) << "the walker is Cesium Man";
     EXPECT_EQ(insect.getDefinition()->getName(), "cockroach");
 
     // Once round the figure of eight (about 40 s) at 30 frames per second, turns and all.
@@ -454,7 +518,174 @@ TEST(ShowcaseFile, LoadsAndItsInsectKeepsItsFeetPlantedAllRoundItsPath)
         EXPECT_LT(tracks[leg].highestStance, kFootTipRadius * 0.8 + 0.0005) << name;
         EXPECT_GT(tracks[leg].lowestSwingPeak, 0.05) << name << ": every swing lifts the foot";
     }
-    // The humanoid walked its stored path too: once round its ellipse takes about 14 s: after `loop` seconds it is
+    // Cesium Man walked his stored path too: once round his ellipse takes about 18 s: after `loop` seconds he is
     // elsewhere.
     EXPECT_GT((humanoid.getPreTranslation() - humanoidStart).length(), 0.5);
+}
+
+namespace {
+
+/** The showcase file's actors, in the scene's order: Cesium Man, the insect, the dancer. */
+std::vector<ActorNode*> showcaseActors(osg::Node& scene)
+{
+    struct Finder : public osg::NodeVisitor
+    {
+        Finder() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+        void apply(osg::Transform& transform) override
+        {
+            if (ActorNode* actor = dynamic_cast<ActorNode*>(&transform)) actors.push_back(actor);
+            else traverse(transform);
+        }
+        std::vector<ActorNode*> actors;
+    } finder;
+    scene.accept(finder);
+    return finder.actors;
+}
+
+} // namespace
+
+TEST(ShowcaseFile, CesiumManIsSkinnedOnTheGpuAndPlaysHisWalkAlongHisPathUnderTheSunsShadows)
+{
+    const osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(dataFile("showcase.osgt"));
+    ASSERT_TRUE(scene.valid());
+    const std::vector<ActorNode*> actors = showcaseActors(*scene);
+    ASSERT_EQ(actors.size(), 3u);
+    ActorNode& man = *actors[0];
+    struct MeshFinder : public osg::NodeVisitor
+    {
+        MeshFinder() : osg::NodeVisitor(TRAVERSE_ALL_CHILDREN) {}
+        void apply(osg::Drawable& drawable) override
+        {
+            if (SkinnedMesh* mesh = dynamic_cast<SkinnedMesh*>(&drawable)) meshes.push_back(mesh);
+        }
+        std::vector<SkinnedMesh*> meshes;
+    } meshes;
+    man.accept(meshes);
+    ASSERT_EQ(meshes.meshes.size(), 1u) << "one skinned primitive, one material";
+    EXPECT_EQ(meshes.meshes[0]->getSkinningPath(), SkinnedMesh::GPU_SKINNING);
+    EXPECT_TRUE(meshes.meshes[0]->getSetupError().empty()) << meshes.meshes[0]->getSetupError();
+
+    // The shadow map's light number went through the file.
+    const osgShadow::ShadowedScene* shadowed = dynamic_cast<const osgShadow::ShadowedScene*>(scene.get());
+    ASSERT_NE(shadowed, nullptr);
+    const LightNumberShadowMap* shadowMap = dynamic_cast<const LightNumberShadowMap*>(shadowed->getShadowTechnique());
+    ASSERT_NE(shadowMap, nullptr) << "libosgActorShowcase on OSG_LIBRARY_PATH?";
+    EXPECT_EQ(shadowMap->getLightNumber(), 1);
+
+    runUpdate(*scene, 0.0, 1);
+    EXPECT_TRUE(std::dynamic_pointer_cast<TrajectoryPlayer>(man.findController(PathWalker::kPathControllerName)));
+    EXPECT_TRUE(std::dynamic_pointer_cast<ClipPlayer>(man.findController("clip"))) << "his own walk";
+    EXPECT_FALSE(man.findController(PathWalker::kWalkControllerName)) << "not the procedural cycle";
+}
+
+namespace {
+
+/** Cesium Man's feet (the ends of his legs' chains, his toes) and how far the planted one (the lower) slides. */
+struct FootSlide
+{
+    double slid = 0.0;   // the planted foot's horizontal travel over the floor, summed over the frames
+    double walked = 0.0; // the reference point's, the same
+};
+
+/** Adds one frame's step to the sums: the feet before and after (world space), and the reference point's step.
+  * Frames where the other foot becomes the lower one are left out (the weight passes from foot to foot). */
+void addStep(FootSlide& slide, const osg::Vec3d before[2], const osg::Vec3d after[2], const osg::Vec3d& walked)
+{
+    const int plantedBefore = before[0].z() <= before[1].z() ? 0 : 1;
+    const int plantedAfter = after[0].z() <= after[1].z() ? 0 : 1;
+    if (plantedBefore != plantedAfter) return;
+    const osg::Vec3d step = after[plantedAfter] - before[plantedBefore];
+    slide.slid += osg::Vec2d(step.x(), step.y()).length();
+    slide.walked += osg::Vec2d(walked.x(), walked.y()).length();
+}
+
+const char* const kCesiumManFeet[2] = {"leg_joint_L_5", "leg_joint_R_5"};
+
+} // namespace
+
+TEST(ShowcaseFile, CesiumMansPlantedFootSlidesLeastAtHisPathsSpeed)
+{
+    // His clip walks on the spot with a stride of its own, not quite even (the planted foot moves back at 0.2 to
+    // 1.3 m/s in the clip): the path's speed is the one at which the planted foot slides least over the floor.
+    // Measured at 60 frames per second over two cycles of the clip, in model space (his forward is -Y) ...
+    osg::ref_ptr<ActorNode> man = readActor("models/CesiumMan/CesiumMan.gltf.actor");
+    ASSERT_TRUE(man.valid());
+    const int feet[2] = {man->getJointIndex(kCesiumManFeet[0]), man->getJointIndex(kCesiumManFeet[1])};
+    ASSERT_GE(feet[0], 0);
+    ASSERT_GE(feet[1], 0);
+    osg::ref_ptr<osg::Group> stage = new osg::Group;
+    stage->addChild(man.get());
+    const double fps = 60.0;
+    std::vector<std::array<osg::Vec3d, 2>> track;
+    for (unsigned frame = 0; frame <= unsigned(4.0 * fps); ++frame)
+    {
+        runUpdate(*stage, frame / fps, frame + 1);
+        track.push_back({man->getJointWorldPosition(unsigned(feet[0])), man->getJointWorldPosition(unsigned(feet[1]))});
+    }
+    const auto slideAt = [&](double speed) {
+        FootSlide slide;
+        const osg::Vec3d step(0.0, -speed / fps, 0.0);
+        for (std::size_t k = 1; k < track.size(); ++k)
+        {
+            // On the floor, his feet move with his reference point: frame k's feet are k steps further on.
+            const osg::Vec3d travelBefore = step * double(k - 1);
+            const osg::Vec3d travelAfter = step * double(k);
+            const osg::Vec3d before[2] = {track[k - 1][0] + travelBefore, track[k - 1][1] + travelBefore};
+            const osg::Vec3d after[2] = {track[k][0] + travelAfter, track[k][1] + travelAfter};
+            addStep(slide, before, after, step);
+        }
+        return slide.slid / slide.walked;
+    };
+    const double speed = ShowcaseSources().walkerSpeed;
+    const double atSpeed = slideAt(speed);
+    EXPECT_LT(atSpeed, slideAt(speed * 0.8)) << "slower slides more";
+    EXPECT_LT(atSpeed, slideAt(speed * 1.2)) << "faster slides more";
+    EXPECT_LT(atSpeed, 0.6) << "the clip's own slide, at its best";
+
+    // ... and in the showcase, where he walks his ellipse: the path adds no slide of its own.
+    const osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(dataFile("showcase.osgt"));
+    ASSERT_TRUE(scene.valid());
+    const std::vector<ActorNode*> actors = showcaseActors(*scene);
+    ASSERT_EQ(actors.size(), 3u);
+    ActorNode& walker = *actors[0];
+    FootSlide slide;
+    osg::Vec3d before[2];
+    osg::Vec3d reference;
+    double lowest = 1e9;
+    for (unsigned frame = 0; frame <= unsigned(4.0 * fps); ++frame)
+    {
+        runUpdate(*scene, frame / fps, frame + 1);
+        const osg::Vec3d after[2] = {walker.getJointWorldPosition(unsigned(feet[0])),
+                                     walker.getJointWorldPosition(unsigned(feet[1]))};
+        lowest = std::min({lowest, after[0].z(), after[1].z()});
+        if (frame > 0) addStep(slide, before, after, walker.getPreTranslation() - reference);
+        before[0] = after[0];
+        before[1] = after[1];
+        reference = walker.getPreTranslation();
+    }
+    EXPECT_NEAR(slide.walked, speed * 4.0 * 0.9, speed * 4.0 * 0.1) << "he walked (but for the changes of foot)";
+    EXPECT_NEAR(slide.slid / slide.walked, atSpeed, 0.05) << "slid " << slide.slid << " m in " << slide.walked << " m";
+    EXPECT_NEAR(lowest, 0.0, 0.03) << "his feet reach the floor, z = 0";
+}
+
+TEST(ShowcaseFile, CameraFramingTheActorsSeesThemWhereverTheyWalk)
+{
+    // The box the viewer's home and osgactorrender --frame-actors frame: every actor's path and what they draw,
+    // much smaller than the floor (18 m x 11 m), larger than their paths' spans (6 m and 5.2 m across).
+    const osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(dataFile("showcase.osgt"));
+    ASSERT_TRUE(scene.valid());
+    runUpdate(*scene, 0.0, 1); // the rigs give the actors the players of their paths
+    const osg::BoundingBox box = osgActorApps::actorsBox(*scene);
+    ASSERT_TRUE(box.valid());
+    // Cesium Man's ellipse round the dancer at (0, 1.5): x in [-3, 3], y in [-0.5, 3.5]; the insect's figure of
+    // eight round (6.6, 2): x in [4, 9.2], y in [0.6, 3.4]; each grown by the actor's reach.
+    EXPECT_LT(box.xMin(), -3.0);
+    EXPECT_GT(box.xMin(), -4.0);
+    EXPECT_GT(box.xMax(), 9.2);
+    EXPECT_LT(box.xMax(), 10.0);
+    EXPECT_LT(box.yMin(), -0.5);
+    EXPECT_GT(box.yMin(), -1.5);
+    EXPECT_GT(box.yMax(), 3.5);
+    EXPECT_LT(box.yMax(), 4.5);
+    EXPECT_LT(box.zMax(), 2.5) << "no taller than the dancer's reach";
 }
