@@ -33,6 +33,20 @@ set(OSGACTOR_CORE_IK_HEADERS
     core/ik/SweepAcceleration
     core/ik/TwoBoneClosedForm
     core/ik/TwoBoneIkJob)
+set(OSGACTOR_CORE_RETARGET_HEADERS
+    core/retarget/BuiltInJointMaps
+    core/retarget/ClipFrames
+    core/retarget/FootContacts
+    core/retarget/HAnimHumanoid
+    core/retarget/JointMap
+    core/retarget/JointMapGuess
+    core/retarget/JointRotationFit
+    core/retarget/RetargetClip
+    core/retarget/RetargetIkJob
+    core/retarget/RetargetJob
+    core/retarget/RetargetLimbs
+    core/retarget/RetargetMeasures
+    core/retarget/RetargetRig)
 set(OSGACTOR_CORE_SOURCES
     core/ActorDefinition.cpp
     core/ActorDefinitionBuilder.cpp
@@ -58,7 +72,20 @@ set(OSGACTOR_CORE_SOURCES
     core/ik/IkSolve.cpp
     core/ik/SweepAcceleration.cpp
     core/ik/TwoBoneClosedForm.cpp
-    core/ik/TwoBoneIkJob.cpp)
+    core/ik/TwoBoneIkJob.cpp
+    core/retarget/BuiltInJointMaps.cpp
+    core/retarget/ClipFrames.cpp
+    core/retarget/FootContacts.cpp
+    core/retarget/HAnimHumanoid.cpp
+    core/retarget/JointMap.cpp
+    core/retarget/JointMapGuess.cpp
+    core/retarget/JointRotationFit.cpp
+    core/retarget/RetargetClip.cpp
+    core/retarget/RetargetIkJob.cpp
+    core/retarget/RetargetJob.cpp
+    core/retarget/RetargetLimbs.cpp
+    core/retarget/RetargetMeasures.cpp
+    core/retarget/RetargetRig.cpp)
 
 # The .actor file format: document model, lexer, syntax, reader, writer. Plain C++ on GLM like the core (no OSG, no
 # osgDB), so it is compiled with it.
