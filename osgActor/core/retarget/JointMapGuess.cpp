@@ -4,6 +4,7 @@
 #include <osgActor/core/ForwardKinematicsJob>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -14,10 +15,11 @@ namespace osgActor {
 
 namespace {
 
-// Segment lengths in proportion to the thigh and shank together (Drillis and Contini's body segment lengths: thigh
-// 0.245, shank 0.246, upper arm 0.186, forearm 0.146 of the body's height).
+// The forearm in proportion to the thigh and shank together (Drillis and Contini's body segment lengths: thigh 0.245,
+// shank 0.246, forearm 0.146 of the body's height), and the upper arm to the forearm as rigs draw them (1.0 in
+// MakeHuman's, 1.1 in Boxing_Toes.bvh, 1.4 in CMU's; 1.27 in Drillis and Contini's table).
 constexpr double kForearmPerLeg = 0.146 / 0.491;
-constexpr double kUpperArmPerLeg = 0.186 / 0.491;
+constexpr double kUpperArmPerForearm = 1.15;
 
 /** The joints every humanoid retargeting needs: the guess from names must find them all to be taken. */
 const char* const kCoreJoints[] = {"HumanoidRoot", "l_hip",      "r_hip",      "l_knee",  "r_knee",
@@ -187,11 +189,18 @@ public:
         // Spine and neck: only their ends; the joints between are blended along the chain when retargeting.
         const std::vector<int> toChest = chest >= 0 ? _s.pathBelow(root, chest) : std::vector<int>();
         if (toChest.size() >= 2) set(toChest.front(), "vl5", "the first joint of the spine above HumanoidRoot");
-        const int headJoint = _s.hasDofs(head) || _s.parent(head) < 0 ? head : _s.parent(head);
+        // The head: where the head's chain branches (a face), else its last joint that moves.
         const int neckBase = chest >= 0 ? chest : root;
+        int headJoint = _s.hasDofs(head) || _s.parent(head) < 0 ? head : _s.parent(head);
+        for (int j : _s.pathBelow(neckBase, head))
+            if (_s.children[static_cast<unsigned>(j)].size() > 1)
+            {
+                headJoint = j;
+                break;
+            }
         if (headJoint != neckBase && _s.isAncestorOrSelf(neckBase, headJoint))
         {
-            set(headJoint, "skullbase", "the head's chain's last joint that moves");
+            set(headJoint, "skullbase", "where the head's chain branches, else its last joint that moves");
             const std::vector<int> neck = _s.pathBelow(neckBase, headJoint);
             if (neck.size() >= 2 && chest >= 0) set(neck.front(), "vc7", "the first joint of the neck");
         }
@@ -244,23 +253,40 @@ private:
         }
         if (leg.ankle < 0) leg.ankle = _s.hasDofs(foot) ? foot : _s.parent(foot);
         const int ankleAt = indexIn(leg.path, leg.ankle);
-        // Hip: the first joint away from where the legs part (bones from the pelvis's centre to the hip start there).
-        const double legSpan = _s.distance(feetMeet, leg.ankle);
-        for (int i = 0; i < ankleAt && leg.hip < 0; ++i)
-            if (_s.distance(leg.path[i], feetMeet) > 0.05 * legSpan) leg.hip = leg.path[i];
-        if (leg.hip < 0 || ankleAt < 0) return fail("a leg with no joint between the hip and the ankle");
-        const int hipAt = indexIn(leg.path, leg.hip);
-        if (ankleAt - hipAt < 2) return fail("a leg with no knee between the hip and the ankle");
-        const int kneeAt = nearestAtDistance(_s, leg.path, hipAt + 1, ankleAt - 1, leg.hip,
-                                             0.5 * _s.distance(leg.hip, leg.ankle));
-        leg.knee = leg.path[static_cast<unsigned>(kneeAt)];
+        if (ankleAt < 2) return fail("a leg with no knee between the hip and the ankle");
+        // Hip: the lowest corner near the top of the leg, where a bone from the pelvis's centre turns into the thigh
+        // (a joint with no bone above it counts as one); twist joints down the thigh turn nothing.
+        const double top = z(feetMeet), legDrop = z(feetMeet) - z(leg.ankle);
+        leg.hip = leg.path[0];
+        for (int i = 0; i + 1 < ankleAt; ++i)
+        {
+            if (z(leg.path[i]) < top - 0.25 * legDrop) break;
+            const glm::dvec3 in = _s.positions[leg.path[i]] - _s.positions[i > 0 ? leg.path[i - 1] : feetMeet];
+            const glm::dvec3 out = _s.positions[leg.path[i + 1]] - _s.positions[leg.path[i]];
+            const double inLength = glm::length(in), outLength = glm::length(out);
+            if (!(outLength > 0.0)) continue;
+            if (!(inLength > 1e-9 * legDrop) || glm::dot(in, out) < std::cos(glm::radians(10.0)) * inLength * outLength)
+                leg.hip = leg.path[i];
+        }
+        // Knee: thigh and shank are as long as each other: the joint between as far from the hip as from the ankle.
+        double best = std::numeric_limits<double>::infinity();
+        for (int k = indexIn(leg.path, leg.hip) + 1; k < ankleAt; ++k)
+        {
+            const double imbalance = std::abs(_s.distance(leg.hip, leg.path[k]) - _s.distance(leg.path[k], leg.ankle));
+            if (imbalance < best)
+            {
+                best = imbalance;
+                leg.knee = leg.path[k];
+            }
+        }
+        if (leg.knee < 0) return fail("a leg with no knee between the hip and the ankle");
         leg.top = leg.path.front();
         return true;
     }
 
     void placeLeg(const Leg& leg, int /*feetMeet*/)
     {
-        const std::string s = side(leg.hip);
+        const std::string s = side(leg.knee);
         const int hipAt = indexIn(leg.path, leg.hip), kneeAt = indexIn(leg.path, leg.knee),
                   ankleAt = indexIn(leg.path, leg.ankle);
         set(leg.hip, s + "hip", "a leg's first joint away from the pelvis");
@@ -291,8 +317,9 @@ private:
             return;
         }
         const int elbowAt = nearestAtDistance(_s, path, 1, wristAt - 1, wrist, kForearmPerLeg * legLength);
-        const int shoulderAt = nearestAtDistance(_s, path, 0, elbowAt - 1, path[elbowAt], kUpperArmPerLeg * legLength);
-        const std::string s = side(wrist);
+        const int shoulderAt = nearestAtDistance(_s, path, 0, elbowAt - 1, path[elbowAt],
+                                                 kUpperArmPerForearm * _s.distance(path[elbowAt], wrist));
+        const std::string s = side(path[elbowAt]);
         set(path[shoulderAt], s + "shoulder", "an upper arm's length above the elbow");
         set(path[elbowAt], s + "elbow", "a forearm's length above the wrist");
         set(wrist, s + "wrist", "where the fingers part");
