@@ -67,6 +67,9 @@ glm::dmat3 jointRotation(const JointKinematics& k, const double* dofs)
 
 namespace {
 
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kTwoPi = 2.0 * kPi;
+
 /** The cosine and sine of the angle of the rotation about axis nearest m in the least-squares sense (the angle that
   * maximises the trace of R_axis(angle)^T m): from the 2x2 block of m the axis rotation mixes, sin from its skew part
   * and cos from its diagonal (m[column][row]). False where the block has no rotation in it. */
@@ -153,18 +156,28 @@ bool fitJointRotationDofs(const ActorDefinition& definition, unsigned joint, con
     double fitted[2][3];
     bool clamped[2] = {false, false};
     double distance[2] = {0.0, 0.0};
-    for (unsigned c = 0; c < numCandidates; ++c)
+    auto fit = [&](unsigned c) {
         for (unsigned r = 0; r < n; ++r)
         {
             const unsigned dof = k.rotationDof[r];
             const double min = definition.getDofRangeMin(dof), max = definition.getDofRangeMax(dof);
-            if (!turnWithinLimits(candidates[c][r], min, max, dofs[dof], fitted[c][r]))
+            const double angle = candidates[c][r], reference = dofs[dof];
+            if (min <= -kMaxDofMagnitude && max >= kMaxDofMagnitude && std::abs(reference) < 1e9)
+                // No limits: the whole turn nearest the reference, in closed form.
+                fitted[c][r] = angle + kTwoPi * std::nearbyint((reference - angle) * (1.0 / kTwoPi));
+            else if (!turnWithinLimits(angle, min, max, reference, fitted[c][r]))
             {
-                fitted[c][r] = fitAngleToLimits(candidates[c][r], min, max, dofs[dof]);
+                fitted[c][r] = fitAngleToLimits(angle, min, max, reference);
                 clamped[c] = true;
             }
-            distance[c] += std::abs(fitted[c][r] - dofs[dof]);
+            distance[c] += std::abs(fitted[c][r] - reference);
         }
+    };
+    fit(0);
+    // The second solution turns the first and last angles by half a turn each: it is farther from the reference
+    // whenever the first is within a quarter turn of it in all (2 pi - pi / 2 against pi / 2).
+    if (numCandidates == 2 && !clamped[0] && distance[0] < 0.5 * kPi) numCandidates = 1;
+    if (numCandidates == 2) fit(1);
     unsigned chosen = 0;
     if (numCandidates == 2)
     {

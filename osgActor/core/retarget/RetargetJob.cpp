@@ -95,7 +95,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
         else
         {
             const glm::dmat3& parentRotation = w.sourceRotations[static_cast<unsigned>(parent)];
-            w.sourceRotations[j] = parentRotation * local;
+            w.sourceRotations[j] = multiply(parentRotation, local);
             w.sourcePositions[j] = w.sourcePositions[static_cast<unsigned>(parent)] + parentRotation * origin;
         }
     }
@@ -111,8 +111,8 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
     // A * R_s(b) * postRotation, skipping the products with an identity.
     auto followed = [&](const RetargetJointPlan& plan) {
         glm::dmat3 m = plan.sourceB >= 0 ? w.sourceRotations[static_cast<unsigned>(plan.sourceB)] : glm::dmat3(1.0);
-        if (!aligned) m = alignment * m;
-        return plan.postIsIdentity ? m : m * plan.postRotation;
+        if (!aligned) m = multiply(alignment, m);
+        return plan.postIsIdentity ? m : multiply(m, plan.postRotation);
     };
     const glm::dmat3 identity(1.0);
     numInexact = 0;
@@ -134,7 +134,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
         if (plan.kind == RetargetJointKind::Rest)
         {
             for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
-            rotation = parentRotation * restLocals[t];
+            rotation = multiply(parentRotation, restLocals[t]);
             fitted = true;
         }
         else if (plan.kind == RetargetJointKind::Copy && parentExact)
@@ -167,9 +167,9 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
                           glm::mat3_cast(glm::slerp(changeSinceRest(*rig, w, plan.sourceA),
                                                     changeSinceRest(*rig, w, plan.sourceB), plan.weight)) *
                           plan.postRotation;
-            const glm::dmat3 frame = parentRotation * targetOffsets[t];
-            exact = fitJointRotationDofs(target, t, glm::transpose(frame) * desired, targetValues);
-            rotation = exact ? desired : frame * jointRotation(k, targetValues);
+            const glm::dmat3 frame = multiply(parentRotation, targetOffsets[t]);
+            exact = fitJointRotationDofs(target, t, multiplyTransposed(frame, desired), targetValues);
+            rotation = exact ? desired : multiply(frame, jointRotation(k, targetValues));
         }
         if (!exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0) ++numInexact;
 
@@ -180,7 +180,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
         glm::dvec3 origin(k.offset[3]);
         if (k.hasTranslation)
         {
-            const glm::dmat3 localRotation = glm::transpose(parentRotation) * rotation;
+            const glm::dmat3 localRotation = multiplyTransposed(parentRotation, rotation);
             if (static_cast<int>(t) == targetRoot && sourceRoot >= 0)
             {
                 const glm::dvec3 goal = rig->mapPosition(w.sourcePositions[static_cast<unsigned>(sourceRoot)]);
