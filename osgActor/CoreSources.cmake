@@ -95,7 +95,9 @@ set(OSGACTOR_IO_HEADERS
     io/ActorNumbers
     io/ActorReader
     io/ActorSyntax
-    io/ActorWriter)
+    io/ActorWriter
+    io/ClipRetarget
+    io/JointMapSection)
 set(OSGACTOR_IO_SOURCES
     io/ActorDocument.cpp
     io/ActorLexer.cpp
@@ -103,6 +105,8 @@ set(OSGACTOR_IO_SOURCES
     io/ActorReader.cpp
     io/ActorSyntax.cpp
     io/ActorWriter.cpp
+    io/ClipRetarget.cpp
+    io/JointMapSection.cpp
     io/PlayerDocument.cpp)
 
 # Motion-capture parsers: plain C++ on std::istream, GLM only like the core (built into the same object library).
