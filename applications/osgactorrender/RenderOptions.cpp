@@ -36,6 +36,9 @@ void describeRenderOptions(osg::ArgumentParser& arguments)
     usage->addCommandLineOption("--sheet-columns <n>", "Columns of the contact sheet (default: a square grid).");
     usage->addCommandLineOption("--sheet-tile-width <pixels>", "Width of a frame on the contact sheet (default 160).");
     usage->addCommandLineOption("--progress", "Show the progress bar even when stderr is not a terminal.");
+    usage->addCommandLineOption("--retarget-preview <motion>", "Retarget a motion file (BVH, or ASF with its AMC beside "
+                                                              "it) onto the first actor and show its own skeleton "
+                                                              "playing it beside (docs/retargeting.md).");
 }
 
 namespace {
@@ -74,6 +77,7 @@ bool parseRenderOptions(osg::ArgumentParser& arguments, RenderOptions& options, 
     while (arguments.read("--sheet-columns", columns)) {}
     while (arguments.read("--sheet-tile-width", options.sheetTileWidth)) {}
     while (arguments.read("--progress")) options.forceProgress = true;
+    while (arguments.read("--retarget-preview", options.retargetPreview)) {}
 
     arguments.reportRemainingOptionsAsUnrecognized();
     if (arguments.errors())

@@ -40,6 +40,7 @@ struct RenderOptions
     osg::Vec4 background{0.2f, 0.2f, 0.4f, 1.0f}; // osgViewer's clear colour
 
     std::string contactSheet; // empty: none
+    std::string retargetPreview; // a motion file to show retargeted onto the scene's first actor; empty: none
     unsigned sheetColumns = 0;
     int sheetTileWidth = 160;
 

@@ -8,6 +8,7 @@
 #include "OutputPattern.h"
 #include "ProgressBar.h"
 #include "RenderOptions.h"
+#include "RetargetPreview.h"
 #include "SceneLoader.h"
 
 #include <osg/ArgumentParser>
@@ -68,7 +69,9 @@ int main(int argc, char** argv)
         return fail("the output \"" + options.outputPattern + "\" has no frame number (%04d) for " +
                     std::to_string(options.getNumFrames()) + " frames");
 
-    const osg::ref_ptr<osg::Node> scene = osgActorApps::loadSceneFiles(options.files, error);
+    osg::ref_ptr<osg::Node> scene = osgActorApps::loadSceneFiles(options.files, error);
+    if (scene && !options.retargetPreview.empty())
+        scene = osgActorApps::makeRetargetPreview(*scene, options.retargetPreview, error);
     if (!scene) return fail(error);
 
     std::unique_ptr<OffscreenRenderer> renderer = OffscreenRenderer::create(options.width, options.height, error);
