@@ -3,7 +3,10 @@
 #include <osgActor/ActorRetarget>
 #include <osgActor/GlmOsg>
 #include <osgActor/MocapActor>
+#include <osgActor/core/ActorPose>
 #include <osgActor/core/ClipPlayer>
+
+#include <glm/geometric.hpp>
 
 #include <osg/Group>
 #include <osg/MatrixTransform>
@@ -29,6 +32,24 @@ public:
     }
     osgActor::ActorNode* actor = nullptr;
 };
+
+/** A unit vector across the way the source's root travels over the clip, in the target's model frame (+X when it
+  * stays put). */
+osg::Vec3d besideTravel(const osgActor::ActorNode& source, const osgActor::Clip& motion, const osgActor::RetargetRig& rig)
+{
+    if (rig.getSourceRoot() < 0 || !motion.isUniform() || motion.getNumFrames() < 2) return osg::Vec3d(1, 0, 0);
+    osgActor::ActorPose pose(source.getDefinition());
+    auto rootAt = [&](unsigned frame) {
+        pose.setDofs(motion.getFrame(frame), motion.getNumChannels());
+        pose.updateMatrices();
+        return glm::dvec3(pose.getModelMatrix(static_cast<unsigned>(rig.getSourceRoot()))[3]);
+    };
+    glm::dvec3 travel = rig.getAlignment() * (rootAt(motion.getNumFrames() - 1) - rootAt(0));
+    travel.z = 0.0;
+    if (glm::length(travel) < 0.5 * rig.getSourceHipHeight()) return osg::Vec3d(1, 0, 0);
+    const glm::dvec3 across = glm::normalize(glm::cross(glm::dvec3(0, 0, 1), travel));
+    return osgActor::toOsg(across);
+}
 
 } // namespace
 
@@ -85,11 +106,11 @@ osg::ref_ptr<osg::Node> makeRetargetPreview(osg::Node& scene, const std::string&
     target->addController(player);
 
     // The source beside it, in the actor's frame: scaled and turned as the retargeting maps its positions, then moved
-    // sideways by a body's width and a half.
-    const double side = 1.2 * rig.rig->getTargetHipHeight();
+    // a body's width and a half to the side of the way the motion travels (so the two walk abreast, not in file).
+    const osg::Vec3d aside = besideTravel(*source, *motion, *rig.rig) * (1.2 * rig.rig->getTargetHipHeight());
     const osg::Matrixd place = osg::Matrixd::scale(osg::Vec3d(1, 1, 1) * rig.rig->getScale()) *
-                               osgActor::toOsg(glm::dmat4(rig.rig->getAlignment())) *
-                               osg::Matrixd::translate(side, 0.0, 0.0) * target->getMatrix();
+                               osgActor::toOsg(glm::dmat4(rig.rig->getAlignment())) * osg::Matrixd::translate(aside) *
+                               target->getMatrix();
     osg::ref_ptr<osg::MatrixTransform> beside = new osg::MatrixTransform(place);
     beside->getOrCreateStateSet()->setMode(GL_RESCALE_NORMAL, osg::StateAttribute::ON);
     beside->addChild(source.get());
