@@ -133,6 +133,7 @@ RetargetClipResult retargetClip(const RetargetRig& rig, const Clip& source, cons
             }
             ikJob.run();
             result.largestIkError = std::max(result.largestIkError, ikJob.largestError);
+            result.largestRootDrop = std::max(result.largestRootDrop, ikJob.rootDrop);
         }
         std::copy(targetDofs.begin(), targetDofs.end(), values.begin() + std::ptrdiff_t(f) * target.getNumDofs());
     }
