@@ -80,8 +80,9 @@ bool nearestCosSinAbout(const glm::dmat3& m, unsigned axis, double& c, double& s
     c = m[i][i] + m[j][j];
     const double r = std::sqrt(c * c + s * s);
     if (!(r > 1e-300)) return false;
-    c /= r;
-    s /= r;
+    const double inverse = 1.0 / r;
+    c *= inverse;
+    s *= inverse;
     return true;
 }
 
@@ -112,11 +113,13 @@ void nearestTwoAxes(const glm::dmat3& target, unsigned a0, unsigned a1, double a
     nearestCosSinAbout(target, a0, c0, s0);
     for (unsigned round = 0; round < 6; ++round)
     {
-        // a1's best under a0, then a0's best under a1.
+        // a1's best under a0, then a0's best under a1, until a0 stops moving.
         if (!nearestCosSinAbout(preRotateTransposed(target, a0, c0, s0), a1, c1, s1)) break;
         glm::dmat3 m = target;
         postRotateAxis(m, a1, c1, -s1); // target * R_a1^T
+        const double previousC = c0, previousS = s0;
         if (!nearestCosSinAbout(m, a0, c0, s0)) break;
+        if (std::abs(c0 - previousC) + std::abs(s0 - previousS) < 1e-10) break;
     }
     angles[0] = arctangent2(s0, c0);
     angles[1] = arctangent2(s1, c1);
