@@ -48,6 +48,16 @@ std::string readError(const std::string& text)
     return result.error;
 }
 
+/** The document a text reads into, written out and read back. */
+ActorReadResult writtenAndReadBack(const std::string& text)
+{
+    const ActorReadResult first = readText(text);
+    EXPECT_TRUE(first) << first.error;
+    std::ostringstream written;
+    writeActor(written, first.document);
+    return readText(written.str());
+}
+
 /** A file in the test's build folder. */
 std::string writeFile(const std::string& name, const std::string& text)
 {
@@ -87,11 +97,7 @@ TEST(JointMapSection, KeepsTheSectionsThroughAReadAndAWrite)
 {
     const std::string text = humanoidWith("    jointmap { map HumanoidRoot HumanoidRoot; map l_hip l_hip }\n"
                                           "    jointmap studio { base cmu_bvh; map \"Left Thigh\" l_hip }");
-    const ActorReadResult first = readText(text);
-    ASSERT_TRUE(first) << first.error;
-    std::ostringstream written;
-    writeActor(written, first.document);
-    const ActorReadResult second = readText(written.str());
+    const ActorReadResult second = writtenAndReadBack(text);
     ASSERT_TRUE(second) << second.error;
     ActorJointMaps maps;
     std::string error;
@@ -131,11 +137,7 @@ TEST(ClipRetargetStatement, IsOnlyForClipsFromFilesAndWritesBack)
     EXPECT_EQ(readError(badIk), "h.actor:" + std::to_string(lineOf(badIk, "clip walk")) + ": 'ik' takes on or off");
     const std::string text = humanoidWith("    clip walk { file \"w.bvh\"; retarget studio { ik off } }\n"
                                           "    clip dance { file \"d.amc\" { skeleton \"d.asf\" }; retarget auto }");
-    const ActorReadResult first = readText(text);
-    ASSERT_TRUE(first) << first.error;
-    std::ostringstream written;
-    writeActor(written, first.document);
-    const ActorReadResult second = readText(written.str());
+    const ActorReadResult second = writtenAndReadBack(text);
     ASSERT_TRUE(second) << second.error;
     ASSERT_EQ(second.document.clips.size(), 3u); // and "wave"
     for (const ClipDocument& clip : second.document.clips)

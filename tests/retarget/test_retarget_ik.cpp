@@ -5,7 +5,6 @@
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/core/retarget/FootContacts>
 #include <osgActor/core/retarget/HAnimHumanoid>
-#include <osgActor/core/retarget/RetargetIkJob>
 #include <osgActor/core/retarget/RetargetMeasures>
 
 #include <glm/geometric.hpp>
@@ -108,17 +107,10 @@ TEST(RetargetIkJob, RefusesWrongSizesAndInvalidGoals)
     ASSERT_EQ(limbs.limbs.size(), 4u);
     RetargetWorkspace workspace;
     workspace.resize(*rig);
-    std::vector<IkWorkspace> ikWorkspaces(4);
-    for (unsigned i = 0; i < 4; ++i) ikWorkspaces[i].resize(*limbs.limbs[i].chain);
+    std::vector<IkWorkspace> ikWorkspaces;
     std::vector<IkGoal> goals(4);
     std::vector<double> dofs = humanoid->getDefaultDofs();
-    RetargetIkJob job;
-    job.rig = rig.get();
-    job.limbs = &limbs;
-    job.goals = goals;
-    job.targetDofs = dofs;
-    job.workspace = &workspace;
-    job.ikWorkspaces = ikWorkspaces;
+    RetargetIkJob job = ikJob(*rig, limbs, goals, dofs, workspace, ikWorkspaces);
     EXPECT_TRUE(job.validate());
     job.goals = Span<const IkGoal>(goals.data(), 3);
     EXPECT_FALSE(job.run());
@@ -139,29 +131,14 @@ TEST(RetargetIkJob, LowersTheRootForALegOutOfReach)
     const RetargetRigPtr rig = buildRig(skeleton(humanoid), skeleton(humanoid));
     const RetargetLimbs limbs = buildRetargetLimbs(*rig);
     RetargetWorkspace workspace;
-    workspace.resize(*rig);
     std::vector<double> dofs = humanoid->getDefaultDofs();
-    RetargetJob retarget;
-    retarget.rig = rig.get();
-    retarget.sourceDofs = humanoid->getDefaultDofs();
-    retarget.targetDofs = dofs;
-    retarget.workspace = &workspace;
-    ASSERT_TRUE(retarget.run());
+    ASSERT_TRUE(retargetJob(*rig, humanoid->getDefaultDofs(), dofs, workspace).run());
     std::vector<IkGoal> goals(limbs.limbs.size());
-    std::vector<IkWorkspace> ikWorkspaces(limbs.limbs.size());
     for (std::size_t i = 0; i < limbs.limbs.size(); ++i)
-    {
-        ikWorkspaces[i].resize(*limbs.limbs[i].chain);
         goals[i].position = workspace.targetPositions[limbs.limbs[i].chain->getEffectorJoint()];
-    }
     goals[0].position.z -= 0.1; // l_leg
-    RetargetIkJob job;
-    job.rig = rig.get();
-    job.limbs = &limbs;
-    job.goals = goals;
-    job.targetDofs = dofs;
-    job.workspace = &workspace;
-    job.ikWorkspaces = ikWorkspaces;
+    std::vector<IkWorkspace> ikWorkspaces;
+    RetargetIkJob job = ikJob(*rig, limbs, goals, dofs, workspace, ikWorkspaces);
     ASSERT_TRUE(job.run());
     EXPECT_NEAR(job.rootDrop, 0.1 + 0.001 * limbs.limbs[0].chain->getLength(), 1e-9);
     EXPECT_LE(job.largestError, 1e-9);

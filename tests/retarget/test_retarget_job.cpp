@@ -3,7 +3,6 @@
 // local axes move alike; and by hand: a spine of 3 onto a spine of 5, a hinge at its limit.
 #include "RetargetTestUtil"
 
-#include <osgActor/core/retarget/RetargetJob>
 #include <osgActor/core/retarget/RetargetMeasures>
 
 #include <glm/geometric.hpp>
@@ -103,13 +102,8 @@ TEST(RetargetJob, TheSameSkeletonReproducesItsDofs)
         pose[d] = std::uniform_real_distribution<double>(lo, hi)(random);
     }
     RetargetWorkspace workspace;
-    workspace.resize(*rig);
     std::vector<double> target = humanoid->getDefaultDofs();
-    RetargetJob job;
-    job.rig = rig.get();
-    job.sourceDofs = pose;
-    job.targetDofs = target;
-    job.workspace = &workspace;
+    RetargetJob job = retargetJob(*rig, pose, target, workspace);
     ASSERT_TRUE(job.run());
     for (unsigned d = 0; d < pose.size(); ++d) EXPECT_NEAR(target[d], pose[d], 1e-9) << humanoid->getDofName(d);
     EXPECT_EQ(job.numInexact, 0u);
@@ -205,25 +199,15 @@ TEST(RetargetJob, ASpineOfThreeOntoASpineOfFiveSharesTheBendOut)
     // Each of the source's three spine joints bends 10 degrees about X: the target's five, unpaired between the first
     // and the head, bend 6 degrees each (the bend spread along the chain), and the head ends where the source's does.
     const ActorDefinitionPtr three = spine("three", 3, 0.2), five = spine("five", 5, 0.12);
-    RetargetSkeleton source = skeleton(three), target = skeleton(five);
-    for (RetargetSkeleton* side : {&source, &target})
-    {
-        side->map.add("root", "HumanoidRoot");
-        side->map.add("s0", "vl5");
-        side->map.add("head", "skullbase");
-    }
-    const RetargetRigPtr rig = buildRig(source, target);
+    const std::vector<std::pair<std::string, std::string>> ends = {
+        {"root", "HumanoidRoot"}, {"s0", "vl5"}, {"head", "skullbase"}};
+    const RetargetRigPtr rig = buildRig(mappedSkeleton(three, ends), mappedSkeleton(five, ends));
     ASSERT_TRUE(rig);
     std::vector<double> bent = three->getDefaultDofs();
     for (const char* joint : {"s0.rx", "s1.rx", "s2.rx"}) bent[static_cast<unsigned>(three->findDof(joint))] = degrees(10);
     RetargetWorkspace workspace;
-    workspace.resize(*rig);
     std::vector<double> result = five->getDefaultDofs();
-    RetargetJob job;
-    job.rig = rig.get();
-    job.sourceDofs = bent;
-    job.targetDofs = result;
-    job.workspace = &workspace;
+    RetargetJob job = retargetJob(*rig, bent, result, workspace);
     ASSERT_TRUE(job.run());
     for (unsigned i = 0; i < 5; ++i)
     {
@@ -249,26 +233,16 @@ TEST(RetargetJob, AHingeStopsAtItsLimitAndTheJointsBelowKeepTheirOrientation)
         return b.build().definition;
     };
     const ActorDefinitionPtr source = leg("source", degrees(150)), target = leg("target", degrees(90));
-    RetargetSkeleton s = skeleton(source), t = skeleton(target);
-    for (RetargetSkeleton* side : {&s, &t})
-    {
-        side->map.add("hip", "l_hip");
-        side->map.add("knee", "l_knee");
-        side->map.add("ankle", "l_ankle");
-    }
-    const RetargetRigPtr rig = buildRig(s, t);
+    const std::vector<std::pair<std::string, std::string>> joints = {
+        {"hip", "l_hip"}, {"knee", "l_knee"}, {"ankle", "l_ankle"}};
+    const RetargetRigPtr rig = buildRig(mappedSkeleton(source, joints), mappedSkeleton(target, joints));
     ASSERT_TRUE(rig);
     std::vector<double> pose = source->getDefaultDofs();
     pose[static_cast<unsigned>(source->findDof("knee.rx"))] = degrees(120);
     pose[static_cast<unsigned>(source->findDof("ankle.rz"))] = degrees(20);
     RetargetWorkspace workspace;
-    workspace.resize(*rig);
     std::vector<double> result = target->getDefaultDofs();
-    RetargetJob job;
-    job.rig = rig.get();
-    job.sourceDofs = pose;
-    job.targetDofs = result;
-    job.workspace = &workspace;
+    RetargetJob job = retargetJob(*rig, pose, result, workspace);
     ASSERT_TRUE(job.run());
     EXPECT_DOUBLE_EQ(result[static_cast<unsigned>(target->findDof("knee.rx"))], degrees(90));
     EXPECT_EQ(workspace.targetExact[static_cast<unsigned>(target->findJoint("knee"))], 0);
