@@ -243,22 +243,14 @@ private:
         leg.foot = foot;
         leg.path = _s.pathBelow(feetMeet, foot);
         _root = feetMeet;
-        const int last = static_cast<int>(leg.path.size()) - 1;
-        // Ankle: the first joint in the leg's lower half whose next segment runs more forward than down.
-        for (int i = 1; i < last && leg.ankle < 0; ++i)
-        {
-            const glm::dvec3 next = _s.positions[leg.path[i + 1]] - _s.positions[leg.path[i]];
-            if (z(leg.path[i]) < 0.5 * (z(feetMeet) + z(foot)) && glm::length(horizontal(next)) > std::abs(next.z))
-                leg.ankle = leg.path[i];
-        }
-        if (leg.ankle < 0) leg.ankle = _s.hasDofs(foot) ? foot : _s.parent(foot);
-        const int ankleAt = indexIn(leg.path, leg.ankle);
-        if (ankleAt < 2) return fail("a leg with no knee between the hip and the ankle");
+        // The joints that may be the ankle: every one that moves (an End Site joint is the foot's tip).
+        const int last = static_cast<int>(leg.path.size()) - (_s.hasDofs(foot) ? 1 : 2);
+        if (last < 2) return fail("a leg with no knee between the hip and the ankle");
         // Hip: the lowest corner near the top of the leg, where a bone from the pelvis's centre turns into the thigh
         // (a joint with no bone above it counts as one); twist joints down the thigh turn nothing.
-        const double top = z(feetMeet), legDrop = z(feetMeet) - z(leg.ankle);
+        const double top = z(feetMeet), legDrop = z(feetMeet) - z(foot);
         leg.hip = leg.path[0];
-        for (int i = 0; i + 1 < ankleAt; ++i)
+        for (int i = 0; i + 2 <= last; ++i)
         {
             if (z(leg.path[i]) < top - 0.25 * legDrop) break;
             const glm::dvec3 in = _s.positions[leg.path[i]] - _s.positions[i > 0 ? leg.path[i - 1] : feetMeet];
@@ -268,17 +260,22 @@ private:
             if (!(inLength > 1e-9 * legDrop) || glm::dot(in, out) < std::cos(glm::radians(10.0)) * inLength * outLength)
                 leg.hip = leg.path[i];
         }
-        // Knee: thigh and shank are as long as each other: the joint between as far from the hip as from the ankle.
+        // Knee and ankle: thigh and shank are as long as each other, so of the joints below the hip they are the
+        // pair with the knee as far from the hip as from the ankle (the joints of the foot below the ankle, and twist
+        // joints half way down the shank, upset that balance).
         double best = std::numeric_limits<double>::infinity();
-        for (int k = indexIn(leg.path, leg.hip) + 1; k < ankleAt; ++k)
-        {
-            const double imbalance = std::abs(_s.distance(leg.hip, leg.path[k]) - _s.distance(leg.path[k], leg.ankle));
-            if (imbalance < best)
+        for (int k = indexIn(leg.path, leg.hip) + 1; k < last; ++k)
+            for (int a = k + 1; a <= last; ++a)
             {
-                best = imbalance;
-                leg.knee = leg.path[k];
+                const double upper = _s.distance(leg.hip, leg.path[k]), lower = _s.distance(leg.path[k], leg.path[a]);
+                const double imbalance = std::abs(upper - lower) / (upper + lower);
+                if (imbalance < best)
+                {
+                    best = imbalance;
+                    leg.knee = leg.path[k];
+                    leg.ankle = leg.path[a];
+                }
             }
-        }
         if (leg.knee < 0) return fail("a leg with no knee between the hip and the ankle");
         leg.top = leg.path.front();
         return true;
@@ -290,8 +287,8 @@ private:
         const int hipAt = indexIn(leg.path, leg.hip), kneeAt = indexIn(leg.path, leg.knee),
                   ankleAt = indexIn(leg.path, leg.ankle);
         set(leg.hip, s + "hip", "a leg's first joint away from the pelvis");
-        set(leg.knee, s + "knee", "half way from the hip to the ankle");
-        set(leg.ankle, s + "ankle", "where the leg turns forward into the foot");
+        set(leg.knee, s + "knee", "as far from the hip as from the ankle");
+        set(leg.ankle, s + "ankle", "a shank's length below the knee, as long as the thigh");
         for (int i = hipAt + 1; i < kneeAt; ++i) set(leg.path[i], s + "hip", "a twist bone of the thigh");
         for (int i = kneeAt + 1; i < ankleAt; ++i) set(leg.path[i], s + "knee", "a twist bone of the shank");
         const auto& below = _s.children[static_cast<unsigned>(leg.ankle)];
