@@ -69,7 +69,8 @@ RetargetMeasures measureRetargetedClip(const RetargetRig& rig, const Clip& sourc
         for (unsigned j = 0; j < target.getNumJoints(); ++j)
         {
             const int parent = target.getParent(j);
-            if (parent < 0 || !(restLength[j] > 0.0) || target.getKinematics(j).hasTranslation) continue;
+            // The root's translation carries the travel; every other bone keeps its rest length.
+            if (parent < 0 || !(restLength[j] > 0.0) || static_cast<int>(j) == rig.getTargetRoot()) continue;
             const double length = glm::length(positionOf(targetPose, j) - positionOf(targetPose, static_cast<unsigned>(parent)));
             measures.largestLengthChange =
                 std::max(measures.largestLengthChange, std::abs(length - restLength[j]) / restLength[j]);
