@@ -16,7 +16,8 @@ JointMap getActorJointMap(const ActorNode& actor)
     std::vector<SyntaxStatement> sections;
     std::string error;
     ActorJointMaps maps;
-    if (!parseSyntax(in, actor.getName(), sections, error) || !readActorJointMaps(sections, actor.getName(), maps, error))
+    if (!parseSyntax(in, actor.getName(), sections, error) ||
+        !readActorJointMaps(sections, actor.getName(), maps, error))
     {
         OSG_WARN << "osgActor: actor '" << actor.getName() << "': its joint map is broken (" << error
                  << "); guessing one" << std::endl;

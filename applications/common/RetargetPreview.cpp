@@ -35,7 +35,8 @@ public:
 
 /** A unit vector across the way the source's root travels over the clip, in the target's model frame (+X when it
   * stays put). */
-osg::Vec3d besideTravel(const osgActor::ActorNode& source, const osgActor::Clip& motion, const osgActor::RetargetRig& rig)
+osg::Vec3d besideTravel(const osgActor::ActorNode& source, const osgActor::Clip& motion,
+                        const osgActor::RetargetRig& rig)
 {
     if (rig.getSourceRoot() < 0 || !motion.isUniform() || motion.getNumFrames() < 2) return osg::Vec3d(1, 0, 0);
     osgActor::ActorPose pose(source.getDefinition());
@@ -63,11 +64,12 @@ osg::ref_ptr<osg::Node> makeRetargetPreview(osg::Node& scene, const std::string&
         error = "--retarget-preview: the scene has no actor to retarget onto";
         return nullptr;
     }
-    const osg::ref_ptr<osgActor::ActorNode> source = osgActor::readMocapActor(motionFile, osgActor::MocapActorOptions(), error);
+    const osg::ref_ptr<osgActor::ActorNode> source =
+        osgActor::readMocapActor(motionFile, osgActor::MocapActorOptions(), error);
     if (!source) return nullptr;
     const osgActor::ClipLibraryPtr& library = source->getClipLibrary();
-    const osgActor::ClipPtr motion = library && library->getNumClips() ? library->getClip(library->getClipNames().front())
-                                                                       : osgActor::ClipPtr();
+    const osgActor::ClipPtr motion =
+        library && library->getNumClips() ? library->getClip(library->getClipNames().front()) : osgActor::ClipPtr();
     if (!motion)
     {
         error = motionFile + ": no motion to retarget";

@@ -49,8 +49,9 @@ int retargetIntoActorFile(const RetargetConversion& conversion, const MocapImpor
     double largestEnd = 0.0;
     for (const RetargetMeasures::End& end : measures.ends) largestEnd = std::max(largestEnd, end.largestError);
     std::cerr << "osgactorconv: clip '" << result.clip->getName() << "' retargeted onto '" << target.document.name
-              << "': " << result.numFrames << " frames, scale " << rig.rig->getScale() << ", " << measures.contacts.size()
-              << " foot contacts, largest slip " << measures.largestSlip << " and end error " << largestEnd
+              << "': " << result.numFrames << " frames, scale " << rig.rig->getScale() << ", "
+              << measures.contacts.size() << " foot contacts, largest slip " << measures.largestSlip
+              << " and end error " << largestEnd
               << " (model units; the body is " << measures.targetHeight << " tall)\n";
 
     std::vector<ClipDocument>& clips = target.document.clips;

@@ -96,7 +96,8 @@ bool readActorJointMaps(const std::vector<SyntaxStatement>& sections, const std:
         const std::string name = named ? section.arguments[0].text : std::string();
         if ((named && maps.named.count(name)) || (!named && maps.hasOwn))
         {
-            error = where + (named ? "joint map '" + name + "' is given twice" : "the actor's joint map is given twice");
+            error = where +
+                    (named ? "joint map '" + name + "' is given twice" : "the actor's joint map is given twice");
             return false;
         }
         JointMap map(name);

@@ -70,7 +70,8 @@ TEST(JointMapResolve, RefusesAliasesThatGoRoundInACycle)
     map.add("upper_leg", "leg_top", "loop.map:2");
     map.add("leg_top", "upper_leg", "loop.map:3");
     const std::string error = refusal(map, *smallBody());
-    EXPECT_TRUE(mentions(error, "loop.map:1: joint map 'loop' has a cycle: thigh -> upper_leg -> leg_top -> upper_leg"));
+    EXPECT_TRUE(
+        mentions(error, "loop.map:1: joint map 'loop' has a cycle: thigh -> upper_leg -> leg_top -> upper_leg"));
 }
 
 TEST(JointMapResolve, RefusesANameThatLeadsToNoHAnimJoint)
@@ -171,9 +172,9 @@ TEST(BuiltInJointMaps, FitTheirRealFilesWithoutContradiction)
         {readCmuAmc("charleston.asf", "charleston1.amc"), JointMapStyle::CmuAsf, {{"rhumerus", "r_shoulder"}}},
         {readBvhScaled(repositoryMocap("bvh/12_03.bvh")),
          JointMapStyle::CmuBvh,
-         {{"Hips", "HumanoidRoot"}, {"LeftUpLeg", "l_hip"}, {"RightLeg", "r_knee"}, {"LeftShoulder", "l_sternoclavicular"},
-          {"LeftArm", "l_shoulder"}, {"RightForeArm", "r_elbow"}, {"LeftHand", "l_wrist"},
-          {"LeftFingerBase", "l_wrist"}, {"Head", "skullbase"}}},
+         {{"Hips", "HumanoidRoot"}, {"LeftUpLeg", "l_hip"}, {"RightLeg", "r_knee"},
+          {"LeftShoulder", "l_sternoclavicular"}, {"LeftArm", "l_shoulder"}, {"RightForeArm", "r_elbow"},
+          {"LeftHand", "l_wrist"}, {"LeftFingerBase", "l_wrist"}, {"Head", "skullbase"}}},
         {readBvhScaled(assimpBvh("01_01.bvh")), JointMapStyle::CmuBvh, {{"LFingers", "l_index1"}}},
         {readBvhScaled(assimpBvh("01_03.bvh")), JointMapStyle::CmuBvh, {{"RThumb", "r_thumb1"}}},
         {readBvhScaled(assimpBvh("Boxing_Toes.bvh")),
@@ -211,7 +212,9 @@ TEST(BuiltInJointMaps, MixamoNamesWithAnyNamespaceAndTheHumanoidsOwnNames)
     // No Mixamo file is in the repository or in Debian's test models: a skeleton with Mixamo's names stands in.
     ActorDefinitionBuilder b("mixamo");
     auto add = [&b](const std::string& name, const std::string& parent, double x, double y, double z) {
-        b.addJoint("mixamorig1:" + name, parent.empty() ? "" : "mixamorig1:" + parent).offset(x, y, z).dofs(kRotationDofs);
+        b.addJoint("mixamorig1:" + name, parent.empty() ? "" : "mixamorig1:" + parent)
+            .offset(x, y, z)
+            .dofs(kRotationDofs);
     };
     add("Hips", "", 0, 0, 1);
     add("Spine", "Hips", 0, 0, 0.1);

@@ -160,9 +160,10 @@ TEST(ClipRetargetStatement, IsOnlyForClipsFromFilesAndWritesBack)
 TEST(ClipRetargetStatement, RetargetsTheCharlestonOntoTheHumanoidWhenTheActorIsMade)
 {
     // The issue's own example: CMU's Charleston (ASF/AMC), retargeted at load onto the H-Anim humanoid.
+    const std::string motion = "file \"" + repositoryMocap("asfamc/charleston1.amc") + "\" { skeleton \"" +
+                               repositoryMocap("asfamc/charleston.asf") + "\" }";
     const std::string text =
-        humanoidWith("    clip dance {\n        play loop\n        file \"" + repositoryMocap("asfamc/charleston1.amc") +
-                     "\" { skeleton \"" + repositoryMocap("asfamc/charleston.asf") + "\" }\n        retarget auto\n    }");
+        humanoidWith("    clip dance {\n        play loop\n        " + motion + "\n        retarget auto\n    }");
     const ActorReadResult read = readText(text);
     ASSERT_TRUE(read) << read.error;
     const ActorNodeResult made = createActorNode(read.document, read.definition, "h.actor", nullptr);
@@ -182,8 +183,7 @@ TEST(ClipRetargetStatement, RetargetsTheCharlestonOntoTheHumanoidWhenTheActorIsM
 
     // A source map the file does not have is an error at the clip's retarget line.
     const std::string unknownMap =
-        humanoidWith("    clip dance {\n        file \"" + repositoryMocap("asfamc/charleston1.amc") + "\" { skeleton \"" +
-                     repositoryMocap("asfamc/charleston.asf") + "\" }\n        retarget studio\n    }");
+        humanoidWith("    clip dance {\n        " + motion + "\n        retarget studio\n    }");
     const ActorReadResult unknown = readText(unknownMap);
     ASSERT_TRUE(unknown) << unknown.error;
     const ActorNodeResult failed = createActorNode(unknown.document, unknown.definition, "h.actor", nullptr);
@@ -200,7 +200,8 @@ TEST(ActorRetarget, AddsARetargetedClipToAnActorWithItsOwnMap)
     ASSERT_TRUE(read) << read.error;
     const ActorNodeResult made = createActorNode(read.document, read.definition, "h.actor", nullptr);
     ASSERT_TRUE(made.actor) << made.error;
-    EXPECT_EQ(getActorJointMap(*made.actor).getEntries().size(), builtInJointMap(JointMapStyle::HAnim).getEntries().size());
+    EXPECT_EQ(getActorJointMap(*made.actor).getEntries().size(),
+              builtInJointMap(JointMapStyle::HAnim).getEntries().size());
 
     const MocapImport walk = readBvhScaled(repositoryMocap("bvh/12_03.bvh"));
     RetargetSkeleton source = skeleton(walk.definition);

@@ -17,7 +17,8 @@ namespace {
 /** Cesium Man as an actor standing Z up, in metres (its root scale in the lengths). */
 ActorDefinitionPtr cesiumMan()
 {
-    const RiggedModelRead read = readRiggedModelFile(std::string(OSGACTOR_TEST_DATA_DIR) + "/models/CesiumMan/CesiumMan.gltf");
+    const RiggedModelRead read =
+        readRiggedModelFile(std::string(OSGACTOR_TEST_DATA_DIR) + "/models/CesiumMan/CesiumMan.gltf");
     EXPECT_TRUE(read) << read.error;
     if (!read) return nullptr;
     RiggedActorOptions options;

@@ -204,7 +204,8 @@ TEST(RetargetJob, ASpineOfThreeOntoASpineOfFiveSharesTheBendOut)
     const RetargetRigPtr rig = buildRig(mappedSkeleton(three, ends), mappedSkeleton(five, ends));
     ASSERT_TRUE(rig);
     std::vector<double> bent = three->getDefaultDofs();
-    for (const char* joint : {"s0.rx", "s1.rx", "s2.rx"}) bent[static_cast<unsigned>(three->findDof(joint))] = degrees(10);
+    for (const char* joint : {"s0.rx", "s1.rx", "s2.rx"})
+        bent[static_cast<unsigned>(three->findDof(joint))] = degrees(10);
     RetargetWorkspace workspace;
     std::vector<double> result = five->getDefaultDofs();
     RetargetJob job = retargetJob(*rig, bent, result, workspace);

@@ -5,7 +5,8 @@
 
 namespace osgActor {
 
-std::string sampleClipFrames(const ActorDefinition& definition, const Clip& clip, double keyedFrameRate, ClipFrames& out)
+std::string sampleClipFrames(const ActorDefinition& definition, const Clip& clip, double keyedFrameRate,
+                             ClipFrames& out)
 {
     std::vector<int> dofOfChannel(clip.getNumChannels(), -1);
     bool any = false;

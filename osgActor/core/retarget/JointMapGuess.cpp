@@ -405,7 +405,8 @@ JointMapGuess guessJointMap(const ActorDefinition& definition, const std::vector
                        "'";
         for (unsigned j = 0; j < definition.getNumJoints(); ++j)
             if (builtIn.hanimOfJoint[j] >= 0)
-                guess.map.add(definition.getJointName(j), getHAnimJoint(static_cast<unsigned>(builtIn.hanimOfJoint[j])).name);
+                guess.map.add(definition.getJointName(j),
+                              getHAnimJoint(static_cast<unsigned>(builtIn.hanimOfJoint[j])).name);
         found = true;
     }
     else
@@ -433,7 +434,8 @@ JointMapGuess guessJointMap(const ActorDefinition& definition, const std::vector
     JointMap loose = guess.map;
     loose.setLooseMatching(true);
     const JointMapResolveResult resolved = resolveJointMap(loose, definition);
-    std::vector<int> hanimOfJoint = resolved ? resolved.map.hanimOfJoint : std::vector<int>(definition.getNumJoints(), -1);
+    const std::vector<int> hanimOfJoint =
+        resolved ? resolved.map.hanimOfJoint : std::vector<int>(definition.getNumJoints(), -1);
     if (resolved)
         for (const std::string& dropped : resolved.map.dropped) guess.notes.push_back("dropped: " + dropped);
     JointMap exact(guess.map.getName());

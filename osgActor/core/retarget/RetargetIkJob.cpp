@@ -111,7 +111,8 @@ bool RetargetIkJob::run()
         // The end joint's model rotation as the retargeting made it, under the solved limb.
         glm::dmat4 model = rootParentModel;
         for (unsigned c = 0; c + 1 < chain.getNumJoints(); ++c)
-            model = multiplyAffine(model, computeJointMatrix(target.getKinematics(chain.getJoint(c)), targetDofs.data()));
+            model = multiplyAffine(model,
+                                   computeJointMatrix(target.getKinematics(chain.getJoint(c)), targetDofs.data()));
         const unsigned end = chain.getEffectorJoint();
         const glm::dmat3 frame = glm::dmat3(model) * rig->getTargetOffsetRotations()[end];
         fitJointRotationDofs(target, end, glm::transpose(frame) * workspace->targetRotations[end], targetDofs.data());

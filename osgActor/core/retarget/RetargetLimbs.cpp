@@ -89,7 +89,8 @@ RetargetLimbs buildRetargetLimbs(const RetargetRig& rig)
         auto freeze = [&spec, &target](unsigned joint, bool keepOneRotation, unsigned keptSlot) {
             const JointKinematics& k = target.getKinematics(joint);
             for (unsigned r = 0; r < k.numRotations; ++r)
-                if (!keepOneRotation || r != keptSlot) spec.dofWeights.push_back({target.getDofName(k.rotationDof[r]), 0.0});
+                if (!keepOneRotation || r != keptSlot)
+                    spec.dofWeights.push_back({target.getDofName(k.rotationDof[r]), 0.0});
             for (int dof : k.translationDof)
                 if (dof >= 0) spec.dofWeights.push_back({target.getDofName(static_cast<unsigned>(dof)), 0.0});
         };
@@ -126,7 +127,9 @@ RetargetLimbs buildRetargetLimbs(const RetargetRig& rig)
         made.chain = built.chain;
         made.sourceEffector = static_cast<unsigned>(sourceEnd);
         made.sourceRoot = static_cast<unsigned>(sourceRoot);
-        auto sourceAt = [&rig](int joint) { return glm::dvec3(rig.getSourceRestModels()[static_cast<unsigned>(joint)][3]); };
+        auto sourceAt = [&rig](int joint) {
+            return glm::dvec3(rig.getSourceRestModels()[static_cast<unsigned>(joint)][3]);
+        };
         const double sourceLength = glm::length(sourceAt(sourceMiddle) - sourceAt(sourceRoot)) +
                                     glm::length(sourceAt(sourceEnd) - sourceAt(sourceMiddle));
         const double targetLength = glm::length(restPosition(rig, middle) - restPosition(rig, root)) +

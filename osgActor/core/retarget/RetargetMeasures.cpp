@@ -56,8 +56,11 @@ RetargetMeasures measureRetargetedClip(const RetargetRig& rig, const Clip& sourc
     std::vector<double> restLength(target.getNumJoints(), 0.0);
     for (unsigned j = 0; j < target.getNumJoints(); ++j)
         if (target.getParent(j) >= 0)
+        {
+            const unsigned parent = static_cast<unsigned>(target.getParent(j));
             restLength[j] = glm::length(glm::dvec3(rig.getTargetRestModels()[j][3]) -
-                                        glm::dvec3(rig.getTargetRestModels()[static_cast<unsigned>(target.getParent(j))][3]));
+                                        glm::dvec3(rig.getTargetRestModels()[parent][3]));
+        }
 
     ActorPose sourcePose(rig.getSourceDefinition()), targetPose(targetDefinition);
     for (unsigned f = 0; f < numFrames; ++f)
@@ -71,7 +74,8 @@ RetargetMeasures measureRetargetedClip(const RetargetRig& rig, const Clip& sourc
             const int parent = target.getParent(j);
             // The root's translation carries the travel; every other bone keeps its rest length.
             if (parent < 0 || !(restLength[j] > 0.0) || static_cast<int>(j) == rig.getTargetRoot()) continue;
-            const double length = glm::length(positionOf(targetPose, j) - positionOf(targetPose, static_cast<unsigned>(parent)));
+            const double length =
+                glm::length(positionOf(targetPose, j) - positionOf(targetPose, static_cast<unsigned>(parent)));
             measures.largestLengthChange =
                 std::max(measures.largestLengthChange, std::abs(length - restLength[j]) / restLength[j]);
         }
