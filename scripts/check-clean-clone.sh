@@ -66,7 +66,7 @@ render_said="$(sed -n '/^demo: no display/,$p' "$parent.demo.log" | grep -vE '^(
 rm -f "$parent.demo.log"
 [ -z "$render_said" ] || fail "the demo's render said:"$'\n'"$render_said"
 frames=("$clone"/out/demo/frame_*.png)
-[ ${#frames[@]} -eq 60 ] && [ -s "$clone/out/demo/contact_sheet.png" ] ||
+{ [ ${#frames[@]} -eq 60 ] && [ -s "$clone/out/demo/contact_sheet.png" ]; } ||
     fail "the demo rendered ${#frames[@]} frames (60 expected) or no contact sheet"
 say "demo: 60 frames and the contact sheet in the copy's out/demo"
 

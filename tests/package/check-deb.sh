@@ -24,7 +24,7 @@ fail() {
 cpack -G DEB --config "$build/CPackConfig.cmake" -B "$work/cpack" >"$work/cpack.log" 2>&1 ||
     { cat "$work/cpack.log"; fail "cpack failed"; }
 debs=("$work"/cpack/*.deb)
-[ ${#debs[@]} -eq 1 ] && [ -f "${debs[0]}" ] || fail "cpack made ${#debs[@]} packages: ${debs[*]}"
+{ [ ${#debs[@]} -eq 1 ] && [ -f "${debs[0]}" ]; } || fail "cpack made ${#debs[@]} packages: ${debs[*]}"
 deb="${debs[0]}"
 dpkg-deb --info "$deb"
 
@@ -32,7 +32,7 @@ dpkg-deb --info "$deb"
 # packages whose headers a consumer compiles against).
 depends="$(dpkg-deb --field "$deb" Depends)"
 for required in "libopenscenegraph-dev " "libglm-dev" "libopenscenegraph[0-9]" "libosmesa"; do
-    echo "$depends" | grep -q "$required" || fail "Depends names no $required: $depends"
+    grep -q "$required" <<<"$depends" || fail "Depends names no $required: $depends"
 done
 dpkg-checkbuilddeps -d "$depends" /dev/null || fail "this machine does not have what the package depends on"
 
@@ -44,14 +44,14 @@ touch "$root/var/lib/dpkg/status"
 dpkg=(dpkg --root="$root" --log="$work/dpkg.log")
 [ "$(id -u)" -eq 0 ] || dpkg+=(--force-not-root)
 "${dpkg[@]}" --force-depends --unpack "$deb"
-"${dpkg[@]}" --status osgactor | grep -qx "Status: install ok unpacked" || fail "dpkg did not unpack it"
+grep -qx "Status: install ok unpacked" <<<"$("${dpkg[@]}" --status osgactor)" || fail "dpkg did not unpack it"
 
 # What dpkg installed is laid out as OSG is: headers, library, plugins, tools, package files.
 listing="$("${dpkg[@]}" --listfiles osgactor)"
 for path in /usr/include/osgActor/ActorNode "/usr/$libdir/libosgActor.so.0" "/usr/$libdir/libosgActor.so" \
     "/usr/$libdir/osgPlugins-[0-9.]*/osgdb_actor.so" "/usr/$libdir/cmake/osgActor/osgActorConfig.cmake" \
     "/usr/$libdir/pkgconfig/osgActor.pc" /usr/bin/osgactorconv /usr/bin/osgactorrender /usr/bin/osgactorviewer; do
-    echo "$listing" | grep -qx "$path" || fail "the package installs no $path"
+    grep -qx "$path" <<<"$listing" || fail "the package installs no $path"
 done
 echo "check-deb.sh: $(basename "$deb") unpacked by dpkg into $root"
 
@@ -59,7 +59,7 @@ if [ "${OSGACTOR_PACKAGE_SYSTEM_INSTALL:-0}" = 1 ]; then
     dpkg-query --show osgactor >/dev/null 2>&1 && fail "an osgactor package is installed already; not replacing it"
     trap 'dpkg --purge osgactor >/dev/null' EXIT
     dpkg --install "$deb"
-    dpkg --status osgactor | grep -qx "Status: install ok installed" || fail "dpkg did not install it"
+    grep -qx "Status: install ok installed" <<<"$(dpkg --status osgactor)" || fail "dpkg did not install it"
     check="$source/tests/package/check-install.sh"
     "$check" cmake /usr "$libdir" "$work/system-cmake" "$source"
     "$check" tools /usr "$libdir" "$work/system-tools" "$source"
