@@ -4,11 +4,11 @@
 # renders the demo offscreen (scripts/demo.sh without a display) and runs the quick suite (OSGACTOR_QUICK=1
 # scripts/test.sh). Uncommitted changes are not in the copy: the script says so when there are some.
 #
-# Cost: a second build. With ccache installed it goes through ccache, and every object whose compile command does not
-# hold the copy's path (the library, plugins, applications: everything but the tests, which are given their data
-# folders' paths) comes from the objects the main build made, when it also went through ccache; the benchmarks are not
-# built. The copy's folder depends only on this tree's path, so from the second run on the tests' objects come from the
-# cache too. docs/robustness.md ("Timings") has the figures. scripts/test.sh runs it after the quick suite;
+# Cost: a second build, without the benchmarks. When the main build went through ccache, this one does too, and every
+# object whose compile command does not hold the copy's path (the library, plugins, applications: everything but the
+# tests, which are given their data folders' paths) comes from the main build's; the copy's folder depends only on
+# this tree's path, so from the second run on the tests' objects come from the cache too. Otherwise the copy is built
+# without optimisation. docs/robustness.md ("Timings") has the figures. scripts/test.sh runs it after the quick suite;
 # OSGACTOR_CLEAN_CLONE=0 leaves it out there.
 #
 # Environment: OSGACTOR_JOBS (parallel jobs), OSGACTOR_KEEP_CLEAN_CLONE=1 (keep the copy and its build afterwards).
@@ -48,15 +48,25 @@ if grep -rIl --exclude-dir=.git -F "$root" "$clone" >"$parent.paths" 2>/dev/null
 fi
 rm -f "$parent.paths"
 
-# The build as the copy's scripts make it, through ccache when there is one: paths below $parent are made relative
-# for ccache (base_dir), so the copy's compile commands match the main tree's.
+# The build as the copy's scripts make it (the benchmarks left out: neither the demo nor the tests use them). When the
+# main build went through ccache, so does this one, with the same flags: paths below $parent are made relative for
+# ccache (base_dir), so the copy's compile commands match the main tree's and their objects come from the cache.
+# Otherwise nothing can be reused, and the copy is compiled without optimisation or debug information, in about a
+# third of the time: what is checked here is which files the build and the programs need, not the code.
 configure=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DOSGACTOR_BUILD_BENCHMARKS=OFF)
-if command -v ccache >/dev/null; then
+main_cache="${OSGACTOR_BUILD_DIR:-$root/build}/CMakeCache.txt"
+if command -v ccache >/dev/null && grep -qx "CMAKE_CXX_COMPILER_LAUNCHER:STRING=ccache" "$main_cache" 2>/dev/null; then
     export CCACHE_BASEDIR="$parent" CCACHE_NOHASHDIR=true
     configure+=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
     ccache_before="$(ccache --print-stats 2>/dev/null || true)"
+    say "building through ccache, as the main build did"
+else
+    configure+=("-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O0 -DNDEBUG" "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O0 -DNDEBUG")
+    say "building without optimisation (the main build did not go through ccache: nothing to reuse)"
 fi
 cmake -S "$clone" -B "$clone/build" "${configure[@]}" >/dev/null
+# The copy's scripts work in the copy: its build/ and out/demo/, whatever this shell points them at.
+unset OSGACTOR_BUILD_DIR OSGACTOR_DEMO_OUT
 
 # The demo without a display: it builds, then renders the showcase offscreen. Whatever the render says beyond its own
 # lines ("demo: ...", "osgactorrender: ...") is a warning (a file osgDB could not find, say): the check fails on it.

@@ -1,6 +1,8 @@
 #include "ScaleReport"
 
 #include <cstdio>
+#include <set>
+#include <string>
 
 namespace bench {
 
@@ -17,7 +19,7 @@ void ScaleReport::ReportRuns(const std::vector<Run>& runs)
         const long size = std::stol(name.substr(slash + 1));
         if (_rows.empty() || _rows.back().first != row) _rows.emplace_back(row, std::map<long, Measure>());
         Measure& measure = _rows.back().second[size];
-        measure.seconds = run.real_accumulated_time / static_cast<double>(run.iterations);
+        measure.seconds = run.cpu_accumulated_time / static_cast<double>(run.iterations);
         const auto peak = run.counters.find(kPeakBytesPerItem);
         if (peak != run.counters.end()) measure.peakBytesPerItem = peak->second.value;
         const auto held = run.counters.find(kHeldBytesPerItem);
@@ -27,43 +29,52 @@ void ScaleReport::ReportRuns(const std::vector<Run>& runs)
 
 int ScaleReport::printSummary() const
 {
+    std::set<long> sizes;
+    for (const auto& row : _rows)
+        for (const auto& size : row.second) sizes.insert(size.first);
+    std::vector<long> tenfold; // sizes whose tenfold is there too
+    for (long size : sizes)
+        if (sizes.count(size * 10)) tenfold.push_back(size);
+
+    std::printf("\nCPU time (ms) at each size, its growth from a size to ten times it (column x<size>; linear: 10, "
+                "target: at most %.0f), and the peak resident memory per item (joint or frame; in parentheses, what "
+                "the result holds after, at the largest size)\n%-24s",
+                kMaxGrowthPerTenfold, "operation/kind");
+    for (long size : sizes) std::printf(" %9ld", size);
+    for (long size : tenfold) std::printf(" %9s", ("x" + std::to_string(size)).c_str());
+    std::printf("  peak B/item at each size (held)\n");
+
     int over = 0;
-    std::printf("\nTime at each size, growth per tenfold size (linear: 10, target: at most %.0f), and peak resident "
-                "memory per item (joint or frame)\n",
-                kMaxGrowthPerTenfold);
-    std::printf("%-26s %10s %10s %10s %8s %8s   %s\n", "operation/kind", "1e3 (ms)", "1e4 (ms)", "1e5 (ms)",
-                "x 1e3>4", "x 1e4>5", "peak B/item at 1e3 1e4 1e5 (held after, at 1e5)");
-    for (const auto& [row, sizes] : _rows)
+    for (const auto& [row, measures] : _rows)
     {
-        std::printf("%-26s", row.c_str());
-        for (long size : {1000L, 10000L, 100000L})
+        std::printf("%-24s", row.c_str());
+        for (long size : sizes)
         {
-            const auto it = sizes.find(size);
-            if (it == sizes.end()) std::printf(" %10s", "-");
-            else std::printf(" %10.3f", it->second.seconds * 1e3);
+            const auto it = measures.find(size);
+            if (it == measures.end()) std::printf(" %9s", "-");
+            else std::printf(" %9.3f", it->second.seconds * 1e3);
         }
-        for (long size : {1000L, 10000L})
+        for (long size : tenfold)
         {
-            const auto small = sizes.find(size), large = sizes.find(size * 10);
-            if (small == sizes.end() || large == sizes.end() || small->second.seconds <= 0.0)
+            const auto small = measures.find(size), large = measures.find(size * 10);
+            if (small == measures.end() || large == measures.end() || small->second.seconds <= 0.0)
             {
-                std::printf(" %8s", "-");
+                std::printf(" %9s", "-");
                 continue;
             }
             const double growth = large->second.seconds / small->second.seconds;
             if (growth > kMaxGrowthPerTenfold) ++over;
-            std::printf(" %7.1f%s", growth, growth > kMaxGrowthPerTenfold ? "!" : " ");
+            std::printf(" %8.1f%s", growth, growth > kMaxGrowthPerTenfold ? "!" : " ");
         }
-        std::printf("  ");
-        for (long size : {1000L, 10000L, 100000L})
+        std::printf(" ");
+        for (long size : sizes)
         {
-            const auto it = sizes.find(size);
-            if (it == sizes.end()) std::printf(" %6s", "-");
+            const auto it = measures.find(size);
+            if (it == measures.end()) std::printf(" %6s", "-");
             else std::printf(" %6.0f", it->second.peakBytesPerItem);
         }
-        const auto largest = sizes.find(100000L);
-        if (largest != sizes.end() && largest->second.heldBytesPerItem > 0.0)
-            std::printf("  (%.0f)", largest->second.heldBytesPerItem);
+        if (!measures.empty() && measures.rbegin()->second.heldBytesPerItem > 0.0)
+            std::printf("  (%.0f)", measures.rbegin()->second.heldBytesPerItem);
         std::printf("\n");
     }
     if (over) std::printf("%d growth ratios above %.0f (marked !)\n", over, kMaxGrowthPerTenfold);

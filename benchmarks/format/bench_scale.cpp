@@ -7,6 +7,7 @@
  * (LargeInputs); run with OSG_LIBRARY_PATH=build/lib so that osgDB finds the plugins:
  *
  *     OSG_LIBRARY_PATH=build/lib build/bin/osgactor_scale_bench
+ *     OSG_LIBRARY_PATH=build/lib OSGACTOR_SCALE_SIZES=30000,100000,300000 build/bin/osgactor_scale_bench
  */
 #include "FrameLoop"
 #include "LargeInputs"
@@ -41,7 +42,19 @@ using namespace osgActor;
 
 namespace {
 
-const std::vector<int64_t> kSizes{1000, 10000, 100000};
+/** The sizes: 10^3, 10^4 and 10^5, or those OSGACTOR_SCALE_SIZES lists ("1000,100000,300000"), whose growth the
+  * summary gives where a size and ten times it are both there. */
+const std::vector<int64_t>& sizes()
+{
+    static const std::vector<int64_t> list = [] {
+        std::vector<int64_t> values;
+        std::istringstream in(std::getenv("OSGACTOR_SCALE_SIZES") ? std::getenv("OSGACTOR_SCALE_SIZES") : "");
+        for (std::string item; std::getline(in, item, ',');)
+            if (std::atol(item.c_str()) >= 2) values.push_back(std::atol(item.c_str()));
+        return values.empty() ? std::vector<int64_t>{1000, 10000, 100000} : values;
+    }();
+    return list;
+}
 
 /** The .actor text of a shape and size, made once. */
 const std::string& actorText(SkeletonShape shape, unsigned joints)
@@ -114,7 +127,7 @@ void registerActorBenchmarks(SkeletonShape shape)
     const std::string kind = std::string("/") + shapeName(shape);
     auto add = [&](const std::string& operation, auto function) {
         benchmark::RegisterBenchmark((operation + kind).c_str(), function)
-            ->ArgsProduct({kSizes})
+            ->ArgsProduct({sizes()})
             ->Unit(benchmark::kMillisecond);
     };
     auto joints = [](const benchmark::State& state) { return static_cast<unsigned>(state.range(0)); };
@@ -181,7 +194,7 @@ void registerMocapBenchmarks()
             if (!*result) result.reset();
             return result;
         });
-    })->ArgsProduct({kSizes})->Unit(benchmark::kMillisecond);
+    })->ArgsProduct({sizes()})->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("read_amc/frames", [=](benchmark::State& state) {
         std::istringstream asf(amcSkeletonText());
         const AsfImport skeleton = readAsf(asf, "11.asf");
@@ -192,7 +205,7 @@ void registerMocapBenchmarks()
             if (!*result) result.reset();
             return result;
         });
-    })->ArgsProduct({kSizes})->Unit(benchmark::kMillisecond);
+    })->ArgsProduct({sizes()})->Unit(benchmark::kMillisecond);
 }
 
 } // namespace

@@ -9,8 +9,8 @@
 #
 # Writes WORK/cpack (the .deb) and WORK/root (the package under WORK/root/usr). With OSGACTOR_PACKAGE_SYSTEM_INSTALL=1,
 # as root, it then installs the package into the system for real (dpkg -i: dependencies, postinst and all), runs
-# check-install.sh on /usr with nothing pointing at it (osgDB and CMake find it where they look by default), and
-# purges it again, even when a check fails. Not for a shared machine's test runs: for a packager, by hand.
+# check-install.sh on /usr (where CMake, pkg-config and osgDB look by default), and purges it again, even when a check
+# fails. Not for a shared machine's test runs: for a packager, by hand.
 set -euo pipefail
 build="$1" work="$2" libdir="$3" source="$4"
 rm -rf "$work"
