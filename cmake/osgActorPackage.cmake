@@ -15,17 +15,30 @@ if(_osgactor_libdir_is_system EQUAL -1)
     set(OSGACTOR_PLUGIN_INSTALL_RPATH "$ORIGIN/..")
 endif()
 
-# --- OpenSceneGraph as a target -----------------------------------------------------------------------------------
-# CMake's FindOpenSceneGraph gives paths, not targets. libosgActor's interface names this target instead of those
-# paths, so that the installed osgActor::OpenSceneGraph is filled by osgActorConfig.cmake with the OpenSceneGraph the
-# consumer's own find_package() finds, not with this machine's paths. The components are those osgActor's public
-# headers and library use (osg and OpenThreads come with any component).
-add_library(osgActorOpenSceneGraph INTERFACE)
-set_target_properties(osgActorOpenSceneGraph PROPERTIES EXPORT_NAME OpenSceneGraph)
-target_include_directories(osgActorOpenSceneGraph INTERFACE "$<BUILD_INTERFACE:${OPENSCENEGRAPH_INCLUDE_DIRS}>")
-target_link_libraries(osgActorOpenSceneGraph INTERFACE
-    "$<BUILD_INTERFACE:${OSGDB_LIBRARIES};${OSGUTIL_LIBRARIES};${OSG_LIBRARIES};${OPENTHREADS_LIBRARIES}>")
+# --- OpenSceneGraph as targets ------------------------------------------------------------------------------------
+# CMake's FindOpenSceneGraph gives paths, not targets. Our libraries' interfaces name targets made here instead of those
+# paths, so that, installed, osgActorConfig.cmake fills them with the OpenSceneGraph the consumer's own find_package()
+# finds, not with this machine's paths.
+# osgactor_openscenegraph_target(<target> <export name> <components...>): an INTERFACE target for those components (osg
+# and OpenThreads come with any), installed as osgActor::<export name>.
+function(osgactor_openscenegraph_target target export_name)
+    set(libraries)
+    foreach(component ${ARGN})
+        string(TOUPPER "${component}" upper)
+        list(APPEND libraries ${${upper}_LIBRARIES})
+    endforeach()
+    list(APPEND libraries ${OSG_LIBRARIES} ${OPENTHREADS_LIBRARIES})
+    add_library(${target} INTERFACE)
+    set_target_properties(${target} PROPERTIES EXPORT_NAME ${export_name})
+    target_include_directories(${target} INTERFACE "$<BUILD_INTERFACE:${OPENSCENEGRAPH_INCLUDE_DIRS}>")
+    target_link_libraries(${target} INTERFACE "$<BUILD_INTERFACE:${libraries}>")
+    install(TARGETS ${target} EXPORT osgActorTargets)
+    string(REPLACE ";" "," components "${ARGN}")
+    set_property(GLOBAL APPEND PROPERTY OSGACTOR_OSG_TARGETS "${export_name}:${components}")
+endfunction()
+# libosgActor's: what its public headers and the library use.
 set(OSGACTOR_OSG_INTERFACE_COMPONENTS osgDB osgUtil)
+osgactor_openscenegraph_target(osgActorOpenSceneGraph OpenSceneGraph ${OSGACTOR_OSG_INTERFACE_COMPONENTS})
 
 # --- Helpers consumers get from find_package(osgActor) --------------------------------------------------------------
 # osgactor_install_config_module(<file.cmake>): installs a CMake file beside osgActorConfig.cmake, which includes it
@@ -42,6 +55,7 @@ function(osgactor_install_package)
     set(config_dir "${CMAKE_INSTALL_LIBDIR}/cmake/osgActor")
     set(OSGACTOR_SUMMARY "OpenSceneGraph nodekit for synthetic actors: skeletons, DOFs, motion capture, clips, IK")
     get_property(OSGACTOR_CONFIG_MODULES GLOBAL PROPERTY OSGACTOR_CONFIG_MODULES)
+    get_property(OSGACTOR_OSG_TARGETS GLOBAL PROPERTY OSGACTOR_OSG_TARGETS)
 
     # The CMake package: find_package(osgActor) gives osgActor::osgActor (osgActorConfig.cmake.in).
     include(CMakePackageConfigHelpers)
@@ -49,7 +63,6 @@ function(osgactor_install_package)
         "${PROJECT_BINARY_DIR}/osgActorConfig.cmake" INSTALL_DESTINATION "${config_dir}")
     write_basic_package_version_file("${PROJECT_BINARY_DIR}/osgActorConfigVersion.cmake"
         COMPATIBILITY SameMinorVersion)
-    install(TARGETS osgActorOpenSceneGraph EXPORT osgActorTargets)
     install(EXPORT osgActorTargets NAMESPACE osgActor:: DESTINATION "${config_dir}")
     install(FILES "${PROJECT_BINARY_DIR}/osgActorConfig.cmake" "${PROJECT_BINARY_DIR}/osgActorConfigVersion.cmake"
         DESTINATION "${config_dir}")
@@ -81,7 +94,8 @@ function(osgactor_install_package)
     set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
     set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS_PRIVATE_DIRS "${PROJECT_BINARY_DIR}/lib")
     set(CPACK_DEBIAN_PACKAGE_GENERATE_SHLIBS ON)
-    set(CPACK_DEBIAN_PACKAGE_DEPENDS "libopenscenegraph-dev (>= 3.6), libglm-dev")
+    # libosmesa6-dev: osgActor::Offscreen's users link libOSMesa.so first (osgActor/Offscreen/CMakeLists.txt).
+    set(CPACK_DEBIAN_PACKAGE_DEPENDS "libopenscenegraph-dev (>= 3.6), libglm-dev, libosmesa6-dev")
     set(CPACK_GENERATOR "DEB")
     include(CPack)
 endfunction()

@@ -31,7 +31,7 @@ dpkg-deb --info "$deb"
 # Every dependency is met by what this machine has installed (the libraries dpkg-shlibdeps found, and the -dev
 # packages whose headers a consumer compiles against).
 depends="$(dpkg-deb --field "$deb" Depends)"
-for required in "libopenscenegraph-dev " "libglm-dev" "libopenscenegraph[0-9]" "libosmesa"; do
+for required in "libopenscenegraph-dev " "libglm-dev" "libosmesa6-dev" "libopenscenegraph[0-9]"; do
     grep -q "$required" <<<"$depends" || fail "Depends names no $required: $depends"
 done
 dpkg-checkbuilddeps -d "$depends" /dev/null || fail "this machine does not have what the package depends on"
@@ -49,6 +49,7 @@ grep -qx "Status: install ok unpacked" <<<"$("${dpkg[@]}" --status osgactor)" ||
 # What dpkg installed is laid out as OSG is: headers, library, plugins, tools, package files.
 listing="$("${dpkg[@]}" --listfiles osgactor)"
 for path in /usr/include/osgActor/ActorNode "/usr/$libdir/libosgActor.so.0" "/usr/$libdir/libosgActor.so" \
+    "/usr/$libdir/libosgActorOffscreen.so.0" "/usr/$libdir/cmake/osgActor/osgActorRenderTest.cmake" \
     "/usr/$libdir/osgPlugins-[0-9.]*/osgdb_actor.so" "/usr/$libdir/cmake/osgActor/osgActorConfig.cmake" \
     "/usr/$libdir/pkgconfig/osgActor.pc" /usr/bin/osgactorconv /usr/bin/osgactorrender /usr/bin/osgactorviewer; do
     grep -qx "$path" <<<"$listing" || fail "the package installs no $path"
