@@ -2,7 +2,7 @@
  * through OSG's own recursive traversals and formats; and osgUtil::Optimizer, which osgviewer and osgconv run on every
  * file they load, leaving every joint in place. Removing joints one by one from a wide parent was the work that grew
  * with the square of the joint count, so these tests catch that regression by structure, not by time; the time per
- * joint at 10^3 to 10^5 joints is measured by osgactor_format_bench (docs/performance.md, "Large actors"). */
+ * joint at 10^3 to 10^5 joints is measured by osgactor_scale_bench (docs/performance.md, "Large actors and long motion"). */
 #include <osgActor/ActorNode>
 #include <osgActor/ActorSceneIO>
 #include <osgActor/SkeletonNode>
