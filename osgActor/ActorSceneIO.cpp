@@ -2,7 +2,9 @@
 #include <osgActor/ActorSceneIO>
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/GlmOsg>
+#include <osgActor/RiggedModelActor>
 #include <osgActor/io/ActorSyntax>
+#include <osgActor/io/ClipRetarget>
 #include <osgActor/mocap/MotionFile>
 #include <osgActor/mocap/TrajectoryCsv>
 
@@ -53,6 +55,50 @@ osg::ref_ptr<osg::Node> loadModel(const GeometryDescription& model, const std::s
     osg::ref_ptr<osg::Node> node = osgDB::readRefNodeFile(path, options);
     if (!node) error = where(fileName, model.line) + "cannot read the model file '" + path + "'";
     return node;
+}
+
+/** Puts the skins of the document's rigged model files below the actor, in its model space; false and an error
+  * (naming fileName and the skin statement's line) when a file cannot be found or read or a skin does not fit. */
+bool attachSkins(ActorNode& actor, const ActorDocument& document, const std::string& fileName,
+                 const osgDB::Options* options, std::string& error)
+{
+    for (const SkinFileDocument& skin : document.skinFiles)
+    {
+        const std::string path = findNamedFile(skin.file, "skin file", options, where(fileName, skin.line), error);
+        if (path.empty()) return false;
+        std::string why;
+        const osg::ref_ptr<osg::Geode> skins = readRiggedModelSkins(path, skin.file, *actor.getDefinition(), why);
+        if (!skins)
+        {
+            error = where(fileName, skin.line) + why;
+            return false;
+        }
+        actor.addChild(skins.get());
+    }
+    return true;
+}
+
+/** Adds the rigged model files whose skins hang below the actor (readRiggedModelSkins(), readRiggedModelActor()) to
+  * a document; skinned meshes of another origin cannot be described by the format: left out with a warning. */
+void addSkinFiles(const ActorNode& actor, ActorDocument& document)
+{
+    for (unsigned c = 0; c < actor.getNumChildren(); ++c)
+    {
+        const osg::Node* child = actor.getChild(c);
+        if (dynamic_cast<const SkeletonNode*>(child)) continue;
+        const std::string file = getSkinsNodeFile(*child);
+        if (!file.empty())
+        {
+            if (std::none_of(document.skinFiles.begin(), document.skinFiles.end(),
+                             [&](const SkinFileDocument& skin) { return skin.file == file; }))
+                document.skinFiles.push_back(SkinFileDocument{file, 0});
+            continue;
+        }
+        if (!findSkinnedMeshes(*const_cast<osg::Node*>(child)).empty())
+            OSG_WARN << "osgActor: writing actor '" << document.name << "': its " << child->className() << " '"
+                     << child->getName() << "' holds skinned meshes that no rigged model file describes; they are "
+                        "left out (write .osgt to keep them)" << std::endl;
+    }
 }
 
 /** The instance state a joint of the document carries: its current DOF values and hide flag. */
@@ -120,7 +166,8 @@ std::string mismatchWithActor(const MocapImport& imported, const ActorDefinition
 /** Reads the clips of the document whose motion is in a file (ClipDocument::file), found like model files (next
   * to the .actor file first); false and an error naming the .actor file and the clip's line when one cannot be read
   * or would not drive the actor. */
-bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& actor, const std::string& fileName,
+bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinitionPtr& actor,
+                   const std::vector<SyntaxStatement>& sections, const std::string& fileName,
                    const osgDB::Options* options, std::string& error)
 {
     for (ClipDocument& clip : clips)
@@ -148,7 +195,14 @@ bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& acto
             error = prefix + "'" + path + "' holds no motion";
             return false;
         }
-        const std::string mismatch = mismatchWithActor(imported, actor);
+        if (clip.retarget.enabled)
+        {
+            clip.clip = retargetClipForActor(imported, actor, clip.retarget, sections, fileName, error);
+            if (!clip.clip) error = where(fileName, clip.retarget.line) + "clip '" + clip.name() + "': " + error;
+            if (!clip.clip) return false;
+            continue;
+        }
+        const std::string mismatch = mismatchWithActor(imported, *actor);
         if (!mismatch.empty())
         {
             error = prefix + "'" + path + "' does not fit the actor: " + mismatch;
@@ -378,8 +432,10 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         applyJointState(*actor, static_cast<unsigned>(index), joint);
         if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
+    if (!attachSkins(*actor, document, fileName, local.get(), result.error)) return result;
     ActorDocument withFilesRead = document;
-    if (!readClipFiles(withFilesRead.clips, *definition, fileName, local.get(), result.error)) return result;
+    if (!readClipFiles(withFilesRead.clips, definition, document.sections, fileName, local.get(), result.error))
+        return result;
     if (!readTrajectoryFiles(withFilesRead.trajectories, fileName, local.get(), result.error)) return result;
     applyClips(*actor, withFilesRead);
     applyTrajectories(*actor, withFilesRead);
@@ -438,6 +494,7 @@ ActorDocument extractActorDocument(const ActorNode& actor)
         }
     }
 
+    addSkinFiles(actor, document);
     addClips(actor, document);
     addTrajectories(actor, document);
     addPlayers(actor, document);

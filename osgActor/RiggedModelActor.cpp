@@ -3,6 +3,7 @@
 #include <osgActor/GlmOsg>
 #include <osgActor/RiggedGeometry>
 #include <osgActor/StickFigure>
+#include <osgActor/core/skin/SkinBinding>
 #include <osgActor/import/RiggedModelFile>
 
 #include <osg/Geode>
@@ -52,12 +53,12 @@ void addRigidMeshes(ActorNode& actor, const RiggedActor& rigged, MaterialStates&
     }
 }
 
-/** Puts a SkinnedMesh per skinned primitive in a Geode below the actor, in its model space; returns them. */
-std::vector<osg::ref_ptr<SkinnedMesh>> addSkinnedMeshes(ActorNode& actor, const RiggedActor& rigged,
-                                                        MaterialStates& states, SkinnedMesh::SkinningPath path)
+/** A Geode named "skins" holding a SkinnedMesh per skinned primitive, skinned where path says; null when the model
+  * has no skin. Its drawables go below an actor, in its model space. */
+osg::ref_ptr<osg::Geode> createSkinsGeode(const RiggedActor& rigged, MaterialStates& states,
+                                          SkinnedMesh::SkinningPath path)
 {
-    std::vector<osg::ref_ptr<SkinnedMesh>> meshes;
-    if (rigged.skins.empty()) return meshes;
+    if (rigged.skins.empty()) return nullptr;
     osg::ref_ptr<osg::Geode> geode = new osg::Geode;
     geode->setName("skins");
     for (const SkinnedPrimitive& skinned : rigged.skins)
@@ -66,10 +67,8 @@ std::vector<osg::ref_ptr<SkinnedMesh>> addSkinnedMeshes(ActorNode& actor, const 
         mesh->setSkinningPath(path);
         mesh->setStateSet(states.of(rigged.model->meshes[skinned.mesh].primitives[skinned.primitive].material));
         geode->addDrawable(mesh.get());
-        meshes.push_back(mesh);
     }
-    actor.addChild(geode.get());
-    return meshes;
+    return geode;
 }
 
 /** The clip of that name, or the first; null when there is none of that name. */
@@ -82,6 +81,55 @@ ClipPtr chooseClip(const RiggedActor& rigged, const std::string& name)
 }
 
 } // namespace
+
+const char* const kSkinsNodeDescriptionPrefix = "osgActor:skins ";
+
+std::string getSkinsNodeFile(const osg::Node& node)
+{
+    const std::string prefix = kSkinsNodeDescriptionPrefix;
+    for (const std::string& text : node.getDescriptions())
+        if (text.compare(0, prefix.size(), prefix) == 0) return text.substr(prefix.size());
+    return std::string();
+}
+
+osg::ref_ptr<osg::Geode> readRiggedModelSkins(const std::string& path, const std::string& fileName,
+                                              const ActorDefinition& definition, std::string& error)
+{
+    const RiggedModelRead read = readRiggedModelFile(path);
+    if (!read)
+    {
+        error = read.error;
+        return nullptr;
+    }
+    // The options readRiggedModelActor() builds with by default: the skins' inverse bind matrices depend on where
+    // the root scale goes (not on the up axis, which turns the definition's roots only).
+    const RiggedActor rigged = buildRiggedActor(read.model, RiggedActorOptions());
+    if (!rigged)
+    {
+        error = rigged.error;
+        return nullptr;
+    }
+    if (rigged.skins.empty())
+    {
+        error = path + ": the file has no skinned mesh";
+        return nullptr;
+    }
+    for (const SkinnedPrimitive& skinned : rigged.skins)
+    {
+        const SkinBinding binding = bindSkinToDefinition(*skinned.skin, definition);
+        if (!binding)
+        {
+            error = path + ": " + binding.error;
+            return nullptr;
+        }
+    }
+    for (const std::string& warning : read.warnings) OSG_WARN << "osgActor: " << warning << std::endl;
+    for (const std::string& warning : rigged.warnings) OSG_WARN << "osgActor: " << warning << std::endl;
+    MaterialStates states(*rigged.model);
+    osg::ref_ptr<osg::Geode> geode = createSkinsGeode(rigged, states, SkinnedMesh::GPU_SKINNING);
+    geode->addDescription(kSkinsNodeDescriptionPrefix + fileName);
+    return geode;
+}
 
 bool parseRiggedModelOptionString(const std::string& text, RiggedModelActorOptions& options, std::string& error)
 {
@@ -173,7 +221,14 @@ RiggedModelActor readRiggedModelActor(const std::string& path, const RiggedModel
     }
     MaterialStates states(*rigged.model);
     addRigidMeshes(*actor, rigged, states);
-    result.skinnedMeshes = addSkinnedMeshes(*actor, rigged, states, options.skinning);
+    const osg::ref_ptr<osg::Geode> skins = createSkinsGeode(rigged, states, options.skinning);
+    if (skins.valid())
+    {
+        if (options.rootScale == RootScale::AboveActor) skins->addDescription(kSkinsNodeDescriptionPrefix + path);
+        for (unsigned i = 0; i < skins->getNumDrawables(); ++i)
+            result.skinnedMeshes.push_back(static_cast<SkinnedMesh*>(skins->getDrawable(i)));
+        actor->addChild(skins.get());
+    }
     if (options.addFigure) addStickFigure(*actor);
 
     result.actor = actor;

@@ -175,7 +175,6 @@ void SkinnedMesh::setUp()
             OSG_WARN << "osgActor: skinned mesh '" << getName() << "': a skin of " << _skin->getNumJoints()
                      << " joints with more than 4 influences per vertex is skinned on the CPU (the GPU path packs two "
                         "joints of at most 4096 in one float)" << std::endl;
-            _path = CPU_SKINNING;
         }
     }
     else if (_skin && _surface)
@@ -183,6 +182,11 @@ void SkinnedMesh::setUp()
         OSG_WARN << "osgActor: skinned mesh '" << getName() << "' cannot be drawn: " << _setupError << std::endl;
     }
     dirtyBound();
+}
+
+bool SkinnedMesh::gpuCanSkin() const
+{
+    return !(_programKey.influences == 8 && _skin && _skin->getNumJoints() > 4096);
 }
 
 osg::Geometry* SkinnedMesh::getBindPoseGeometry(SkinningProfile profile)
@@ -347,7 +351,8 @@ void SkinnedMesh::cull(osgUtil::CullVisitor& cv, ActorNode& actor)
 
     const unsigned frame = frameOf(cv);
     const SkinningProfile profile = skinningProfileOf(cv.getState());
-    const SkinningPath path = instance->hasOwnPath ? instance->ownPath : _path;
+    const SkinningPath chosen = instance->hasOwnPath ? instance->ownPath : _path;
+    const SkinningPath path = gpuCanSkin() ? chosen : CPU_SKINNING;
     StateSetPusher states(cv);
     states.push(getStateSet());
     osg::Geometry* geometry = nullptr;

@@ -1,6 +1,7 @@
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/io/ActorNumbers>
 #include <osgActor/io/ActorReader>
+#include <osgActor/io/JointMapSection>
 #include <osgActor/mocap/MotionFile>
 
 #include <glm/ext/scalar_constants.hpp>
@@ -212,6 +213,7 @@ private:
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
             else if (k == "bounds") ok = once(seen, s) && readBounds(s, document.boundsCoverRotations);
+            else if (k == "skin") ok = readSkinFile(s, document);
             else if (isMotionSection(k)) ok = readMotionSection(s, document);
             else if (isReservedSection(k))
             {
@@ -221,6 +223,18 @@ private:
             else return unknownKeyword(s, "in an actor");
             if (!ok) return false;
         }
+        return true;
+    }
+
+    /** "skin "file"": a rigged model file whose skins the actor wears (read when the actor is made). */
+    bool readSkinFile(const SyntaxStatement& s, ActorDocument& document)
+    {
+        if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
+        const std::string& file = s.arguments.front().text;
+        if (file.empty()) return fail(s.line, "'skin' needs a file name");
+        for (const SkinFileDocument& other : document.skinFiles)
+            if (other.file == file) return fail(s.line, "skin file '" + file + "' is given twice");
+        document.skinFiles.push_back(SkinFileDocument{file, s.line});
         return true;
     }
 
@@ -856,6 +870,11 @@ private:
                 if (!once(seen, c) || !readClipFile(c, clip)) return false;
                 continue;
             }
+            if (c.keyword == "retarget")
+            {
+                if (!once(seen, c) || !readClipRetarget(c, _fileName, clip.retarget, _error)) return false;
+                continue;
+            }
             const bool isChannel = c.keyword == "channel";
             if (!isChannel && c.keyword != "frame_rate" && c.keyword != "channels" && c.keyword != "frame")
                 return unknownKeyword(c, "in a clip");
@@ -863,6 +882,8 @@ private:
             uniform = uniform || !isChannel;
             if (keyed && uniform) return fail(c.line, "a clip has either 'channel' blocks or frames, not both");
         }
+        if (clip.retarget.enabled && clip.file.empty())
+            return fail(clip.retarget.line, "'retarget' is for a clip whose motion is in a file");
         if (!clip.file.empty())
         {
             if (keyed || uniform)
@@ -916,6 +937,7 @@ ActorReadResult readActor(std::istream& in, const std::string& fileName)
         result.error = built.error;
         return result;
     }
+    if (!checkActorJointMaps(document.sections, *built.definition, fileName, result.error)) return result;
     if (!reader.readClips(*built.definition, document))
     {
         result.error = reader.error();

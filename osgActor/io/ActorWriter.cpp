@@ -146,6 +146,7 @@ SyntaxStatement clipStatement(const ClipDocument& document)
     if (!document.file.empty())
     {
         s.children.push_back(clipFileStatement(document.file, document.fileOptions));
+        if (document.retarget.enabled) s.children.push_back(clipRetargetStatement(document.retarget));
         return s;
     }
     const Clip& clip = *document.clip;
@@ -334,6 +335,8 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     if (document.blocked) actor.children.push_back(statement("blocked"));
     if (!document.boundsCoverRotations) actor.children.push_back(statement("bounds", {word("follows_pose")}));
     JointTreeWriter(document).write(actor.children);
+    for (const SkinFileDocument& skin : document.skinFiles)
+        actor.children.push_back(statement("skin", {SyntaxArgument{skin.file, true, 0}}));
     for (const ClipDocument& clip : document.clips)
         if (clip.clip || !clip.file.empty()) actor.children.push_back(clipStatement(clip));
     for (const TrajectoryDocument& trajectory : document.trajectories)

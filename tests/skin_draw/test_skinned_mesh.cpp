@@ -218,3 +218,19 @@ TEST(SkinnedMesh, PutsItsInfluencesInSlotsNoArrayOfTheMeshAliases)
         }
     }
 }
+
+TEST(SkinnedMesh, ASkinOfMoreThan4096JointsWithEightInfluencesIsSkinnedOnTheCpu)
+{
+    // The GPU path packs two joint indices below 4096 in one float; beyond, the CPU path draws, whatever is asked.
+    SyntheticActor large = makeRandomActor(4100, 30, 8, 9u);
+    ASSERT_EQ(large.mesh->getProgramKey(SkinningProfile::Compatibility).influences, 8u);
+    large.mesh->setSkinningPath(*large.actor, SkinnedMesh::GPU_SKINNING);
+    FrameDriver driver(large.actor.get());
+    driver.lookAt(osg::Vec3d(0, -6, 0), osg::Vec3d(0, 0, 0), osg::Vec3d(0, 0, 1), 60.0);
+    driver.frame(0.0);
+    const std::vector<const osg::Drawable*> drawn = driver.culledDrawables();
+    ASSERT_EQ(drawn.size(), 1u);
+    EXPECT_NE(drawn[0], large.mesh->getBindPoseGeometry(SkinningProfile::Compatibility));
+    EXPECT_EQ(large.mesh->getStatistics(*large.actor).cpuSkinnings, 1u);
+    EXPECT_EQ(large.mesh->getStatistics(*large.actor).paletteUploads, 0u);
+}
