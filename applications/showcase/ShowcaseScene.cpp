@@ -22,11 +22,11 @@ namespace osgActorShowcase {
 namespace {
 
 // The stage, metres, Z up; the default camera looks from -Y.
-const osg::Vec3d kDancerSpot(0.0, 1.5, 0.0);
-const osg::Vec3d kInsectArea(6.6, 2.0, 0.0);
+const osg::Vec3d kDancerSpot(0.0, 1.3, 0.0);
+const osg::Vec3d kInsectArea(4.4, 1.3, 0.0);
 const double kInsectScale = 0.8;
 const int kSunLightNumber = 1; // the viewer's headlight is 0
-// Texels of the shadow map each way: over the casters' bound (about 14 m across), a texel of about 7 mm.
+// Texels of the shadow map each way: over the casters' bound (about 10 m across), a texel of about 5 mm.
 const int kShadowMapSize = 2048;
 
 osg::ref_ptr<osg::Material> makeMaterial(const osg::Vec4& colour)
@@ -92,7 +92,9 @@ osg::ref_ptr<osg::LightSource> makeSun(osg::StateSet& rootState)
     osg::ref_ptr<osg::LightSource> sun = new osg::LightSource;
     sun->setName("sun");
     sun->setLight(light.get());
-    sun->setReferenceFrame(osg::LightSource::ABSOLUTE_RF);
+    // Relative to the frame above it (the scene's root: world space), so that it stays put as the camera moves and
+    // the shadows fall the same way from every view.
+    sun->setReferenceFrame(osg::LightSource::RELATIVE_RF);
     sun->setLocalStateSetModes(osg::StateAttribute::ON);
     sun->setStateSetModes(rootState, osg::StateAttribute::ON);
     return sun;
@@ -115,12 +117,12 @@ osg::ref_ptr<osg::Group> makeObstacles()
     const osg::Vec4 crate(0.6f, 0.42f, 0.22f, 1.0f);
     for (double side : {-1.0, 1.0})
     {
-        const osg::Vec3d centre = kInsectArea + osg::Vec3d(side * 1.5, 0.0, 0.0);
+        const osg::Vec3d centre = kInsectArea + osg::Vec3d(side * 1.0, 0.0, 0.0);
         obstacles->addChild(makeShape(new osg::Sphere(osg::Vec3(centre), 0.32f), rock));
     }
-    obstacles->addChild(makeShape(new osg::Box(osg::Vec3(kInsectArea + osg::Vec3d(0.0, 2.1, 0.3)), 0.6f), crate));
-    obstacles->addChild(makeShape(new osg::Box(osg::Vec3(kInsectArea + osg::Vec3d(0.4, -2.0, 0.2)), 0.4f), crate));
-    obstacles->addChild(makeShape(new osg::Cylinder(osg::Vec3(kInsectArea + osg::Vec3d(3.3, 1.3, 0.4)), 0.15f, 0.8f),
+    obstacles->addChild(makeShape(new osg::Box(osg::Vec3(kInsectArea + osg::Vec3d(0.0, 1.5, 0.3)), 0.6f), crate));
+    obstacles->addChild(makeShape(new osg::Box(osg::Vec3(kInsectArea + osg::Vec3d(0.3, -1.4, 0.2)), 0.4f), crate));
+    obstacles->addChild(makeShape(new osg::Cylinder(osg::Vec3(kInsectArea + osg::Vec3d(2.4, 0.9, 0.4)), 0.15f, 0.8f),
                                   rock));
     return obstacles;
 }
@@ -139,8 +141,8 @@ osg::ref_ptr<osg::Group> makeWalker(const ShowcaseSources& sources)
     osg::ref_ptr<osg::Group> group = new osg::Group;
     group->setName("walker");
     osg::ref_ptr<PathWalker> walker = new PathWalker;
-    const double a = 3.0;
-    const double b = 2.0;
+    const double a = 2.0;
+    const double b = 1.2;
     // Anticlockwise round the dancer, at the speed the walker's walk suits.
     walker->setPath(makeStoredLoop(
         "walker round the dancer",
@@ -163,15 +165,15 @@ osg::ref_ptr<osg::Group> makeWanderingInsect(const std::string& file)
     group->setName("wandering insect");
     group->getOrCreateStateSet()->setMode(GL_RESCALE_NORMAL, osg::StateAttribute::ON);
     osg::ref_ptr<TripodGait> gait = new TripodGait;
-    // A figure of eight round the two rocks, at 0.35 m/s (in the world).
+    // A figure of eight round the two rocks, at 0.3 m/s (in the world).
     gait->setPath(makeStoredLoop(
         "insect among the rocks",
         [](double s) {
             const double t = 2.0 * osg::PI * s;
-            const osg::Vec3d world = kInsectArea + osg::Vec3d(2.6 * std::sin(t), 1.4 * std::sin(2.0 * t), 0.0);
+            const osg::Vec3d world = kInsectArea + osg::Vec3d(1.8 * std::sin(t), 0.9 * std::sin(2.0 * t), 0.0);
             return world / kInsectScale;
         },
-        0.35 / kInsectScale));
+        0.3 / kInsectScale));
     gait->setCycleDuration(0.7);
     gait->setStepHeight(0.1);
     group->setUpdateCallback(gait.get());
@@ -205,7 +207,7 @@ osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources)
     root->setReceivesShadowTraversalMask(kReceivesShadowMask);
     root->setCastsShadowTraversalMask(kCastsShadowMask);
     root->addChild(makeSun(*root->getOrCreateStateSet()).get());
-    osg::ref_ptr<osg::Geode> floor = makeFloor(osg::Vec3d(2.0, 2.0, 0.0), 18, 11);
+    osg::ref_ptr<osg::Geode> floor = makeFloor(osg::Vec3d(1.8, 1.3, 0.0), 16, 10);
     floor->setNodeMask(kReceivesShadowMask);
     root->addChild(floor.get());
     root->addChild(makeObstacles().get());
