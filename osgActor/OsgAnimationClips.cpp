@@ -191,28 +191,39 @@ public:
         return matrix;
     }
 
-    /** The union of the elements' key times, and whether every animated element steps. */
-    std::vector<double> keyTimes(bool& allStep) const
+    /** Whether every animated element steps. */
+    bool allStep() const
+    {
+        return std::all_of(elements.begin(), elements.end(), [](const AnimatedElement& e) { return e.step; });
+    }
+
+    /** The times the stacked transform is smooth between, sorted: the elements' key times and, beside the keys of
+      * step channels, the times one unit in the last place away where osgAnimation's steps change (just after an
+      * inner key, whose own time still shows the key before; just before the last key, whose time shows it), so
+      * that the samples hold the value on either side of each change exactly. */
+    std::vector<double> breakpoints() const
     {
         std::set<double> times;
-        allStep = true;
         for (const AnimatedElement& element : elements)
         {
             times.insert(element.times.begin(), element.times.end());
-            allStep = allStep && element.step;
+            if (!element.step || element.times.size() < 2) continue;
+            for (std::size_t k = 1; k + 1 < element.times.size(); ++k)
+                times.insert(std::nextafter(element.times[k], std::numeric_limits<double>::infinity()));
+            times.insert(std::nextafter(element.times.back(), -std::numeric_limits<double>::infinity()));
         }
         return std::vector<double>(times.begin(), times.end());
     }
 };
 
-/** Samples a stacked transform into channels of its node: exact at key times; between them, evenly spaced samples,
-  * as few as keep the linear (spherical for rotations) interpolation within tolerance. Returns whether the cap on
-  * samples was reached. */
+/** Samples a stacked transform into channels of its node: exact at its breakpoints (key times); between them,
+  * evenly spaced samples, as few as keep the linear (spherical for rotations) interpolation within tolerance. Returns
+  * whether the cap on samples was reached. */
 bool sampleStack(const AnimatedStack& stack, int node, const RiggedNode& rest, double tolerance, double lever,
-                 RiggedAnimation& animation)
+                 const std::string& place, RiggedAnimation& animation)
 {
-    bool allStep = true;
-    const std::vector<double> keys = stack.keyTimes(allStep);
+    const bool allStep = stack.allStep();
+    const std::vector<double> keys = stack.breakpoints();
     std::vector<double> times;
     std::vector<Pose> poses;
     bool capped = false;
@@ -222,11 +233,10 @@ bool sampleStack(const AnimatedStack& stack, int node, const RiggedNode& rest, d
         poses.push_back(poseOf(stack.at(keys[k])));
         if (allStep || k + 1 == keys.size()) continue;
         const double t0 = keys[k], t1 = keys[k + 1];
+        if (std::nextafter(t0, t1) == t1) continue; // one unit in the last place: nothing between
         const Pose first = poses.back(), last = poseOf(stack.at(t1));
-        std::vector<Pose> inner;
         for (unsigned pieces = 1;; pieces *= 2)
         {
-            inner.clear();
             std::vector<Pose> ends{first};
             for (unsigned i = 1; i < pieces; ++i) ends.push_back(poseOf(stack.at(t0 + (t1 - t0) * i / pieces)));
             ends.push_back(last);
@@ -245,35 +255,63 @@ bool sampleStack(const AnimatedStack& stack, int node, const RiggedNode& rest, d
             if (worst <= tolerance || pieces * 2 > kMaxPieces)
             {
                 capped = capped || worst > tolerance;
-                inner.assign(ends.begin() + 1, ends.end() - 1);
-                for (unsigned i = 1; i < pieces; ++i) times.push_back(t0 + (t1 - t0) * i / pieces);
+                for (unsigned i = 1; i < pieces; ++i)
+                {
+                    times.push_back(t0 + (t1 - t0) * i / pieces);
+                    poses.push_back(ends[i]);
+                }
                 break;
             }
         }
-        poses.insert(poses.end(), inner.begin(), inner.end());
     }
-    // A part that never leaves its rest value is not a channel (no needless DOFs).
-    bool moves[3] = {false, false, false};
     for (const Pose& pose : poses)
-    {
-        moves[0] = moves[0] || glm::length(pose.translation - rest.translation) > 1e-12 * (1.0 + glm::length(rest.translation));
-        moves[1] = moves[1] || angleBetween(pose.rotation, rest.rotation) > 1e-9;
-        moves[2] = moves[2] || glm::length(pose.scale - rest.scale) > 1e-9 * glm::length(rest.scale);
-    }
+        if (!std::isfinite(pose.translation.x + pose.translation.y + pose.translation.z + pose.rotation.x +
+                           pose.rotation.y + pose.rotation.z + pose.rotation.w + pose.scale.x + pose.scale.y +
+                           pose.scale.z))
+            throw Refusal(place, "the animated transform of '" + rest.name + "' is not finite");
+    const glm::dvec4 restParts[3] = {glm::dvec4(rest.translation, 0.0),
+                                     glm::dvec4(rest.rotation.x, rest.rotation.y, rest.rotation.z, rest.rotation.w),
+                                     glm::dvec4(rest.scale, 0.0)};
     const AnimationPath paths[3] = {AnimationPath::Translation, AnimationPath::Rotation, AnimationPath::Scale};
     for (int part = 0; part < 3; ++part)
     {
-        if (!moves[part]) continue;
+        auto value = [&](std::size_t i) {
+            const Pose& pose = poses[i];
+            return part == 0   ? glm::dvec4(pose.translation, 0.0)
+                   : part == 1 ? glm::dvec4(pose.rotation.x, pose.rotation.y, pose.rotation.z, pose.rotation.w)
+                               : glm::dvec4(pose.scale, 0.0);
+        };
+        // Scales that differ by less than float matrices resolve are the same.
+        auto differ = [&](const glm::dvec4& a, const glm::dvec4& b) {
+            if (part == 1) return angleBetween(glm::dquat(a.w, a.x, a.y, a.z), glm::dquat(b.w, b.x, b.y, b.z)) > 1e-9;
+            return glm::length(a - b) > (part == 2 ? 1e-6 : 1e-12) * (1.0 + glm::length(b));
+        };
+        // A part that never leaves its rest value is no channel (no needless DOFs). Scale counts at the breakpoints
+        // only: between them, the shrink of an element-wise matrix interpolation is no scale the file holds.
+        bool moves = false, jumps = false, glides = false;
+        for (std::size_t i = 0; i < poses.size(); ++i)
+        {
+            if (part != 2 || std::binary_search(keys.begin(), keys.end(), times[i]))
+                moves = moves || differ(value(i), restParts[part]);
+            if (i + 1 == poses.size() || !differ(value(i), value(i + 1))) continue;
+            if (std::nextafter(times[i], times[i + 1]) == times[i + 1]) jumps = true;
+            else glides = true;
+        }
+        if (!moves) continue;
         AnimationChannel channel;
         channel.node = node;
         channel.path = paths[part];
-        channel.interpolation = allStep ? KeyInterpolation::Step : KeyInterpolation::Linear;
-        channel.times = times;
-        for (const Pose& pose : poses)
-            channel.values.push_back(part == 0   ? glm::dvec4(pose.translation, 0.0)
-                                     : part == 1 ? glm::dvec4(pose.rotation.x, pose.rotation.y, pose.rotation.z,
-                                                              pose.rotation.w)
-                                                 : glm::dvec4(pose.scale, 0.0));
+        // What only jumps is a step; what only glides is linear; a part that does both (a step channel in a stack
+        // with smooth ones) is linear without the samples beside the steps, its steps turned into ramps as short
+        // as a sampled piece.
+        channel.interpolation = allStep || !glides ? KeyInterpolation::Step : KeyInterpolation::Linear;
+        for (std::size_t i = 0; i < poses.size(); ++i)
+        {
+            const bool besideStep = i > 0 && std::nextafter(times[i - 1], times[i]) == times[i];
+            if (jumps && glides && besideStep) continue;
+            channel.times.push_back(times[i]);
+            channel.values.push_back(value(i));
+        }
         animation.channels.push_back(std::move(channel));
     }
     return capped;
@@ -290,7 +328,8 @@ glm::dmat4 restStackMatrix(const StackedTransform& stack)
 }
 
 void readAnimations(const AnimationManagerBase& manager, const std::multimap<std::string, StackTarget>& targets,
-                    double tolerance, double lever, RiggedModel& model, std::vector<std::string>& warnings)
+                    double tolerance, const std::vector<double>& levers, RiggedModel& model,
+                    std::vector<std::string>& warnings)
 {
     const AnimationList& list = manager.getAnimationList();
     for (std::size_t a = 0; a < list.size(); ++a)
@@ -360,7 +399,8 @@ void readAnimations(const AnimationManagerBase& manager, const std::multimap<std
                                       "key times are not strictly increasing at key " + std::to_string(k));
                 animated.elements.push_back(driven);
             }
-            if (sampleStack(animated, entry.first, model.nodes[entry.first], tolerance, lever, animation))
+            if (sampleStack(animated, entry.first, model.nodes[entry.first], tolerance, levers[entry.first], place,
+                            animation))
                 warnings.push_back(place + ": the motion of '" + model.nodes[entry.first].name +
                                    "' is resampled with the most samples allowed and strays more than the tolerance");
         }

@@ -31,6 +31,10 @@ std::string describe(const osg::Object& object)
 
 namespace {
 
+/** How far (a fraction of the model's height) a sampled animated transform may stray from osgAnimation's between
+  * the samples: RiggedActorOptions' default resampling tolerance. */
+constexpr double kTolerance = 1e-5;
+
 /** The deepest scene graph the converter follows (a deeper one is refused, never overflows the stack). */
 constexpr std::size_t kMaxDepth = 4096;
 
@@ -60,8 +64,7 @@ public:
             warn(std::to_string(_leftOut) + " drawables outside every osgAnimation::Skeleton are left out");
         const double height = modelHeight();
         for (const PendingRig& rig : _rigs) skin(rig);
-        if (_manager)
-            readAnimations(*_manager, _targets, 1e-6 * height, height, _model, _warnings);
+        if (_manager) readAnimations(*_manager, _targets, kTolerance * height, levers(height), _model, _warnings);
         for (std::size_t a = 0; a < _model.animations.size(); ++a)
             if (const double moved = startAnimationAtZero(_model.animations[a]))
                 warn("animations[" + std::to_string(a) + "]: its keys start at " + std::to_string(-moved) +
@@ -251,6 +254,29 @@ private:
                     }
         height = std::max({height, high.x - low.x, high.y - low.y, high.z - low.z});
         return height > 0.0 && std::isfinite(height) ? height : 1.0;
+    }
+
+    /** Per node, how far what it carries reaches in the rest pose: the farthest node or vertex below it, at least a
+      * tenth of the model's height (scene units). */
+    std::vector<double> levers(double height) const
+    {
+        const std::size_t count = _model.nodes.size();
+        std::vector<glm::dvec3> positions(count);
+        for (std::size_t n = 0; n < count; ++n) positions[n] = glm::dvec3(restSceneMatrix(_model, int(n))[3]);
+        std::vector<double> lever(count, 0.1 * height);
+        auto reach = [&](int from, const glm::dvec3& point) {
+            for (int a = from; a >= 0; a = _model.nodes[a].parent)
+                lever[a] = std::max(lever[a], glm::length(point - positions[a]));
+        };
+        for (std::size_t n = 0; n < count; ++n)
+        {
+            reach(int(n), positions[n]);
+            if (_model.nodes[n].mesh < 0) continue;
+            const glm::dmat4 place = restSceneMatrix(_model, int(n));
+            for (const RiggedPrimitive& primitive : _model.meshes[_model.nodes[n].mesh].primitives)
+                for (const glm::vec3& p : primitive.positions) reach(int(n), glm::dvec3(place * glm::dvec4(glm::dvec3(p), 1.0)));
+        }
+        return lever;
     }
 
     /** The skin of a RigGeometry: its bones (those its influence map names that the skeleton has), and the skeleton

@@ -90,6 +90,15 @@ std::size_t setInfluences(RiggedPrimitive& primitive, std::vector<std::vector<Jo
     for (std::vector<JointWeight>& list : weights)
     {
         std::stable_sort(list.begin(), list.end(),
+                         [](const JointWeight& a, const JointWeight& b) { return a.joint < b.joint; });
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < list.size(); ++i)
+        {
+            if (kept > 0 && list[kept - 1].joint == list[i].joint) list[kept - 1].weight += list[i].weight;
+            else list[kept++] = list[i];
+        }
+        list.resize(kept);
+        std::stable_sort(list.begin(), list.end(),
                          [](const JointWeight& a, const JointWeight& b) { return a.weight > b.weight; });
         if (list.size() > kMost)
         {
