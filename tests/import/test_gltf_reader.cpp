@@ -21,9 +21,9 @@ namespace {
 
 TEST(RiggedModelFile, RefusesAnExtensionItDoesNotRead)
 {
-    const RiggedModelRead read = readRiggedModelFile("hero.fbx");
+    const RiggedModelRead read = readRiggedModelFile("hero.obj");
     EXPECT_FALSE(read.model);
-    EXPECT_EQ(read.error, "hero.fbx: not a rigged model file osgActor reads (expected .gltf or .glb)");
+    EXPECT_EQ(read.error, "hero.obj: not a rigged model file osgActor reads (expected .gltf, .glb, .dae, .fbx, .x, .osgt, ...)");
     EXPECT_TRUE(isRiggedModelFile("a/b/Hero.GLB"));
     EXPECT_TRUE(isRiggedModelFile("hero.gltf"));
     EXPECT_FALSE(isRiggedModelFile("hero.gltf.actor"));
