@@ -30,7 +30,7 @@ namespace osganimation {
 namespace {
 
 /** The most pieces one interval between key times is cut into. */
-constexpr unsigned kMaxPieces = 64;
+constexpr unsigned kMaxPieces = 256; // RiggedActorOptions::maxSamplesPerInterval
 
 /** A channel's value at a time, as osgAnimation's sampler gives it, and its key times. */
 template <class Value>

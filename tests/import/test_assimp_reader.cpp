@@ -15,67 +15,28 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <iterator>
 
 using namespace osgActor;
 using namespace osgActor::test;
 
 namespace {
 
-/** Two bones, Upper at 1 above the root and Lower 1 above it, skinning a quad from 0.5 to 1.5 up; Lower turns a
-  * quarter about X from tick 0 to tick 10, at 10 ticks per second. */
-const char* const kChain = R"(xof 0303txt 0032
-Frame Root {
-  FrameTransformMatrix { 1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0;; }
-  Frame Upper {
-    FrameTransformMatrix { 1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,1.0,0.0,1.0;; }
-    Frame Lower {
-      FrameTransformMatrix { 1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,1.0,0.0,1.0;; }
-    }
-  }
-  Mesh Arm {
-    4;
-    0.0;0.5;0.0;,
-    1.0;0.5;0.0;,
-    0.0;1.5;0.0;,
-    1.0;1.5;0.0;;
-    2;
-    3;0,1,2;,
-    3;1,3,2;;
-    XSkinMeshHeader { 2; 4; 2; }
-    SkinWeights {
-      "Upper";
-      4;
-      0,1,2,3;
-      1.0,1.0,0.5,0.5;
-      1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,-1.0,0.0,1.0;;
-    }
-    SkinWeights {
-      "Lower";
-      2;
-      2,3;
-      0.5,0.5;
-      1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,0.0,0.0,1.0,0.0,0.0,-2.0,0.0,1.0;;
-    }
-  }
+/** tests/import/data/directx/chain.x: two bones, Upper 1 above the root and Lower 1 above it, skinning a quad from
+  * 0.5 to 1.5 up; Lower turns a quarter about X (the key (w, x, y, z) = (0.7071, 0.7071, 0, 0)) from tick 0 to
+  * tick 10, at 10 ticks per second. */
+std::string chainFile() { return std::string(OSGACTOR_TEST_SOURCE_DIR) + "/import/data/directx/chain.x"; }
+
+std::string chainText()
+{
+    std::ifstream in(chainFile(), std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
-AnimTicksPerSecond { 10; }
-AnimationSet Bend {
-  Animation {
-    { Lower }
-    AnimationKey {
-      0;
-      2;
-      0;4;1.0,0.0,0.0,0.0;;,
-      10;4;0.70710678,0.70710678,0.0,0.0;;;
-    }
-  }
-}
-)";
 
 /** The chain with pieces of its text replaced (what, with), written into the build tree. */
 std::string writeChain(const std::string& name, std::initializer_list<std::pair<const char*, const char*>> changes = {})
 {
-    std::string text = kChain;
+    std::string text = chainText();
     for (const auto& [what, with] : changes)
     {
         const std::size_t at = text.find(what);
@@ -130,7 +91,7 @@ TEST(AssimpReader, RefusesWhatAssimpCannotParseWithAssimpsOwnMessage)
     expectRefused(assimpModels("FBX/transparentTest.fbx"), "Assimp cannot read it", "FBX-Tokenize");
     expectRefused(assimpModels("Collada/cube_UTF16LE.dae"), "Assimp cannot read it", "malformed XML");
     const std::string truncated = written("truncated.x");
-    std::ofstream(truncated, std::ios::binary) << std::string(kChain).substr(0, std::string(kChain).find("    2;\n    3;0,1,2;"));
+    std::ofstream(truncated, std::ios::binary) << chainText().substr(0, chainText().find("    2;\n    3;0,1,2;"));
     expectRefused(truncated, "Assimp cannot read it", "Number expected");
 }
 
@@ -221,11 +182,12 @@ TEST(AssimpReader, ReadsTheChainsNodesSkinAndAnimation)
 
 TEST(AssimpReader, ReadsFromMemoryAsFromAFile)
 {
-    const RiggedModelRead read = readAssimpMemory(kChain, std::string(kChain).size(), "x", "memory.x");
+    const std::string text = chainText();
+    const RiggedModelRead read = readAssimpMemory(text.data(), text.size(), "x", "memory.x");
     ASSERT_TRUE(read) << read.error;
     EXPECT_EQ(read.model->sourceFile, "memory.x");
     EXPECT_EQ(read.model->skins.size(), 1u);
-    const RiggedModelRead bad = readAssimpMemory(kChain, 40, "x", "short.x");
+    const RiggedModelRead bad = readAssimpMemory(text.data(), 40, "x", "short.x");
     EXPECT_FALSE(bad.model);
     EXPECT_EQ(bad.error.rfind("short.x: Assimp cannot read it", 0), 0u) << bad.error;
 }
