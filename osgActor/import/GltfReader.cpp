@@ -672,39 +672,44 @@ private:
 
 } // namespace
 
-RiggedModelRead readGltfFile(const std::string& path)
+namespace {
+
+/** File access for a model read from memory: none (the files it names are not read; they "exist", so that the
+  * message is the reader's). */
+bool anyFileExists(const std::string&, void*) { return true; }
+std::string keepPath(const std::string& path, void*) { return path; }
+bool readNoFile(std::vector<unsigned char>*, std::string* error, const std::string& path, void*)
+{
+    if (error) *error += "'" + path + "' is not read (the model was read from memory)";
+    return false;
+}
+bool writeNoFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+/** Loads with tinygltf (load: the loader's call, file or memory) and converts: the reader's one path. */
+template <class Load>
+RiggedModelRead loadAndConvert(const std::string& name, tinygltf::TinyGLTF& loader, const Load& load)
 {
     RiggedModelRead result;
     auto fail = [&](const std::string& message) {
         result.model.reset();
         result.warnings.clear();
-        result.error = path + ": " + message;
+        result.error = name + ": " + message;
         return result;
     };
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) return fail("cannot open the file");
-    char magic[4] = {0, 0, 0, 0};
-    probe.read(magic, 4);
-    const bool binary = probe.gcount() == 4 && std::equal(magic, magic + 4, "glTF");
-    probe.close();
-
     try
     {
-        tinygltf::TinyGLTF loader;
         loader.SetImageLoader(&keepEncodedImage, nullptr);
         tinygltf::Model gltf;
         std::string error, warning;
-        const bool loaded = binary ? loader.LoadBinaryFromFile(&gltf, &error, &warning, path)
-                                   : loader.LoadASCIIFromFile(&gltf, &error, &warning, path);
-        if (!loaded) return fail(oneLine(error.empty() ? "tinygltf cannot read it" : error));
+        if (!load(gltf, error, warning)) return fail(oneLine(error.empty() ? "tinygltf cannot read it" : error));
         if (!warning.empty()) result.warnings.push_back(oneLine(warning));
         if (gltf.asset.version.compare(0, 2, "2.") != 0)
             return fail("asset.version '" + gltf.asset.version + "' is not glTF 2");
 
         auto model = std::make_shared<RiggedModel>();
-        model->sourceFile = path;
+        model->sourceFile = name;
         Converter(gltf, *model, result.warnings).convert();
-        for (std::string& warningText : result.warnings) warningText = path + ": " + warningText;
+        for (std::string& warningText : result.warnings) warningText = name + ": " + warningText;
         result.model = model;
         return result;
     }
@@ -720,6 +725,49 @@ RiggedModelRead readGltfFile(const std::string& path)
     {
         return fail(std::string("tinygltf cannot read it (") + exception.what() + ")");
     }
+}
+
+bool isBinaryGltf(const char* magic, std::size_t size) { return size >= 4 && std::equal(magic, magic + 4, "glTF"); }
+
+} // namespace
+
+RiggedModelRead readGltfFile(const std::string& path)
+{
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe)
+    {
+        RiggedModelRead failed;
+        failed.error = path + ": cannot open the file";
+        return failed;
+    }
+    char magic[4] = {0, 0, 0, 0};
+    probe.read(magic, 4);
+    const bool binary = isBinaryGltf(magic, std::size_t(probe.gcount()));
+    probe.close();
+    tinygltf::TinyGLTF loader;
+    return loadAndConvert(path, loader, [&](tinygltf::Model& gltf, std::string& error, std::string& warning) {
+        return binary ? loader.LoadBinaryFromFile(&gltf, &error, &warning, path)
+                      : loader.LoadASCIIFromFile(&gltf, &error, &warning, path);
+    });
+}
+
+RiggedModelRead readGltfMemory(const void* bytes, std::size_t size, const std::string& name)
+{
+    const char* text = static_cast<const char*>(bytes);
+    if (size > std::numeric_limits<unsigned int>::max())
+    {
+        RiggedModelRead failed;
+        failed.error = name + ": too large";
+        return failed;
+    }
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&anyFileExists, &keepPath, &readNoFile, &writeNoFile, nullptr});
+    return loadAndConvert(name, loader, [&](tinygltf::Model& gltf, std::string& error, std::string& warning) {
+        return isBinaryGltf(text, size)
+                   ? loader.LoadBinaryFromMemory(&gltf, &error, &warning,
+                                                 reinterpret_cast<const unsigned char*>(text), unsigned(size))
+                   : loader.LoadASCIIFromString(&gltf, &error, &warning, text, unsigned(size), "");
+    });
 }
 
 } // namespace osgActor
