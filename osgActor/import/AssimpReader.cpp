@@ -71,6 +71,40 @@ void readNodes(SceneReading& reading)
     reading.model.sceneRoots.assign(1, 0);
 }
 
+RiggedModelRead readScene(const aiScene& scene, const std::string& name, const std::string& folder)
+{
+    RiggedModelRead result;
+    try
+    {
+        auto model = std::make_shared<RiggedModel>();
+        model->sourceFile = name;
+        SceneReading reading{scene, *model, result.warnings, folder, {}, {}};
+        readNodes(reading);
+        readMeshes(reading);
+        readMaterials(reading);
+        readAnimations(reading);
+        for (int n : makeNodeNamesUnique(*model))
+            reading.warn("nodes[" + std::to_string(n) + "]: a second node of its name is called '" +
+                         model->nodes[n].name + "'");
+        makeAnimationNamesUnique(*model);
+        if (scene.mNumCameras > 0) reading.warn(std::to_string(scene.mNumCameras) + " cameras are left out");
+        if (scene.mNumLights > 0) reading.warn(std::to_string(scene.mNumLights) + " lights are left out");
+        for (std::string& warning : result.warnings) warning = name + ": " + warning;
+        result.model = model;
+        return result;
+    }
+    catch (const Refusal& refusal)
+    {
+        result.error = name + ": " + refusal.what();
+    }
+    catch (const std::bad_alloc&)
+    {
+        result.error = name + ": not enough memory to read it";
+    }
+    result.warnings.clear();
+    return result;
+}
+
 } // namespace assimp
 
 namespace {
@@ -100,46 +134,12 @@ void configure(Assimp::Importer& importer)
 RiggedModelRead convert(const Assimp::Importer& importer, const aiScene* scene, const std::string& name,
                         const std::string& folder)
 {
-    RiggedModelRead result;
-    auto fail = [&](const std::string& message) {
-        result.model.reset();
-        result.warnings.clear();
-        result.error = name + ": " + message;
-        return result;
-    };
-    if (!scene)
-    {
-        std::string error = importer.GetErrorString();
-        std::replace(error.begin(), error.end(), '\n', ';');
-        return fail("Assimp cannot read it: " + (error.empty() ? std::string("no reason given") : error));
-    }
-    try
-    {
-        auto model = std::make_shared<RiggedModel>();
-        model->sourceFile = name;
-        assimp::SceneReading reading{*scene, *model, result.warnings, folder, {}, {}};
-        assimp::readNodes(reading);
-        assimp::readMeshes(reading);
-        assimp::readMaterials(reading);
-        assimp::readAnimations(reading);
-        for (int n : makeNodeNamesUnique(*model))
-            reading.warn("nodes[" + std::to_string(n) + "]: a second node of its name is called '" +
-                         model->nodes[n].name + "'");
-        makeAnimationNamesUnique(*model);
-        if (scene->mNumCameras > 0) reading.warn(std::to_string(scene->mNumCameras) + " cameras are left out");
-        if (scene->mNumLights > 0) reading.warn(std::to_string(scene->mNumLights) + " lights are left out");
-        for (std::string& warning : result.warnings) warning = name + ": " + warning;
-        result.model = model;
-        return result;
-    }
-    catch (const assimp::Refusal& refusal)
-    {
-        return fail(refusal.what());
-    }
-    catch (const std::bad_alloc&)
-    {
-        return fail("not enough memory to read it");
-    }
+    if (scene) return assimp::readScene(*scene, name, folder);
+    RiggedModelRead failed;
+    std::string error = importer.GetErrorString();
+    std::replace(error.begin(), error.end(), '\n', ';');
+    failed.error = name + ": Assimp cannot read it: " + (error.empty() ? std::string("no reason given") : error);
+    return failed;
 }
 
 /** The folder of a path with its separator ("models/hero.fbx" gives "models/"), empty for a bare file name. */
