@@ -168,7 +168,8 @@ private:
             animation->mName = name();
             animation->mTicksPerSecond = _in.ConsumeBool() ? 0.0 : double(number());
             animation->mNumChannels = _in.ConsumeIntegralInRange(0u, 4u);
-            animation->mChannels = new aiNodeAnim*[animation->mNumChannels];
+            // aiAnimation frees its channel list only when it has channels.
+            if (animation->mNumChannels > 0) animation->mChannels = new aiNodeAnim*[animation->mNumChannels];
             for (unsigned c = 0; c < animation->mNumChannels; ++c)
             {
                 aiNodeAnim* channel = new aiNodeAnim;

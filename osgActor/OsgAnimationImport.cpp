@@ -66,9 +66,15 @@ public:
         for (const PendingRig& rig : _rigs) skin(rig);
         if (_manager) readAnimations(*_manager, _targets, kTolerance * height, levers(height), _model, _warnings);
         for (std::size_t a = 0; a < _model.animations.size(); ++a)
-            if (const double moved = startAnimationAtZero(_model.animations[a]))
-                warn("animations[" + std::to_string(a) + "]: its keys start at " + std::to_string(-moved) +
-                     " s; they are moved to start at 0");
+        {
+            const std::string place = "animations[" + std::to_string(a) + "]";
+            double moved = 0.0;
+            if (!startAnimationAtZero(_model.animations[a], moved))
+                throw Refusal(place, "its keys start at " + std::to_string(-moved) +
+                                         " s, too early to move them to 0 and still tell them apart");
+            if (moved > 0.0)
+                warn(place + ": its keys start at " + std::to_string(-moved) + " s; they are moved to start at 0");
+        }
         for (int n : makeNodeNamesUnique(_model))
             warn(describe(*sourceNodes[n]) + ": a second node of its name is called '" + _model.nodes[n].name + "'");
         makeAnimationNamesUnique(_model);

@@ -75,7 +75,11 @@ public:
             addChannel(animation, node, AnimationPath::Scale, channel->mScalingKeys, channel->mNumScalingKeys,
                        ticksPerSecond, where + ".scalingKeys");
         }
-        if (const double moved = startAnimationAtZero(animation))
+        double moved = 0.0;
+        if (!startAnimationAtZero(animation, moved))
+            throw Refusal(_place, "its keys start at " + std::to_string(-moved) +
+                                      " s, too early to move them to 0 and still tell them apart");
+        if (moved > 0.0)
             _reading.warn(_place + ": its keys start at " + std::to_string(-moved) + " s; they are moved to start at 0");
         return animation;
     }

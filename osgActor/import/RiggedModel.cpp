@@ -119,15 +119,25 @@ std::size_t setInfluences(RiggedPrimitive& primitive, std::vector<std::vector<Jo
     return cut;
 }
 
-double startAnimationAtZero(RiggedAnimation& animation)
+bool startAnimationAtZero(RiggedAnimation& animation, double& moved)
 {
     double first = 0.0;
     for (const AnimationChannel& channel : animation.channels)
         if (!channel.times.empty()) first = std::min(first, channel.times.front());
-    if (first == 0.0) return 0.0;
-    for (AnimationChannel& channel : animation.channels)
-        for (double& time : channel.times) time -= first;
-    return -first;
+    moved = -first;
+    if (first == 0.0) return true;
+    std::vector<std::vector<double>> times;
+    for (const AnimationChannel& channel : animation.channels)
+    {
+        times.push_back(channel.times);
+        for (std::size_t k = 0; k < channel.times.size(); ++k)
+        {
+            times.back()[k] -= first;
+            if (k > 0 && !(times.back()[k] > times.back()[k - 1])) return false;
+        }
+    }
+    for (std::size_t c = 0; c < animation.channels.size(); ++c) animation.channels[c].times = std::move(times[c]);
+    return true;
 }
 
 bool isSelfOrAncestor(const RiggedModel& model, int ancestor, int node)

@@ -91,16 +91,29 @@ TEST(SetInfluences, AddsRepeatedJointsAndKeepsTheEightLargest)
     }
 }
 
+TEST(StartAnimationAtZero, LeavesAnAnimationItCannotMoveAsItWas)
+{
+    // 1e17 s before 0 and 1 s apart: 1e17 + 1 is 1e17 in a double.
+    RiggedAnimation far{"far", {}};
+    far.channels.push_back(AnimationChannel{0, AnimationPath::Rotation, KeyInterpolation::Linear, {-1e17, -1e17 + 16.0, 0.0, 1.0}, {}, {}, {}});
+    double moved = 0.0;
+    EXPECT_FALSE(startAnimationAtZero(far, moved));
+    EXPECT_EQ(far.channels[0].times, (std::vector<double>{-1e17, -1e17 + 16.0, 0.0, 1.0}));
+}
+
 TEST(StartAnimationAtZero, MovesKeysBeforeZeroAndLeavesTheOthers)
 {
     RiggedAnimation late{"late", {}};
     late.channels.push_back(AnimationChannel{0, AnimationPath::Rotation, KeyInterpolation::Linear, {0.5, 1.0}, {}, {}, {}});
-    EXPECT_EQ(startAnimationAtZero(late), 0.0);
+    double moved = -1.0;
+    EXPECT_TRUE(startAnimationAtZero(late, moved));
+    EXPECT_EQ(moved, 0.0);
     EXPECT_EQ(late.channels[0].times, (std::vector<double>{0.5, 1.0}));
     RiggedAnimation early{"early", {}};
     early.channels.push_back(AnimationChannel{0, AnimationPath::Rotation, KeyInterpolation::Linear, {-0.5, 1.0}, {}, {}, {}});
     early.channels.push_back(AnimationChannel{1, AnimationPath::Translation, KeyInterpolation::Linear, {0.25}, {}, {}, {}});
-    EXPECT_EQ(startAnimationAtZero(early), 0.5);
+    EXPECT_TRUE(startAnimationAtZero(early, moved));
+    EXPECT_EQ(moved, 0.5);
     EXPECT_EQ(early.channels[0].times, (std::vector<double>{0.0, 1.5}));
     EXPECT_EQ(early.channels[1].times, (std::vector<double>{0.75}));
 }
