@@ -118,6 +118,38 @@ TEST(AssimpFidelity, ColladaBoneMovesAsTheFileSays)
     expectFaithful("box_nested_animation.dae", measureAssimp(models("Collada/box_nested_animation.dae"), 0));
 }
 
+TEST(AssimpFidelity, JointsThatSkinNoVertexKeepTheirRestTransformFromTheNodeTree)
+{
+    // chain_hand.x: chain.x with Hand (1 up from Lower, turned a quarter about Z) and Finger (half a unit along
+    // Hand's X) below Lower. Neither weighs a vertex, so Assimp gives them no bone (no offset matrix); Finger turns
+    // about its own Y (which moves no joint's position), Hand is not animated.
+    const std::string path = std::string(OSGACTOR_TEST_SOURCE_DIR) + "/import/data/directx/chain_hand.x";
+    expectFaithful("chain_hand.x", measureAssimp(path, 0));
+    const AssimpImport imported = import(path, RiggedActorOptions());
+    ASSERT_TRUE(imported.actor);
+    const ActorDefinition& definition = *imported.actor.definition;
+    const int hand = definition.findJoint("Hand");
+    const int finger = definition.findJoint("Finger");
+    ASSERT_GE(hand, 0); // a joint because Finger, below it, moves
+    ASSERT_GE(finger, 0);
+    EXPECT_EQ(definition.getNumJointDofs(unsigned(hand)), 0u);
+    EXPECT_GT(definition.getNumJointDofs(unsigned(finger)), 0u);
+    ASSERT_EQ(imported.actor.skins.size(), 1u);
+    EXPECT_EQ(imported.actor.skins[0].skin->getNumJoints(), 2u); // Upper and Lower only
+    // At 0 s (the rest) Hand is 3 up and Finger half a unit further along Hand's X, which Hand's quarter turn points
+    // up. At 1 s Lower, 2 up, has turned a quarter about X, which takes +Y to +Z (and the quad's vertex half a unit
+    // below Lower to -Z: osgactorconv_dump_x_skinned): both hang from Lower as the node tree has them, 1 and 1.5
+    // along +Z.
+    const ClipPtr clip = clipOf(imported, 0);
+    ASSERT_TRUE(clip);
+    const std::vector<glm::dvec3> rest = importedPositions(imported.actor, *clip, 0.0);
+    EXPECT_NEAR(glm::length(rest[unsigned(hand)] - glm::dvec3(0.0, 3.0, 0.0)), 0.0, 1e-6);
+    EXPECT_NEAR(glm::length(rest[unsigned(finger)] - glm::dvec3(0.0, 3.5, 0.0)), 0.0, 1e-6);
+    const std::vector<glm::dvec3> bent = importedPositions(imported.actor, *clip, 1.0);
+    EXPECT_NEAR(glm::length(bent[unsigned(hand)] - glm::dvec3(0.0, 2.0, 1.0)), 0.0, 1e-6);
+    EXPECT_NEAR(glm::length(bent[unsigned(finger)] - glm::dvec3(0.0, 2.0, 1.5)), 0.0, 1e-6);
+}
+
 TEST(AssimpFidelity, SkinnedVerticesFollowTheBonesAsAssimpsOffsetsSay)
 {
     for (const char* file : {"FBX/animation_with_skeleton.fbx", "FBX/huesitos.fbx", "X/BCN_Epileptic.X",

@@ -4,6 +4,7 @@
 #include "ImportTestUtil"
 
 #include <osgActor/import/AssimpReader>
+#include <osgActor/import/AssimpScene>
 #include <osgActor/import/ChannelSampling>
 #include <osgActor/import/RiggedActorBuilder>
 #include <osgActor/import/RiggedModelFile>
@@ -16,6 +17,7 @@
 
 #include <fstream>
 #include <iterator>
+#include <memory>
 
 using namespace osgActor;
 using namespace osgActor::test;
@@ -215,6 +217,39 @@ TEST(AssimpReader, MovesKeysBeforeTimeZeroToStartAtZero)
     EXPECT_TRUE(anyWarningSays(read.warnings, "its keys start at -0.5"));
     for (const AnimationChannel& channel : read.model->animations[0].channels)
         if (channel.path == AnimationPath::Rotation) EXPECT_EQ(channel.times, (std::vector<double>{0.0, 1.0}));
+}
+
+TEST(AssimpReader, WarnsAboutMorphTargetsMeshChannelsAndAnimatedScaleAndReadsTheRest)
+{
+    // The chain's scene with a morph target on its mesh, a morph channel, and Lower scaled from 1 to 2 over the
+    // bend: the morphs are left out by the reader, the scale by the mapping, each with a warning; the bend is kept.
+    Assimp::Importer importer;
+    ASSERT_TRUE(importer.ReadFile(writeChain("chain_morph.x"), 0)) << importer.GetErrorString();
+    std::unique_ptr<aiScene> scene(importer.GetOrphanedScene());
+    aiMesh& mesh = *scene->mMeshes[0]; // a vertex per face corner: no post-processing joins them
+    mesh.mNumAnimMeshes = 1;
+    mesh.mAnimMeshes = new aiAnimMesh*[1]{new aiAnimMesh};
+    mesh.mAnimMeshes[0]->mNumVertices = mesh.mNumVertices;
+    mesh.mAnimMeshes[0]->mVertices = new aiVector3D[mesh.mNumVertices];
+    aiAnimation& bend = *scene->mAnimations[0];
+    bend.mNumMorphMeshChannels = 1;
+    bend.mMorphMeshChannels = new aiMeshMorphAnim*[1]{new aiMeshMorphAnim};
+    aiNodeAnim& lower = *bend.mChannels[0];
+    delete[] lower.mScalingKeys;
+    lower.mNumScalingKeys = 2;
+    lower.mScalingKeys = new aiVectorKey[2]{aiVectorKey(0.0, aiVector3D(1.0f)), aiVectorKey(10.0, aiVector3D(2.0f))};
+
+    const RiggedModelRead read = assimp::readScene(*scene, "morph.x", std::string());
+    ASSERT_TRUE(read) << read.error;
+    EXPECT_TRUE(anyWarningSays(read.warnings, "morph.x: meshes[0] 'Root': 1 morph targets are left out"));
+    EXPECT_TRUE(anyWarningSays(read.warnings, "morph.x: animations[0] 'Bend': its mesh and morph channels are left out"));
+    EXPECT_EQ(read.model->meshes[0].primitives[0].getNumVertices(), std::size_t(mesh.mNumVertices));
+    const RiggedActor actor = buildRiggedActor(read.model);
+    ASSERT_TRUE(actor) << actor.error;
+    EXPECT_TRUE(anyWarningSays(actor.warnings, "animations[0] 'Bend': the scale of nodes[2] 'Lower' is animated"))
+        << actor.warnings.size();
+    ASSERT_EQ(actor.clips.size(), 1u);
+    EXPECT_GE(actor.clips[0]->findChannel("Lower.rx"), 0);
 }
 
 TEST(AssimpReader, ReadsDirectXCharactersWithSeveralSkinsAndAnimations)
