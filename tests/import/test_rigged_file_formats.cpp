@@ -4,9 +4,14 @@
 
 #include <osgActor/ActorNode>
 #include <osgActor/RiggedModelActor>
+#include <osgActor/core/skin/SkinBinding>
 
+#include <osg/Geode>
 #include <osg/MatrixTransform>
+#include <osgAnimation/RigGeometry>
+#include <osgDB/ReadFile>
 #include <osgDB/Registry>
+#include <osgDB/WriteFile>
 
 #include <gtest/gtest.h>
 
@@ -29,6 +34,17 @@ const ActorNode* actorOf(osg::Node* node)
 }
 
 std::string legFile() { return std::string(OSGACTOR_TEST_SOURCE_DIR) + "/import/data/osganimation/leg.osgt"; }
+
+/** The RigGeometries of a scene graph, depth first. */
+void forEachRigGeometry(const osg::Node& node, std::vector<const osgAnimation::RigGeometry*>& rigs)
+{
+    if (const osg::Geode* geode = node.asGeode())
+        for (unsigned d = 0; d < geode->getNumDrawables(); ++d)
+            if (const auto* rig = dynamic_cast<const osgAnimation::RigGeometry*>(geode->getDrawable(d)))
+                rigs.push_back(rig);
+    if (const osg::Group* group = node.asGroup())
+        for (unsigned c = 0; c < group->getNumChildren(); ++c) forEachRigGeometry(*group->getChild(c), rigs);
+}
 
 } // namespace
 
@@ -66,6 +82,36 @@ TEST(RiggedFileFormats, ThePseudoLoaderMakesActorsOfColladaFbxDirectXAndOsgAnima
         EXPECT_EQ(actor->getDefinition()->getNumJoints(), c.joints) << c.file;
         ASSERT_TRUE(actor->getClipLibrary()) << c.file;
         EXPECT_EQ(actor->getClipLibrary()->getNumClips(), c.clips) << c.file;
+    }
+}
+
+TEST(RiggedFileFormats, AColladaSceneOfOsgsOwnPluginSavedAsOsgtBecomesAnActorWithItsSkinsAndClips)
+{
+    // What an OSG user has: osgdb_dae's osgAnimation scene of a Collada file (a skinned character with two clips;
+    // Assimp cannot read this file), saved by osgDB as .osgt ("osgconv in.dae out.osgt").
+    osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(assimpModels("Collada/library_animation_clips.dae"));
+    ASSERT_TRUE(scene);
+    const std::string path = written("library_animation_clips.osgt");
+    ASSERT_TRUE(osgDB::writeNodeFile(*scene, path));
+    std::string error;
+    const RiggedModelActor read = readRiggedModelActor(path, RiggedModelActorOptions(), error);
+    ASSERT_TRUE(read.actor) << error;
+    ASSERT_TRUE(read.actor->getClipLibrary());
+    EXPECT_EQ(read.actor->getClipLibrary()->getNumClips(), 2u);
+    // A skin per RigGeometry of the scene, in its order, with a joint per bone its influence map weighs, each bound
+    // to the actor's joint of that bone's name.
+    std::vector<const osgAnimation::RigGeometry*> rigs;
+    forEachRigGeometry(*scene, rigs);
+    ASSERT_FALSE(rigs.empty());
+    ASSERT_EQ(read.rigged.skins.size(), rigs.size());
+    for (std::size_t s = 0; s < rigs.size(); ++s)
+    {
+        const Skin& skin = *read.rigged.skins[s].skin;
+        const SkinBinding binding = bindSkinToDefinition(skin, *read.actor->getDefinition());
+        EXPECT_TRUE(binding) << binding.error;
+        ASSERT_EQ(skin.getNumJoints(), rigs[s]->getInfluenceMap()->size());
+        for (unsigned j = 0; j < skin.getNumJoints(); ++j)
+            EXPECT_EQ(rigs[s]->getInfluenceMap()->count(skin.getJointName(j)), 1u) << skin.getJointName(j);
     }
 }
 
