@@ -11,9 +11,10 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${OSGACTOR_ASAN_BUILD_DIR:-$root/build-asan}"
 seconds="${OSGACTOR_FUZZ_SECONDS:-60}"
-targets=(${OSGACTOR_FUZZ_TARGETS:-actor bvh asf amc trajectory_csv})
+targets=(${OSGACTOR_FUZZ_TARGETS:-actor bvh asf amc trajectory_csv gltf rigged})
 mocap="$root/data/mocap"
 assimp=/usr/share/assimp/models/BVH
+gltf2=/usr/share/assimp/models/glTF2
 artifacts="${OSGACTOR_FUZZ_ARTIFACTS:-$build/fuzz-artifacts}"
 
 source "$root/scripts/sanitizers/configure.sh"
@@ -26,6 +27,8 @@ seeds_bvh=("$mocap"/bvh/*.bvh "$assimp"/*.bvh "$root"/tests/robustness/inputs/bv
 seeds_asf=("$mocap"/asfamc/*.asf "$root"/tests/robustness/inputs/asf/*)
 seeds_amc=("$mocap"/asfamc/11_*.amc "$root"/tests/robustness/inputs/amc/*)
 seeds_trajectory_csv=("$root"/tests/motion/data/*.csv "$root"/tests/robustness/inputs/trajectory_csv/*)
+seeds_gltf=("$gltf2"/*/*.gl[tb]* "$gltf2"/*/*/*.gl[tb]* "$root"/data/models/CesiumMan/*.gltf "$root"/tests/robustness/inputs/gltf/*)
+seeds_rigged=("$root"/tests/robustness/inputs/rigged/*)
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
