@@ -60,22 +60,33 @@ set(OSGACTOR_CORE_SOURCES
     core/ik/TwoBoneClosedForm.cpp
     core/ik/TwoBoneIkJob.cpp)
 
+# How every text format reads and writes numbers and splits lines and words: plain C++, used by io/ and mocap/
+# (which include neither each other's parsers nor OSG for it).
+set(OSGACTOR_TEXT_HEADERS
+    text/Degrees
+    text/Numbers
+    text/TextLines)
+set(OSGACTOR_TEXT_SOURCES
+    text/Degrees.cpp
+    text/Numbers.cpp
+    text/TextLines.cpp)
+
 # The .actor file format: document model, lexer, syntax, reader, writer. Plain C++ on GLM like the core (no OSG, no
 # osgDB), so it is compiled with it.
 set(OSGACTOR_IO_HEADERS
     io/ActorDocument
     io/ActorLexer
-    io/ActorNumbers
     io/ActorReader
     io/ActorSyntax
-    io/ActorWriter)
+    io/ActorWriter
+    io/AngleAxis)
 set(OSGACTOR_IO_SOURCES
     io/ActorDocument.cpp
     io/ActorLexer.cpp
-    io/ActorNumbers.cpp
     io/ActorReader.cpp
     io/ActorSyntax.cpp
     io/ActorWriter.cpp
+    io/AngleAxis.cpp
     io/PlayerDocument.cpp)
 
 # Motion-capture parsers: plain C++ on std::istream, GLM only like the core (built into the same object library).
@@ -87,7 +98,6 @@ set(OSGACTOR_MOCAP_HEADERS
     mocap/MocapImport
     mocap/MotionFile
     mocap/PositionsCsv
-    mocap/TextLines
     mocap/TrajectoryCsv)
 set(OSGACTOR_MOCAP_SOURCES
     mocap/AmcReader.cpp
@@ -97,5 +107,4 @@ set(OSGACTOR_MOCAP_SOURCES
     mocap/MocapImport.cpp
     mocap/MotionFile.cpp
     mocap/PositionsCsv.cpp
-    mocap/TextLines.cpp
     mocap/TrajectoryCsv.cpp)

@@ -1,9 +1,9 @@
 #include <osgActor/core/ClipBuilder>
-#include <osgActor/io/ActorNumbers>
 #include <osgActor/io/ActorReader>
+#include <osgActor/io/AngleAxis>
 #include <osgActor/mocap/MotionFile>
-
-#include <glm/ext/scalar_constants.hpp>
+#include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,7 @@ namespace osgActor {
 
 namespace {
 
-constexpr double kRadiansPerDegree = glm::pi<double>() / 180.0;
+// Angles are read as value * kRadiansPerDegree (radiansFromDegrees()), the conversion the writer inverts.
 
 /** One read of one file: turns the statements into a document, stopping at the first error. */
 class DocumentReader
@@ -110,10 +110,9 @@ private:
 
     bool number(const SyntaxArgument& argument, double& value)
     {
-        if (!argument.quoted && parseNumber(argument.text, value)) return true;
-        if (!argument.quoted && isNonFiniteNumber(argument.text))
-            return fail(argument.line, "'" + argument.text + "' is not a finite number");
-        return fail(argument.line, "'" + argument.text + "' is not a number");
+        if (argument.quoted) return fail(argument.line, "\"" + argument.text + "\" is a string, not a number");
+        if (parseNumber(argument.text, value)) return true;
+        return fail(argument.line, numberProblem(argument.text));
     }
 
     /** A statement without values or block that sets a flag ("hidden", "blocked"). */
@@ -141,16 +140,38 @@ private:
         return true;
     }
 
-    /** "rotation <degrees> <axis x> <axis y> <axis z>" */
+    /** A translation an actor holds: within +-kMaxDofMagnitude, as ActorNode's transforms and the offsets. */
+    bool translation(const SyntaxStatement& statement, glm::dvec3& value)
+    {
+        if (!vector3(statement, value)) return false;
+        for (int i = 0; i < 3; ++i)
+            if (std::abs(value[i]) > kMaxDofMagnitude)
+                return fail(statement.line, "'" + statement.keyword + "' " + statement.arguments[i].text +
+                                                " lies beyond what an actor holds (+-" +
+                                                formatNumber(kMaxDofMagnitude) + ")");
+        return true;
+    }
+
+    /** "rotation <degrees> <axis x> <axis y> <axis z>", or "rotation quaternion <w> <x> <y> <z>" (what the writer
+      * writes where no angle and axis give back exactly the rotation it holds). */
     bool rotation(const SyntaxStatement& statement, glm::dquat& value)
     {
         double v[4];
+        if (!statement.arguments.empty() && !statement.arguments.front().quoted &&
+            statement.arguments.front().text == "quaternion")
+        {
+            if (!expectNoBlock(statement) || !expectArguments(statement, 5)) return false;
+            for (unsigned i = 0; i < 4; ++i)
+                if (!number(statement.arguments[i + 1], v[i])) return false;
+            if (quaternionAsWritten(v, value)) return true;
+            return fail(statement.line, "the rotation quaternion has no length a double holds (zero or too large)");
+        }
         if (!numbers(statement, 4, v)) return false;
         AngleAxis angleAxis;
         angleAxis.degrees = v[0];
         for (unsigned i = 0; i < 3; ++i) angleAxis.axis[i] = v[i + 1];
         if (toQuaternion(angleAxis, value)) return true;
-        return fail(statement.line, "the rotation axis is zero");
+        return fail(statement.line, "the rotation axis is zero, or too long for a double");
     }
 
     bool positive(const SyntaxStatement& statement, double& value)
@@ -195,9 +216,9 @@ private:
             const std::string& k = s.keyword;
             bool ok = true;
             if (k == "joint") ok = readJoint(s, std::string(), document);
-            else if (k == "pre_translation") ok = once(seen, s) && vector3(s, document.preTranslation);
+            else if (k == "pre_translation") ok = once(seen, s) && translation(s, document.preTranslation);
             else if (k == "pre_rotation") ok = once(seen, s) && rotation(s, document.preRotation);
-            else if (k == "post_translation") ok = once(seen, s) && vector3(s, document.postTranslation);
+            else if (k == "post_translation") ok = once(seen, s) && translation(s, document.postTranslation);
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
             else if (k == "bounds") ok = once(seen, s) && readBounds(s, document.boundsCoverRotations);
@@ -251,7 +272,7 @@ private:
                 if (ok && !keys.empty() && !(v[0] > keys.back().time))
                     return fail(c.line, "key times must increase (" + c.arguments[0].text + " follows " +
                                             formatNumber(keys.back().time) + ")");
-                if (ok) keys.push_back(TrajectoryKey{v[0], glm::dvec3(v[1], v[2], v[3]), v[4] * kRadiansPerDegree});
+                if (ok) keys.push_back(TrajectoryKey{v[0], glm::dvec3(v[1], v[2], v[3]), radiansFromDegrees(v[4])});
             }
             else if (k == "play")
             {
@@ -455,6 +476,9 @@ private:
         const std::optional<double>& value = joint.values[static_cast<unsigned>(dof)];
         if (value && (*value < spec.min || *value > spec.max))
             return fail(s.line, "the value of DOF '" + s.arguments.front().text + "' lies outside its limits");
+        if (value && std::abs(*value) > kMaxDofMagnitude)
+            return fail(s.line, "the value of DOF '" + s.arguments.front().text + "' lies beyond what a pose holds (+-" +
+                                    formatNumber(kMaxDofMagnitude) + (isRotation(dof) ? " radians)" : ")"));
         return true;
     }
 
