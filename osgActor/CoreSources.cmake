@@ -79,7 +79,8 @@ set(OSGACTOR_IO_HEADERS
     io/ActorReader
     io/ActorSyntax
     io/ActorWriter
-    io/AngleAxis)
+    io/AngleAxis
+    io/DocumentDifference)
 set(OSGACTOR_IO_SOURCES
     io/ActorDocument.cpp
     io/ActorLexer.cpp
@@ -87,6 +88,7 @@ set(OSGACTOR_IO_SOURCES
     io/ActorSyntax.cpp
     io/ActorWriter.cpp
     io/AngleAxis.cpp
+    io/DocumentDifference.cpp
     io/PlayerDocument.cpp)
 
 # Motion-capture parsers: plain C++ on std::istream, GLM only like the core (built into the same object library).

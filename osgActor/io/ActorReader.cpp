@@ -429,20 +429,16 @@ private:
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         const std::string& word = s.arguments.front().text;
-        if (word == "follows_pose") coverRotations = false;
-        else if (word == "covers_rotations") coverRotations = true;
-        else return fail(s.line, "'" + word + "' is not a bound mode (follows_pose, covers_rotations)");
-        return true;
+        if (parseBounds(word, coverRotations)) return true;
+        return fail(s.line, "'" + word + "' is not a bound mode (follows_pose, covers_rotations)");
     }
 
     bool readTranslationMode(const SyntaxStatement& s, TranslationMode& mode)
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         const std::string& word = s.arguments.front().text;
-        if (word == "after_rotation") mode = TranslationMode::AfterRotation;
-        else if (word == "before_rotation") mode = TranslationMode::BeforeRotation;
-        else return fail(s.line, "'" + word + "' is not a translation mode (after_rotation, before_rotation)");
-        return true;
+        if (parseTranslationMode(word, mode)) return true;
+        return fail(s.line, "'" + word + "' is not a translation mode (after_rotation, before_rotation)");
     }
 
     /** "dof rx [min a] [max b] [default c] [weight w] [value v]": degrees for rotations, model units otherwise. */
@@ -577,11 +573,8 @@ private:
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         const std::string& word = s.arguments.front().text;
-        if (word == "step") interpolation = Interpolation::Step;
-        else if (word == "linear") interpolation = Interpolation::Linear;
-        else if (word == "cubic") interpolation = Interpolation::Cubic;
-        else return fail(s.line, "'" + word + "' is not an interpolation (step, linear, cubic)");
-        return true;
+        if (parseInterpolation(word, interpolation)) return true;
+        return fail(s.line, "'" + word + "' is not an interpolation (step, linear, cubic)");
     }
 
     /** "channel target { [interpolation i] key time value ... }": a keyed channel. */
@@ -834,10 +827,8 @@ private:
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         const std::string& word = s.arguments.front().text;
-        if (word == "y") axis = UpAxis::Y;
-        else if (word == "z") axis = UpAxis::Z;
-        else return fail(s.line, "'" + word + "' is not an up axis (y, z)");
-        return true;
+        if (parseUpAxis(word, axis)) return true;
+        return fail(s.line, "'" + word + "' is not an up axis (y, z)");
     }
 
     /** "clip name { channel ... }" (keys), "clip name { frame_rate ...; channels ...; frame ... }" (frames), or

@@ -98,17 +98,6 @@ SyntaxStatement geometryStatement(const GeometryDescription& g)
     return s;
 }
 
-const char* interpolationName(Interpolation interpolation)
-{
-    switch (interpolation)
-    {
-    case Interpolation::Step: return "step";
-    case Interpolation::Cubic: return "cubic";
-    case Interpolation::Linear: break;
-    }
-    return "linear";
-}
-
 /** "file "walk.bvh"" with a block of the options that differ from MotionFileOptions' defaults, if any. */
 SyntaxStatement clipFileStatement(const std::string& file, const MotionFileOptions& options)
 {
@@ -118,7 +107,7 @@ SyntaxStatement clipFileStatement(const std::string& file, const MotionFileOptio
         s.children.push_back(statement("skeleton", {SyntaxArgument{options.skeletonFile, true, 0}}));
     if (options.scale != defaults.scale) s.children.push_back(statement("scale", {numberArgument(options.scale)}));
     if (options.fileUpAxis != defaults.fileUpAxis)
-        s.children.push_back(statement("up", {word(options.fileUpAxis == UpAxis::Z ? "z" : "y")}));
+        s.children.push_back(statement("up", {word(upAxisName(options.fileUpAxis))}));
     if (options.dropFirstFrame) s.children.push_back(statement("drop_first_frame"));
     if (options.absoluteRootPosition) s.children.push_back(statement("absolute_root_position"));
     if (options.amcFrameRate != defaults.amcFrameRate)
@@ -233,8 +222,9 @@ private:
         addPlacement(s.children, "offset", joint.spec.translation, "rotation", joint.spec.rotation);
         if (joint.spec.eulerOrder != EulerOrder::XYZ)
             s.children.push_back(statement("euler", {word(eulerOrderName(joint.spec.eulerOrder))}));
-        if (joint.spec.translationMode == TranslationMode::BeforeRotation)
-            s.children.push_back(statement("translation_mode", {word("before_rotation")}));
+        if (joint.spec.translationMode != TranslationMode::AfterRotation)
+            s.children.push_back(
+                statement("translation_mode", {word(translationModeName(joint.spec.translationMode))}));
         for (unsigned d = 0; d < kNumDofTypes; ++d)
             if (joint.spec.dofs[d].active)
                 s.children.push_back(dofStatement(static_cast<Dof>(d), joint.spec.dofs[d], joint.values[d]));
@@ -323,7 +313,8 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     addPlacement(actor.children, "pre_translation", document.preTranslation, "pre_rotation", document.preRotation);
     addPlacement(actor.children, "post_translation", document.postTranslation, "post_rotation", document.postRotation);
     if (document.blocked) actor.children.push_back(statement("blocked"));
-    if (!document.boundsCoverRotations) actor.children.push_back(statement("bounds", {word("follows_pose")}));
+    if (!document.boundsCoverRotations)
+        actor.children.push_back(statement("bounds", {word(boundsName(document.boundsCoverRotations))}));
     JointTreeWriter(document).write(actor.children);
     for (const ClipDocument& clip : document.clips)
         if (clip.clip || !clip.file.empty()) actor.children.push_back(clipStatement(clip));

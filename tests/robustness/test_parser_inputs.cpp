@@ -71,6 +71,24 @@ TEST(ParserFindings, TrajectoryCsv)
     expectContractKept("trajectory_csv", contract::checkTrajectoryCsv);
 }
 
+// The contract's round trips on the real files the fuzzers start from: read, write, read again, the same document.
+TEST(ParserContract, EveryRealFileReadsWritesAndReadsBackTheSame)
+{
+    const std::string data = std::string(OSGACTOR_TEST_DATA_DIR) + "/";
+    const std::string mocap = std::string(OSGACTOR_TEST_MOCAP_DIR) + "/";
+    for (const char* actor : {"humanoid.actor", "insect.actor", "robot_arm.actor"})
+        EXPECT_EQ(contract::checkActor(bytesOf(data + actor)), "") << actor;
+    for (const char* bvh : {"bvh/12_03.bvh", "bvh/tpose.bvh"})
+        EXPECT_EQ(contract::checkBvh(bytesOf(mocap + bvh)), "") << bvh;
+    for (const char* asf : {"asfamc/11.asf", "asfamc/charleston.asf"})
+        EXPECT_EQ(contract::checkAsf(bytesOf(mocap + asf)), "") << asf;
+    const AsfImport skeleton = readAsfFile(mocap + "asfamc/11.asf");
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    EXPECT_EQ(contract::checkAmc(bytesOf(mocap + "asfamc/11_01.amc"), skeleton), "");
+    EXPECT_EQ(contract::checkTrajectoryCsv(bytesOf(std::string(OSGACTOR_TEST_SOURCE_DIR) + "/motion/data/cockroach.csv")),
+              "");
+}
+
 // Found with the fuzz targets: BVH joints nest by recursion, and 100000 nested JOINTs overflowed the stack. Too big to
 // keep
 // as a file, so made here; the .actor syntax has the same bound.
