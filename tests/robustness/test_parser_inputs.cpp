@@ -71,6 +71,26 @@ TEST(ParserFindings, TrajectoryCsv)
     expectContractKept("trajectory_csv", contract::checkTrajectoryCsv);
 }
 
+// A name (or any word) holding a control character, a NUL from a binary file, is refused by every reader, with the
+// line it is on, before anything is read.
+TEST(ParserContract, EveryReaderRefusesControlCharactersWithTheLine)
+{
+    const std::string nul(1, '\0');
+    const std::string expected = ":2: a control character (0x00) in the text";
+    std::istringstream actor("osgactor 1\nactor a" + nul + " {\n joint b\n}\n");
+    EXPECT_EQ(readActor(actor, "t.actor").error.find("t.actor" + expected), 0u);
+    std::istringstream bvh("HIERARCHY\nROOT hi" + nul + "ps\n{\n OFFSET 0 0 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n");
+    EXPECT_EQ(readBvh(bvh, "t.bvh").error.find("t.bvh" + expected), 0u);
+    std::istringstream asf(":root\n order TX" + nul + "\n:hierarchy\nbegin\nend\n");
+    EXPECT_EQ(readAsf(asf, "t.asf").error.find("t.asf" + expected), 0u);
+    const AsfImport skeleton = readAsfFile(std::string(OSGACTOR_TEST_MOCAP_DIR) + "/asfamc/11.asf");
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    std::istringstream amc("1\nroot" + nul + " 0 0 0 0 0 0\n");
+    EXPECT_EQ(readAmc(amc, "t.amc", skeleton).error.find("t.amc" + expected), 0u);
+    std::istringstream csv("0,0,0,0,0\n1,0," + nul + "0,0,0\n");
+    EXPECT_EQ(readTrajectoryCsv(csv, "t.csv").error.find("t.csv" + expected), 0u);
+}
+
 // The contract's round trips on the real files the fuzzers start from: read, write, read again, the same document.
 TEST(ParserContract, EveryRealFileReadsWritesAndReadsBackTheSame)
 {
