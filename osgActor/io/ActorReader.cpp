@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <unordered_map>
 
 namespace osgActor {
 
@@ -893,6 +894,20 @@ private:
     std::vector<const SyntaxStatement*> _playerStatements; // likewise
 };
 
+/** Joints in the definition's order (parents first, depth first, each parent's children in file order): the order
+  * the writer nests them in, so that what it writes reads back in the same order whatever order the file gave
+  * (joints at the actor's level with 'parent' statements come in any). */
+void putInDefinitionOrder(const ActorDefinition& definition, std::vector<JointDocument>& joints)
+{
+    std::unordered_map<std::string, std::size_t> byName;
+    for (std::size_t j = 0; j < joints.size(); ++j) byName.emplace(joints[j].spec.name, j);
+    std::vector<JointDocument> ordered;
+    ordered.reserve(joints.size());
+    for (unsigned j = 0; j < definition.getNumJoints(); ++j)
+        ordered.push_back(std::move(joints[byName.at(definition.getJointName(j))]));
+    joints.swap(ordered);
+}
+
 } // namespace
 
 ActorReadResult readActor(std::istream& in, const std::string& fileName)
@@ -913,6 +928,7 @@ ActorReadResult readActor(std::istream& in, const std::string& fileName)
         result.error = built.error;
         return result;
     }
+    putInDefinitionOrder(*built.definition, document.joints);
     if (!reader.readClips(*built.definition, document))
     {
         result.error = reader.error();

@@ -211,3 +211,24 @@ TEST(ActorRoundTrip, TheDataActorsComeBackExactly)
         expectRoundTrip(text.str());
     }
 }
+
+TEST(ActorRoundTrip, JointsGivenInAnyOrderComeBackInTheDefinitionsOrder)
+{
+    // Flat joints with 'parent' statements, children before parents: read in the definition's order, parents first.
+    const std::string text = "osgactor 1\nactor a {\n joint c { parent b }\n joint d { parent a }\n"
+                             " joint b { parent a }\n joint a\n}\n";
+    const ActorReadResult result = read(text);
+    ASSERT_TRUE(result) << result.error;
+    ASSERT_EQ(result.document.joints.size(), 4u);
+    for (unsigned j = 0; j < 4; ++j)
+        EXPECT_EQ(result.document.joints[j].spec.name, result.definition->getJointName(j));
+    EXPECT_EQ(result.document.joints[0].spec.name, "a");
+    expectRoundTrip(text);
+    // A chain deeper than the writer nests (100), with a sibling after it, keeps its order too.
+    std::string deep = "osgactor 1\nactor a {\n joint r\n";
+    for (int j = 0; j < 150; ++j)
+        deep += " joint j" + std::to_string(j) + " { parent " + (j == 0 ? std::string("r") : "j" + std::to_string(j - 1)) +
+                " }\n";
+    deep += " joint sibling { parent r }\n}\n";
+    expectRoundTrip(deep);
+}
