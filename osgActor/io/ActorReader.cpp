@@ -14,7 +14,8 @@ namespace osgActor {
 
 namespace {
 
-// Angles are read as value * kRadiansPerDegree (radiansFromDegrees()), the conversion the writer inverts.
+// Angles are read by readAngle(): degrees (radiansFromDegrees(), the conversion the writer inverts) or radians with
+// the suffix "rad".
 
 /** One read of one file: turns the statements into a document, stopping at the first error. */
 class DocumentReader
@@ -114,6 +115,20 @@ private:
         if (argument.quoted) return fail(argument.line, "\"" + argument.text + "\" is a string, not a number");
         if (parseNumber(argument.text, value)) return true;
         return fail(argument.line, numberProblem(argument.text));
+    }
+
+    /** An angle (degrees, or radians with the suffix "rad") as radians. */
+    bool angle(const SyntaxArgument& argument, double& radians)
+    {
+        if (argument.quoted) return fail(argument.line, "\"" + argument.text + "\" is a string, not an angle");
+        if (readAngle(argument.text, radians) == NumberWord::Finite) return true;
+        return fail(argument.line, angleProblem(argument.text));
+    }
+
+    /** A value of a DOF or a clip channel: an angle for a rotation, a length otherwise. */
+    bool dofValue(const SyntaxArgument& argument, bool angular, double& value)
+    {
+        return angular ? angle(argument, value) : number(argument, value);
     }
 
     /** A statement without values or block that sets a flag ("hidden", "blocked"). */
@@ -268,12 +283,15 @@ private:
             bool ok = true;
             if (k == "key")
             {
+                // "key time x y z heading": the heading an angle.
                 double v[5];
-                ok = numbers(c, 5, v);
+                ok = expectNoBlock(c) && expectArguments(c, 5);
+                for (unsigned i = 0; i < 5 && ok; ++i)
+                    ok = i < 4 ? number(c.arguments[i], v[i]) : angle(c.arguments[i], v[i]);
                 if (ok && !keys.empty() && !(v[0] > keys.back().time))
                     return fail(c.line, "key times must increase (" + c.arguments[0].text + " follows " +
                                             formatNumber(keys.back().time) + ")");
-                if (ok) keys.push_back(TrajectoryKey{v[0], glm::dvec3(v[1], v[2], v[3]), radiansFromDegrees(v[4])});
+                if (ok) keys.push_back(TrajectoryKey{v[0], glm::dvec3(v[1], v[2], v[3]), v[4]});
             }
             else if (k == "play")
             {
@@ -453,20 +471,19 @@ private:
         DofSpec& spec = joint.spec.dofs[static_cast<unsigned>(dof)];
         if (spec.active) return fail(s.line, "DOF '" + s.arguments.front().text + "' is given twice");
         spec.active = true;
-        const double unit = isRotation(dof) ? kRadiansPerDegree : 1.0;
         std::set<std::string> seen;
         for (std::size_t i = 1; i < s.arguments.size(); i += 2)
         {
             const SyntaxArgument& key = s.arguments[i];
             if (i + 1 >= s.arguments.size()) return fail(key.line, "'" + key.text + "' needs a value");
             double value = 0.0;
-            if (!number(s.arguments[i + 1], value)) return false;
+            if (!dofValue(s.arguments[i + 1], isRotation(dof) && key.text != "weight", value)) return false;
             if (!seen.insert(key.text).second) return fail(key.line, "'" + key.text + "' is given twice");
-            if (key.text == "min") spec.min = value * unit;
-            else if (key.text == "max") spec.max = value * unit;
-            else if (key.text == "default") spec.defaultValue = value * unit;
+            if (key.text == "min") spec.min = value;
+            else if (key.text == "max") spec.max = value;
+            else if (key.text == "default") spec.defaultValue = value;
             else if (key.text == "weight") spec.weight = value;
-            else if (key.text == "value") joint.values[static_cast<unsigned>(dof)] = value * unit;
+            else if (key.text == "value") joint.values[static_cast<unsigned>(dof)] = value;
             else return fail(key.line, "unknown DOF attribute '" + key.text + "' (min, max, default, weight, value)");
         }
         // The builder checks the default against the limits; the current value is the file's to check.
@@ -561,12 +578,12 @@ private:
 
     // --- clips ---
 
-    /** The unit a channel's values are written in: degrees for rotation DOFs (as radians per written unit). */
-    bool channelUnit(const SyntaxArgument& target, const ActorDefinition& definition, double& unit)
+    /** Whether a channel's values are angles (it drives a rotation DOF) or lengths. */
+    bool channelIsAngular(const SyntaxArgument& target, const ActorDefinition& definition, bool& angular)
     {
         const int dof = definition.findDof(target.text);
         if (dof < 0) return fail(target.line, "channel '" + target.text + "' names no DOF of the actor");
-        unit = isRotation(definition.getDofType(static_cast<unsigned>(dof))) ? kRadiansPerDegree : 1.0;
+        angular = isRotation(definition.getDofType(static_cast<unsigned>(dof)));
         return true;
     }
 
@@ -582,8 +599,8 @@ private:
     bool readChannel(const SyntaxStatement& s, const ActorDefinition& definition, ClipBuilder& builder)
     {
         if (!expectArguments(s, 1)) return false;
-        double unit = 1.0;
-        if (!channelUnit(s.arguments.front(), definition, unit)) return false;
+        bool angular = false;
+        if (!channelIsAngular(s.arguments.front(), definition, angular)) return false;
         Interpolation interpolation = Interpolation::Linear;
         std::vector<std::pair<double, double>> keys; // seconds, API units
         std::set<std::string> seen;
@@ -596,10 +613,12 @@ private:
             else if (c.keyword == "key")
             {
                 double v[2];
-                if (!numbers(c, 2, v)) return false;
+                if (!expectNoBlock(c) || !expectArguments(c, 2) || !number(c.arguments[0], v[0]) ||
+                    !dofValue(c.arguments[1], angular, v[1]))
+                    return false;
                 if (!keys.empty() && !(v[0] > keys.back().first))
                     return fail(c.line, "key times must increase");
-                keys.emplace_back(v[0], v[1] * unit);
+                keys.emplace_back(v[0], v[1]);
             }
             else return unknownKeyword(c, "in a channel");
         }
@@ -613,7 +632,7 @@ private:
     bool readFrames(const SyntaxStatement& clip, const ActorDefinition& definition, ClipBuilder& builder)
     {
         double frameRate = 0.0;
-        std::vector<double> units;
+        std::vector<bool> angular; // per channel
         std::vector<double> values;
         std::set<std::string> seen;
         for (const SyntaxStatement& c : clip.children)
@@ -628,20 +647,21 @@ private:
                 if (c.arguments.empty()) return fail(c.line, "'channels' needs at least one DOF name");
                 for (const SyntaxArgument& target : c.arguments)
                 {
-                    units.emplace_back();
-                    if (!channelUnit(target, definition, units.back())) return false;
+                    bool isAngle = false;
+                    if (!channelIsAngular(target, definition, isAngle)) return false;
+                    angular.push_back(isAngle);
                     builder.addChannel(target.text);
                 }
             }
             else if (c.keyword == "frame")
             {
-                if (units.empty()) return fail(c.line, "'frame' must follow 'channels'");
-                if (!expectNoBlock(c) || !expectArguments(c, units.size())) return false;
-                for (std::size_t i = 0; i < units.size(); ++i)
+                if (angular.empty()) return fail(c.line, "'frame' must follow 'channels'");
+                if (!expectNoBlock(c) || !expectArguments(c, angular.size())) return false;
+                for (std::size_t i = 0; i < angular.size(); ++i)
                 {
                     double value = 0.0;
-                    if (!number(c.arguments[i], value)) return false;
-                    values.push_back(value * units[i]);
+                    if (!dofValue(c.arguments[i], angular[i], value)) return false;
+                    values.push_back(value);
                 }
             }
             else if (c.keyword == "play") continue; // read by readClip

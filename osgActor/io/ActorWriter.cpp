@@ -11,13 +11,13 @@ namespace osgActor {
 namespace {
 
 // Every number is written as the shortest text that reads back as exactly the double the document holds
-// (text/Numbers), angles in degrees as the shortest text the reader turns into exactly the radians held
-// (text/Degrees): so reading what was written gives the same document.
+// (text/Numbers), angles in degrees as the shortest text the reader turns into exactly the radians held, or in
+// radians ("1rad") where no degrees do (text/Degrees): so reading what was written gives the same document.
 
 SyntaxArgument word(const std::string& text) { return SyntaxArgument{text, false, 0}; }
 SyntaxArgument nameArgument(const std::string& name) { return SyntaxArgument{name, quoteIfNeeded(name) != name, 0}; }
 SyntaxArgument numberArgument(double value) { return word(formatNumber(value)); }
-SyntaxArgument degreesArgument(double radians) { return word(formatDegrees(radians)); }
+SyntaxArgument angleArgument(double radians) { return word(formatAngle(radians)); }
 
 SyntaxStatement statement(const std::string& keyword, std::vector<SyntaxArgument> arguments = {})
 {
@@ -63,7 +63,7 @@ SyntaxStatement dofStatement(Dof dof, const DofSpec& spec, const std::optional<d
         s.arguments.push_back(v);
     };
     // Limits, default and value in degrees for a rotation, model units for a translation.
-    auto dofValue = [&](double v) { return isRotation(dof) ? degreesArgument(v) : numberArgument(v); };
+    auto dofValue = [&](double v) { return isRotation(dof) ? angleArgument(v) : numberArgument(v); };
     if (std::isfinite(spec.min)) add("min", dofValue(spec.min));
     if (std::isfinite(spec.max)) add("max", dofValue(spec.max));
     if (spec.defaultValue != 0.0) add("default", dofValue(spec.defaultValue));
@@ -130,7 +130,7 @@ SyntaxStatement clipStatement(const ClipDocument& document)
     }
     const Clip& clip = *document.clip;
     auto value = [&](unsigned channel, double v) {
-        return clip.getChannel(channel).angular ? degreesArgument(v) : numberArgument(v);
+        return clip.getChannel(channel).angular ? angleArgument(v) : numberArgument(v);
     };
     if (clip.isUniform())
     {
@@ -267,7 +267,7 @@ SyntaxStatement trajectoryStatement(const TrajectoryDocument& document)
     for (const TrajectoryKey& key : document.trajectory->getKeys())
         s.children.push_back(statement("key", {numberArgument(key.time), numberArgument(key.position.x),
                                                numberArgument(key.position.y), numberArgument(key.position.z),
-                                               degreesArgument(key.heading)}));
+                                               angleArgument(key.heading)}));
     return s;
 }
 

@@ -194,9 +194,17 @@ std::string formatNumber(double value)
 
 std::string formatInverse(double stored, double guess, double (*convert)(double))
 {
-    if (!std::isfinite(stored)) return formatNumber(stored);
-    const double infinity = std::numeric_limits<double>::infinity();
+    std::string text;
+    if (formatExactInverse(stored, guess, convert, text)) return text;
     // An inverse that overflows (the largest degrees times pi / 180, and back) is the largest double at most.
+    if (std::isfinite(stored) && !std::isfinite(guess)) guess = std::copysign(std::numeric_limits<double>::max(), guess);
+    return formatNumber(guess);
+}
+
+bool formatExactInverse(double stored, double guess, double (*convert)(double), std::string& text)
+{
+    if (!std::isfinite(stored)) return false;
+    const double infinity = std::numeric_limits<double>::infinity();
     if (!std::isfinite(guess)) guess = std::copysign(std::numeric_limits<double>::max(), guess);
     // A number near guess that converts to stored, guess itself first.
     double found = guess;
@@ -209,7 +217,7 @@ std::string formatInverse(double stored, double guess, double (*convert)(double)
         if (sameDouble(convert(below), stored)) found = below, hit = true;
         else if (sameDouble(convert(above), stored)) found = above, hit = true;
     }
-    if (!hit) return formatNumber(guess);
+    if (!hit) return false;
     // Every number of the run that converts to stored reads back as stored: the shortest of them is written.
     double best = found;
     std::size_t bestLength = textLength(found);
@@ -224,7 +232,8 @@ std::string formatInverse(double stored, double guess, double (*convert)(double)
             if (length < bestLength) best = x, bestLength = length;
         }
     }
-    return formatNumber(best);
+    text = formatNumber(best);
+    return true;
 }
 
 double shortestNear(double value, int steps)

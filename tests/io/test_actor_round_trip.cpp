@@ -232,3 +232,24 @@ TEST(ActorRoundTrip, JointsGivenInAnyOrderComeBackInTheDefinitionsOrder)
     deep += " joint sibling { parent r }\n}\n";
     expectRoundTrip(deep);
 }
+
+TEST(ActorRoundTrip, AnglesInRadiansThatNoDegreesGiveAreWrittenInRadians)
+{
+    // From an AMC file in :RADIANS or the API: 0.7568359910159614 radians are no double number of degrees times
+    // pi / 180, so they are written in radians; 1 radian is exactly 57.29577951308232 degrees.
+    const std::string text = kActor.substr(0, kActor.size() - 3) +
+                             "  dof rx min -1rad max 2.6663767342425704rad value 0.7568359910159614rad\n }\n" +
+                             " clip c {\n  frame_rate 120\n  channels b.rz b.rx\n  frame 1.5945125561180293rad 90\n"
+                             " }\n trajectory t { key 0 0 0 0 0.7927066908535559rad }\n}\n";
+    expectRoundTrip(text);
+    const ActorReadResult result = read(text);
+    ASSERT_TRUE(result) << result.error;
+    EXPECT_EQ(*result.document.joints[0].values[0], 0.7568359910159614);
+    const std::string writtenText = written(result.document);
+    EXPECT_NE(writtenText.find("dof rx min -57.29577951308232 max 2.6663767342425704rad value 0.7568359910159614rad"),
+              std::string::npos)
+        << writtenText;
+    EXPECT_NE(writtenText.find("frame 1.5945125561180293rad 90"), std::string::npos) << writtenText;
+    EXPECT_NE(writtenText.find("key 0 0 0 0 0.7927066908535559rad"), std::string::npos) << writtenText;
+    EXPECT_EQ(readError(kActor + " trajectory t { key 0 0 0 0 radrad }\n}\n"), "t.actor:7: 'radrad': 'rad' is not a number");
+}

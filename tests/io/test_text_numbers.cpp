@@ -214,3 +214,39 @@ TEST(Numbers, AnInverseConversionFindsTheFrameTimeOfAFrameRate)
         EXPECT_LE(written.size(), formatNumber(read(frameTime)).size()) << frameTime << " written " << written;
     }
 }
+
+TEST(Angles, AreDegreesOrRadiansWithTheirSuffix)
+{
+    double radians = 7.0;
+    EXPECT_EQ(readAngle("90", radians), NumberWord::Finite);
+    EXPECT_EQ(radians, radiansFromDegrees(90.0));
+    EXPECT_EQ(readAngle("1.5rad", radians), NumberWord::Finite);
+    EXPECT_EQ(radians, 1.5);
+    radians = 7.0;
+    for (const char* bad : {"rad", "1 rad", "1.5deg", "1.5radians", "radx"})
+    {
+        EXPECT_EQ(readAngle(bad, radians), NumberWord::NotANumber) << bad;
+        EXPECT_NE(angleProblem(bad).find("is not a number"), std::string::npos) << bad;
+    }
+    EXPECT_EQ(readAngle("infrad", radians), NumberWord::NonFinite);
+    EXPECT_EQ(angleProblem("1e-400rad"), "'1e-400rad': '1e-400' is too small for a double (it would read as 0)");
+    EXPECT_EQ(radians, 7.0);
+}
+
+TEST(Angles, AreWrittenInDegreesWhenExactAndInRadiansOtherwise)
+{
+    EXPECT_EQ(formatAngle(radiansFromDegrees(90.0)), "90");
+    EXPECT_EQ(formatAngle(radiansFromDegrees(-1e-300)), "-1e-300");
+    EXPECT_EQ(formatAngle(1.0), "57.29577951308232") << "57.29577951308232 degrees are exactly 1 radian";
+    // About one radian in eleven is no double number of degrees times pi / 180: it is written in radians, exactly.
+    EXPECT_EQ(formatAngle(0.7568359910159614), "0.7568359910159614rad");
+    std::mt19937_64 random(9);
+    std::uniform_real_distribution<double> angle(-10.0, 10.0);
+    for (int i = 0; i < 10000; ++i)
+    {
+        const double radians = angle(random);
+        double back = 0.0;
+        ASSERT_EQ(readAngle(formatAngle(radians), back), NumberWord::Finite) << formatAngle(radians);
+        EXPECT_TRUE(sameBits(back, radians)) << formatAngle(radians);
+    }
+}
