@@ -24,6 +24,16 @@ double read(const std::string& text)
     return value;
 }
 
+/** A decimal of 0 to 17 digits after the point, as files write them, in [low, high). */
+std::string randomDecimal(std::mt19937_64& random, double low, double high)
+{
+    std::uniform_real_distribution<double> value(low, high);
+    std::uniform_int_distribution<int> digits(0, 17);
+    char text[64];
+    std::snprintf(text, sizeof(text), "%.*f", digits(random), value(random));
+    return text;
+}
+
 } // namespace
 
 // --- refusals first ---
@@ -103,11 +113,11 @@ TEST(Numbers, ReadingAgreesWithStrtodToTheBit)
     std::mt19937_64 random(7);
     std::uniform_real_distribution<double> mantissa(-1000.0, 1000.0);
     std::uniform_int_distribution<int> digits(0, 17);
-    char text[64];
     for (int i = 0; i < 20000; ++i)
     {
-        std::snprintf(text, sizeof(text), "%.*f", digits(random), mantissa(random));
-        EXPECT_TRUE(sameBits(read(text), std::strtod(text, nullptr))) << text;
+        const std::string fixed = randomDecimal(random, -1000.0, 1000.0);
+        EXPECT_TRUE(sameBits(read(fixed), std::strtod(fixed.c_str(), nullptr))) << fixed;
+        char text[64];
         std::snprintf(text, sizeof(text), "%.*e", digits(random), mantissa(random) * 1e-5);
         EXPECT_TRUE(sameBits(read(text), std::strtod(text, nullptr))) << text;
     }
@@ -166,12 +176,9 @@ TEST(Numbers, AFloatReadsAsTheDoubleOfItsShortestText)
 TEST(Degrees, AngleReadFromAFileIsWrittenAsDegreesThatReadBackToTheSameRadians)
 {
     std::mt19937_64 random(3);
-    std::uniform_real_distribution<double> angle(-720.0, 720.0);
-    std::uniform_int_distribution<int> digits(0, 17);
-    char text[64];
     for (int i = 0; i < 20000; ++i)
     {
-        std::snprintf(text, sizeof(text), "%.*f", digits(random), angle(random));
+        const std::string text = randomDecimal(random, -720.0, 720.0);
         const double radians = radiansFromDegrees(read(text));
         const std::string written = formatDegrees(radians);
         EXPECT_TRUE(sameBits(radiansFromDegrees(read(written)), radians)) << text << " written " << written;
