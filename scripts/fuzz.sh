@@ -11,6 +11,8 @@
 #                            corpus is minimised (-merge=1) into fuzz/corpus/<target>/ and the run's figures
 #                            (executions, coverage, findings) are added to fuzz/corpus/runs.tsv. Commit both.
 #   scripts/fuzz.sh --merge  only the minimising step, from the working corpus of earlier long runs.
+#   scripts/fuzz.sh --coverage  the edges each target reaches in the parsers' sources (osgActor/io, mocap, text),
+#                            running its committed corpus and seeds once (docs/robustness.md quotes the figures).
 #
 # Fails on any crash, hang, leak, sanitizer report or broken parser contract (fuzz/ParserContract: what a reader
 # accepts is written, read back and compared); the input is kept in $OSGACTOR_FUZZ_ARTIFACTS
@@ -25,8 +27,9 @@ mode=short
 case "${1:-}" in
     --long) mode=long ;;
     --merge) mode=merge ;;
+    --coverage) mode=coverage ;;
     "") ;;
-    *) echo "usage: scripts/fuzz.sh [--long | --merge]" >&2; exit 2 ;;
+    *) echo "usage: scripts/fuzz.sh [--long | --merge | --coverage]" >&2; exit 2 ;;
 esac
 build="${OSGACTOR_ASAN_BUILD_DIR:-$root/build-asan}"
 default_seconds=60
@@ -39,8 +42,10 @@ assimp=/usr/share/assimp/models/BVH
 artifacts="${OSGACTOR_FUZZ_ARTIFACTS:-$build/fuzz-artifacts}"
 committed="$root/fuzz/corpus"
 # Inputs are cut to their first 64 KiB (a mocap file's header and first frames, where the parsing decisions are),
-# which keeps each execution fast; the committed corpus keeps no file longer than that.
+# which keeps each execution fast. The committed corpus keeps no file longer than 16 KiB, to stay small in the
+# repository: the long inputs are mostly the real mocap files cut short, which every run adds as seeds anyway.
 max_len=65536
+max_committed=16384
 
 source "$root/scripts/sanitizers/configure.sh"
 sanitizer_configure asan "$build"
@@ -83,14 +88,33 @@ field_of() { sed -nE "s/.* $2: ([0-9]+).*/\1/p" <<<"$1"; }
 # merge <target>: minimises the working corpus (and what is committed) into fuzz/corpus/<target>/.
 merge() {
     local target="$1" fresh="$work/$1.merged"
-    mkdir -p "$fresh"
-    "$build/bin/fuzz_$target" -merge=1 $(fuzz_options "$target") "$fresh" "$committed/$target" \
-        "$build/fuzz-work/$target" >"$work/$target.merge.log" 2>&1 || { tail -n 30 "$work/$target.merge.log"; return 1; }
+    mkdir -p "$fresh" "$committed/$target"
+    if ! "$build/bin/fuzz_$target" -merge=1 $(fuzz_options "$target") "$fresh" "$committed/$target" \
+            "$build/fuzz-work/$target" >"$work/$target.merge.log" 2>&1; then
+        tail -n 30 "$work/$target.merge.log"
+        return 1
+    fi
     rm -rf "$committed/$target"
     mkdir -p "$committed/$target"
-    find "$fresh" -type f -size -$((max_len + 1))c -exec cp {} "$committed/$target/" \;
+    find "$fresh" -type f -size -$((max_committed + 1))c -exec cp {} "$committed/$target/" \;
     echo "fuzz: $target: fuzz/corpus/$target/ holds $(ls "$committed/$target" | wc -l) inputs" \
          "($(du -sk "$committed/$target" | cut -f1) KiB)"
+}
+
+# coverage <target>: "file covered/total" edges, per source file of the parsers, from -print_coverage's functions.
+coverage() {
+    local target="$1" corpus="$work/$1.coverage"
+    copy_seeds "$target" "$corpus"
+    "$build/bin/fuzz_$target" $(fuzz_options "$target") -runs=0 -print_coverage=1 "$corpus" 2>&1 |
+        awk -v target="$target" '
+            /^(UN)?COVERED_FUNC:/ {
+                split($5, e, "/"); file = $NF; sub(/:[0-9]+$/, "", file)
+                if (file !~ /osgActor\/(io|mocap|text)\/[A-Za-z]+\.cpp$/) next
+                sub(/.*osgActor\//, "", file); covered[file] += e[1]; total[file] += e[2]
+            }
+            END { for (f in total) if (covered[f] > 0)
+                      printf "fuzz: %s: %s %d/%d edges (%.0f%%)\n", target, f, covered[f], total[f],
+                             100 * covered[f] / total[f] }' | sort
 }
 
 failed=()
@@ -140,6 +164,9 @@ for target in "${targets[@]}"; do
     merge)
         merge "$target" || failed+=("$target")
         ;;
+    coverage)
+        coverage "$target"
+        ;;
     esac
 done
 if [ ${#failed[@]} -ne 0 ]; then
@@ -151,4 +178,5 @@ case "$mode" in
     long) echo "fuzz: ${#targets[@]} targets, ${seconds}s each on $fuzz_jobs processes, no findings;" \
                "fuzz/corpus/ refreshed, figures in fuzz/corpus/runs.tsv" ;;
     merge) echo "fuzz: fuzz/corpus/ refreshed from $build/fuzz-work/" ;;
+    coverage) ;;
 esac
