@@ -371,7 +371,10 @@ bool AsfParser::build()
     const BuildResult built = builder.build();
     if (!built)
     {
-        _error = _text.fileName() + ": " + built.error;
+        // The builder's joints are the root and then the bones, in file order: its index names the joint's line.
+        const int joint = built.errorJoint;
+        const unsigned line = joint == 0 ? _root.line : joint > 0 ? _bones[static_cast<unsigned>(joint - 1)].line : 0;
+        _error = (line > 0 ? _text.where(line) : _text.fileName() + ": ") + built.error;
         return false;
     }
     _result.definition = built.definition;

@@ -1,6 +1,6 @@
 #include <osgActor/mocap/BvhReader>
-#include <osgActor/text/Numbers>
 #include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
 #include <osgActor/text/TextLines>
 
 #include <osgActor/core/ActorDefinitionBuilder>
@@ -228,7 +228,12 @@ bool BvhParser::buildDefinition(MocapImport& result)
     const BuildResult built = builder.build();
     if (!built)
     {
-        _error = _text.fileName() + ": " + built.error;
+        // The builder's joints are those added above, in file order: its index names the joint's line.
+        unsigned line = 0;
+        for (std::size_t j = 0, added = 0; j < _joints.size() && built.errorJoint >= 0; ++j)
+            if (!_joints[j].endSite || _options.endSitesAsJoints)
+                if (static_cast<int>(added++) == built.errorJoint) line = _joints[j].line;
+        _error = (line > 0 ? _text.where(line) : _text.fileName() + ": ") + built.error;
         return false;
     }
     result.definition = built.definition;
