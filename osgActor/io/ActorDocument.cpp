@@ -50,7 +50,10 @@ bool parseTranslationMode(const std::string& text, TranslationMode& mode)
 
 const char* boundsName(bool coverRotations) { return kBoundsNames[coverRotations ? 1 : 0]; }
 
-bool parseBounds(const std::string& text, bool& coverRotations) { return parseName(kBoundsNames, text, coverRotations); }
+bool parseBounds(const std::string& text, bool& coverRotations)
+{
+    return parseName(kBoundsNames, text, coverRotations);
+}
 
 const char* geometryKindName(GeometryKind kind) { return kKindNames[static_cast<unsigned>(kind)]; }
 

@@ -288,6 +288,11 @@ private:
                 ok = expectNoBlock(c) && expectArguments(c, 5);
                 for (unsigned i = 0; i < 5 && ok; ++i)
                     ok = i < 4 ? number(c.arguments[i], v[i]) : angle(c.arguments[i], v[i]);
+                for (unsigned i = 1; i < 4 && ok; ++i)
+                    if (std::abs(v[i]) > kMaxDofMagnitude)
+                        return fail(c.line, "the key's position " + c.arguments[i].text +
+                                                " lies beyond what an actor holds (+-" +
+                                                formatNumber(kMaxDofMagnitude) + ")");
                 if (ok && !keys.empty() && !(v[0] > keys.back().time))
                     return fail(c.line, "key times must increase (" + c.arguments[0].text + " follows " +
                                             formatNumber(keys.back().time) + ")");
@@ -491,8 +496,9 @@ private:
         if (value && (*value < spec.min || *value > spec.max))
             return fail(s.line, "the value of DOF '" + s.arguments.front().text + "' lies outside its limits");
         if (value && std::abs(*value) > kMaxDofMagnitude)
-            return fail(s.line, "the value of DOF '" + s.arguments.front().text + "' lies beyond what a pose holds (+-" +
-                                    formatNumber(kMaxDofMagnitude) + (isRotation(dof) ? " radians)" : ")"));
+            return fail(s.line, "the value of DOF '" + s.arguments.front().text +
+                                    "' lies beyond what a pose holds (+-" + formatNumber(kMaxDofMagnitude) +
+                                    (isRotation(dof) ? " radians)" : ")"));
         return true;
     }
 

@@ -1,9 +1,10 @@
+#include <osgActor/mocap/MocapImport>
+#include <osgActor/mocap/TrajectoryCsv>
 #include <osgActor/text/Degrees>
 #include <osgActor/text/Numbers>
-#include <osgActor/mocap/MocapImport>
 #include <osgActor/text/TextLines>
-#include <osgActor/mocap/TrajectoryCsv>
 
+#include <cmath>
 #include <fstream>
 
 namespace osgActor {
@@ -71,6 +72,11 @@ TrajectoryBuildResult readTrajectoryCsv(std::istream& in, const std::string& fil
         }
         for (unsigned i = 0; i < 5; ++i)
             if (!parseNumber(f[i], values[i])) return failed(std::string(kColumns[i]) + " " + numberProblem(f[i]));
+        // The path places the actor (its pre-transform), which holds positions within +-kMaxDofMagnitude.
+        for (unsigned i = 1; i < 4; ++i)
+            if (std::abs(values[i]) > kMaxDofMagnitude)
+                return failed(std::string(kColumns[i]) + " " + std::string(f[i]) +
+                              " lies beyond what an actor holds (+-" + formatNumber(kMaxDofMagnitude) + ")");
         if (!keys.empty() && !(values[0] > keys.back().time))
             return failed("time " + std::string(f[0]) + " does not come after the line before");
         TrajectoryKey key;

@@ -197,7 +197,8 @@ std::string formatInverse(double stored, double guess, double (*convert)(double)
     std::string text;
     if (formatExactInverse(stored, guess, convert, text)) return text;
     // An inverse that overflows (the largest degrees times pi / 180, and back) is the largest double at most.
-    if (std::isfinite(stored) && !std::isfinite(guess)) guess = std::copysign(std::numeric_limits<double>::max(), guess);
+    if (std::isfinite(stored) && !std::isfinite(guess))
+        guess = std::copysign(std::numeric_limits<double>::max(), guess);
     return formatNumber(guess);
 }
 

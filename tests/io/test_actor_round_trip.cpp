@@ -149,7 +149,8 @@ TEST(ActorRoundTrip, GeometryComesBackExactly)
 
 TEST(ActorRoundTrip, ClipsOfKeysAndOfFramesComeBackExactly)
 {
-    std::string frames = " clip frames {\n  play pingpong\n  frame_rate 1.7976931348623157e+308\n  channels b.rz b.tx\n";
+    std::string frames =
+        " clip frames {\n  play pingpong\n  frame_rate 1.7976931348623157e+308\n  channels b.rz b.tx\n";
     std::string keys = " clip keys {\n  channel b.rz {\n   interpolation cubic\n";
     double time = 1.0;
     for (const char* edge : kEdges)
@@ -176,8 +177,10 @@ TEST(ActorRoundTrip, TrajectoriesAndPlayersComeBackExactly)
     double time = 0.0;
     for (const char* edge : kEdges)
     {
+        // Positions place the actor, which holds them within +-1e150 (beyond is refused); headings take any angle.
         const std::string e = edge;
-        trajectory += "  key " + formatNumber(time) + " " + e + " -" + (e.front() == '-' ? e.substr(1) : e) +
+        const std::string p = std::abs(valueOf(e)) <= 1e150 ? e : (e.front() == '-' ? "-1e150" : "1e150");
+        trajectory += "  key " + formatNumber(time) + " " + p + " -" + (p.front() == '-' ? p.substr(1) : p) +
                       " 0 " + e + "\n";
         time = time == 0.0 ? 5e-324 : time * 1e10;
     }
@@ -197,7 +200,8 @@ TEST(ActorRoundTrip, IkChainsComeBackExactly)
                     "   joint h { offset 1e-300 0 -0 }\n  }\n }\n ikchain reach {\n  root s\n  effector h\n"
                     "  effector_offset 5e-324 -1e300 0.30000000000000004\n  solver ccd\n  iterations 1000000\n"
                     "  tolerance 0.99999999999999989\n  joint_weight e 1.7976931348623157e+308\n"
-                    "  dof_weight s.rz 5e-324\n }\n ikchain fine {\n  root s\n  effector e\n  tolerance 5e-324\n }\n}\n");
+                    "  dof_weight s.rz 5e-324\n }\n ikchain fine {\n  root s\n  effector e\n"
+                    "  tolerance 5e-324\n }\n}\n");
 }
 
 TEST(ActorRoundTrip, TheDataActorsComeBackExactly)
@@ -227,8 +231,8 @@ TEST(ActorRoundTrip, JointsGivenInAnyOrderComeBackInTheDefinitionsOrder)
     // A chain deeper than the writer nests (100), with a sibling after it, keeps its order too.
     std::string deep = "osgactor 1\nactor a {\n joint r\n";
     for (int j = 0; j < 150; ++j)
-        deep += " joint j" + std::to_string(j) + " { parent " + (j == 0 ? std::string("r") : "j" + std::to_string(j - 1)) +
-                " }\n";
+        deep += " joint j" + std::to_string(j) + " { parent " +
+                (j == 0 ? std::string("r") : "j" + std::to_string(j - 1)) + " }\n";
     deep += " joint sibling { parent r }\n}\n";
     expectRoundTrip(deep);
 }
@@ -251,5 +255,6 @@ TEST(ActorRoundTrip, AnglesInRadiansThatNoDegreesGiveAreWrittenInRadians)
         << writtenText;
     EXPECT_NE(writtenText.find("frame 1.5945125561180293rad 90"), std::string::npos) << writtenText;
     EXPECT_NE(writtenText.find("key 0 0 0 0 0.7927066908535559rad"), std::string::npos) << writtenText;
-    EXPECT_EQ(readError(kActor + " trajectory t { key 0 0 0 0 radrad }\n}\n"), "t.actor:7: 'radrad': 'rad' is not a number");
+    EXPECT_EQ(readError(kActor + " trajectory t { key 0 0 0 0 radrad }\n}\n"),
+              "t.actor:7: 'radrad': 'rad' is not a number");
 }
