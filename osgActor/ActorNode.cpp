@@ -4,6 +4,7 @@
 
 #include <osg/FrameStamp>
 #include <osg/Notify>
+#include <osgUtil/Optimizer>
 
 #include <algorithm>
 #include <cmath>
@@ -108,12 +109,22 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
       _actorMatrix(actor._actorMatrix), _preTransformDirty(actor._preTransformDirty),
       _postTransformDirty(actor._postTransformDirty), _boundsToPropagate(false),
       _actorMatrixWritten(actor._actorMatrixWritten),
-      _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+      _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame),
+      _definitionObject(actor._definitionObject), _clipLibraryObject(actor._clipLibraryObject)
 {
     for (const ControllerPtr& controller : actor._controllers)
         if (controller) _controllers.push_back(controller->cloneController());
     _ikChains = actor._ikChains; // immutable: shared
     rebindSkeletonNodes();
+}
+
+void ActorNode::traverse(osg::NodeVisitor& nv)
+{
+    // The optimizer's visitors are plain node visitors: the update and cull traversals pay one comparison here.
+    if (nv.getVisitorType() == osg::NodeVisitor::NODE_VISITOR &&
+        dynamic_cast<osgUtil::Optimizer::RemoveEmptyNodesVisitor*>(&nv))
+        return;
+    osg::MatrixTransform::traverse(nv);
 }
 
 void ActorNode::setDefinition(ActorDefinitionPtr definition)
@@ -124,6 +135,7 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     }
     releaseSkeletonNodes();
     _pose = ActorPose(std::move(definition));
+    updateSharedObjects();
     dropUnfittingIkChains();
     buildSkeletonNodes();
     // Pose the new nodes at once, so a fresh actor has correct bounds and queries before its first frame.
@@ -139,8 +151,21 @@ bool ActorNode::setDefinition(ActorDefinitionPtr definition, SkeletonNodePolicy 
         return true;
     }
     _pose = ActorPose(std::move(definition));
+    updateSharedObjects();
     dropUnfittingIkChains();
     return rebindSkeletonNodes();
+}
+
+void ActorNode::setClipLibrary(ClipLibraryPtr library)
+{
+    _clipLibrary = std::move(library);
+    updateSharedObjects();
+}
+
+void ActorNode::updateSharedObjects()
+{
+    _definitionObject = ActorDefinitionObject::of(getDefinition());
+    _clipLibraryObject = ClipLibraryObject::of(_clipLibrary, _definitionObject.get());
 }
 
 void ActorNode::dropUnfittingIkChains()

@@ -33,6 +33,20 @@ set(OSGACTOR_CORE_IK_HEADERS
     core/ik/SweepAcceleration
     core/ik/TwoBoneClosedForm
     core/ik/TwoBoneIkJob)
+set(OSGACTOR_CORE_RETARGET_HEADERS
+    core/retarget/BuiltInJointMaps
+    core/retarget/ClipFrames
+    core/retarget/FootContacts
+    core/retarget/HAnimHumanoid
+    core/retarget/JointMap
+    core/retarget/JointMapGuess
+    core/retarget/JointRotationFit
+    core/retarget/RetargetClip
+    core/retarget/RetargetIkJob
+    core/retarget/RetargetJob
+    core/retarget/RetargetLimbs
+    core/retarget/RetargetMeasures
+    core/retarget/RetargetRig)
 set(OSGACTOR_CORE_SOURCES
     core/ActorDefinition.cpp
     core/ActorDefinitionBuilder.cpp
@@ -58,7 +72,39 @@ set(OSGACTOR_CORE_SOURCES
     core/ik/IkSolve.cpp
     core/ik/SweepAcceleration.cpp
     core/ik/TwoBoneClosedForm.cpp
-    core/ik/TwoBoneIkJob.cpp)
+    core/ik/TwoBoneIkJob.cpp
+    core/retarget/BuiltInJointMaps.cpp
+    core/retarget/ClipFrames.cpp
+    core/retarget/FootContacts.cpp
+    core/retarget/HAnimHumanoid.cpp
+    core/retarget/JointMap.cpp
+    core/retarget/JointMapGuess.cpp
+    core/retarget/JointRotationFit.cpp
+    core/retarget/RetargetClip.cpp
+    core/retarget/RetargetIkJob.cpp
+    core/retarget/RetargetJob.cpp
+    core/retarget/RetargetLimbs.cpp
+    core/retarget/RetargetMeasures.cpp
+    core/retarget/RetargetRig.cpp)
+
+# Skinned meshes (core/skin): the skin data, its builder and binding, and the per-frame jobs (skinning matrices,
+# CPU skinning, bounds).
+set(OSGACTOR_CORE_SKIN_HEADERS
+    core/skin/Skin
+    core/skin/SkinBinding
+    core/skin/SkinBoundBoxes
+    core/skin/SkinBoundsJob
+    core/skin/SkinBuilder
+    core/skin/SkinningJob
+    core/skin/SkinningMatricesJob)
+set(OSGACTOR_CORE_SKIN_SOURCES
+    core/skin/Skin.cpp
+    core/skin/SkinBinding.cpp
+    core/skin/SkinBoundBoxes.cpp
+    core/skin/SkinBoundsJob.cpp
+    core/skin/SkinBuilder.cpp
+    core/skin/SkinningJob.cpp
+    core/skin/SkinningMatricesJob.cpp)
 
 # How every text format reads and writes numbers and splits lines and words: plain C++, used by io/ and mocap/
 # (which include neither each other's parsers nor OSG for it).
@@ -80,7 +126,9 @@ set(OSGACTOR_IO_HEADERS
     io/ActorSyntax
     io/ActorWriter
     io/AngleAxis
-    io/DocumentDifference)
+    io/ClipRetarget
+    io/DocumentDifference
+    io/JointMapSection)
 set(OSGACTOR_IO_SOURCES
     io/ActorDocument.cpp
     io/ActorLexer.cpp
@@ -88,7 +136,9 @@ set(OSGACTOR_IO_SOURCES
     io/ActorSyntax.cpp
     io/ActorWriter.cpp
     io/AngleAxis.cpp
+    io/ClipRetarget.cpp
     io/DocumentDifference.cpp
+    io/JointMapSection.cpp
     io/PlayerDocument.cpp)
 
 # Motion-capture parsers: plain C++ on std::istream, GLM only like the core (built into the same object library).

@@ -1,5 +1,10 @@
-/* osgactorconv: converts motion capture (BVH, ASF+AMC) and dumps joint positions so other tools can check the
- * import. Exit status 0 on success, 1 on bad input (with file:line on stderr), 2 on bad usage. */
+/* osgactorconv: converts motion capture (BVH, ASF+AMC), retargets it onto an actor, and dumps joint positions so
+ * other tools can check the import. Exit status 0 on success, 1 on bad input (with file:line on stderr), 2 on bad
+ * usage. */
+#include "RetargetConversion.h"
+#include "RiggedModelDump"
+
+#include <osgActor/import/RiggedModelFile>
 #include <osgActor/io/ActorDocument>
 #include <osgActor/io/ActorWriter>
 #include <osgActor/mocap/AmcReader>
@@ -27,6 +32,7 @@ namespace {
 const char* const kUsage =
     "usage: osgactorconv [options] INPUT.bvh\n"
     "       osgactorconv [options] INPUT.asf [MOTION.amc]\n"
+    "       osgactorconv --dump-positions|--dump-skinned FILE [--clip NAME] [--fps N] INPUT.gltf|INPUT.glb\n"
     "\n"
     "Reads motion capture into an osgActor actor and clip, then writes it out or dumps joint positions.\n"
     "\n"
@@ -39,7 +45,11 @@ const char* const kUsage =
     "                     'clip' section; .bvh exports BVH (the file's own axes and units, so it reads back\n"
     "                     the same)\n"
     "  --amc FILE         the AMC motion of an ASF skeleton (or give it after the ASF)\n"
-    "  --fps N            frame rate of AMC motion (default 120, CMU's)\n"
+    "  --fps N            frame rate of AMC motion (default 120, CMU's); glTF: rows at times k / N from the\n"
+    "                     clip's first key to its last inclusive (default 30), joints named by node (or node<i>)\n"
+    "  --clip NAME        glTF: the animation to dump (default the first)\n"
+    "  --dump-skinned FILE glTF: write CSV 'frame,mesh,vertex,x,y,z' of the CPU-skinned primitives (mesh: index\n"
+    "                     in meshes[] then primitives[] order) at the same times, in the file's axes and units\n"
     "  --scale S          multiply lengths by S when converting to .actor (not for --dump-positions)\n"
     "  --up y|z           the input's up axis for .actor output (default y; .actor is Z-up like OSG)\n"
     "  --drop-first-frame drop frame 0 (the reference pose of CMU BVH conversions) when converting\n"
@@ -47,6 +57,11 @@ const char* const kUsage =
     "  --link-motion      .actor output: the clip names the motion file (and an AMC's skeleton), by paths\n"
     "                     relative to the output's folder, with the options above, instead of holding\n"
     "                     its frames; the actor reads the motion when it is loaded\n"
+    "  --retarget TARGET.actor\n"
+    "                     retarget the motion onto that actor (its joint names, rest pose and proportions)\n"
+    "                     and write its .actor file with the motion as a clip: to -o, or TARGET.actor itself\n"
+    "  --map FILE         with --retarget: the joint map of the input's skeleton (default: guessed)\n"
+    "  --no-ik            with --retarget: no IK pass (feet not planted, hands and feet not placed)\n"
     "  -h, --help         this text\n";
 
 struct Arguments
@@ -63,6 +78,10 @@ struct Arguments
     bool absoluteRoot = false;
     bool linkMotion = false;
     UpAxis up = UpAxis::Y;
+    bool fpsGiven = false;
+    std::string clip;
+    std::string dumpSkinned;
+    RetargetConversion retarget;
 };
 
 bool endsWith(std::string text, const std::string& suffix)
@@ -105,9 +124,23 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         else if (arg == "--drop-first-frame") args.dropFirstFrame = true;
         else if (arg == "--absolute-root") args.absoluteRoot = true;
         else if (arg == "--link-motion") args.linkMotion = true;
+        else if (arg == "--no-ik") args.retarget.ik = false;
+        else if (arg == "--retarget" || arg == "--map")
+        {
+            if (!value(arg == "--map" ? args.retarget.mapFile : args.retarget.targetFile))
+                return arg + " needs a file name";
+        }
         else if (arg == "-o" || arg == "--output")
         {
             if (!value(args.output)) return arg + " needs a file name";
+        }
+        else if (arg == "--clip")
+        {
+            if (!value(args.clip)) return "--clip needs an animation name";
+        }
+        else if (arg == "--dump-skinned")
+        {
+            if (!value(args.dumpSkinned)) return "--dump-skinned needs a file name";
         }
         else if (arg == "--amc")
         {
@@ -116,6 +149,7 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         else if (arg == "--fps")
         {
             if (!value(text) || !parsePositive(text, args.fps)) return "--fps needs a positive number";
+            args.fpsGiven = true;
         }
         else if (arg == "--scale")
         {
@@ -147,7 +181,19 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
     if (help) return std::string();
     if (args.inputs.empty() || args.inputs.size() > 2) return "give one input file (and an AMC after an ASF)";
     if (args.inputs.size() == 2) args.amc = args.inputs[1];
-    if (!args.dumpPositions && args.output.empty()) return "nothing to do: give --dump-positions or -o FILE";
+    if (!args.retarget.targetFile.empty())
+    {
+        if (args.dumpPositions || args.linkMotion || !args.dumpSkinned.empty())
+            return "--retarget writes a .actor file: no --dump-positions, --dump-skinned or --link-motion";
+        if (isRiggedModelFile(args.inputs[0])) return "--retarget reads motion capture (.bvh, .asf with .amc)";
+        if (!args.output.empty() && !endsWith(args.output, ".actor")) return "--retarget writes a .actor file";
+        args.retarget.outputFile = args.output;
+        return std::string();
+    }
+    if (!args.retarget.mapFile.empty()) return "--map is for --retarget";
+    if (!args.dumpSkinned.empty() && !isRiggedModelFile(args.inputs[0])) return "--dump-skinned is for .gltf/.glb input";
+    if (!args.dumpPositions && args.output.empty() && args.dumpSkinned.empty())
+        return "nothing to do: give --dump-positions or -o FILE";
     if (args.linkMotion && (args.dumpPositions || !endsWith(args.output, ".actor")))
         return "--link-motion is for .actor output";
     return std::string();
@@ -262,7 +308,31 @@ int main(int argc, char** argv)
         return 2;
     }
 
-    const bool toActor = !args.dumpPositions && endsWith(args.output, ".actor");
+    if (isRiggedModelFile(args.inputs[0]))
+    {
+        if (!args.dumpPositions && !args.output.empty())
+        {
+            std::cerr << "osgactorconv: glTF input is dumped (--dump-positions, --dump-skinned), not converted\n";
+            return 2;
+        }
+        std::ofstream file;
+        if (args.dumpPositions && !args.output.empty()) file.open(args.output, std::ios::binary);
+        if (args.dumpPositions && !args.output.empty() && !file)
+        {
+            std::cerr << "osgactorconv: " << args.output << ": cannot write the file\n";
+            return 1;
+        }
+        RiggedModelDumpRequest request;
+        request.input = args.inputs[0];
+        request.clip = args.clip;
+        request.fps = args.fpsGiven ? args.fps : 30.0;
+        request.positions = args.dumpPositions ? (args.output.empty() ? &std::cout : &file) : nullptr;
+        request.skinnedPath = args.dumpSkinned;
+        return runRiggedModelDump(request, std::cerr);
+    }
+
+    const bool retargeting = !args.retarget.targetFile.empty();
+    const bool toActor = !args.dumpPositions && (retargeting || endsWith(args.output, ".actor"));
     const MocapImport imported = readInput(args, args.dumpPositions, toActor);
     if (!imported)
     {
@@ -270,6 +340,7 @@ int main(int argc, char** argv)
         return 1;
     }
     for (const std::string& warning : imported.warnings) std::cerr << "osgactorconv: warning: " << warning << "\n";
+    if (retargeting) return retargetIntoActorFile(args.retarget, imported);
 
     std::ofstream file;
     if (!args.output.empty())
