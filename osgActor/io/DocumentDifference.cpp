@@ -139,6 +139,9 @@ public:
         field(where + "absolute_root_position", x.absoluteRootPosition, y.absoluteRootPosition);
         field(where + "ASF limits", x.applyAsfLimits, y.applyAsfLimits);
         field(where + "frame_rate", x.amcFrameRate, y.amcFrameRate);
+        field(where + "retarget", a.retarget.enabled, b.retarget.enabled);
+        field(where + "retarget's joint map", a.retarget.sourceMap, b.retarget.sourceMap);
+        field(where + "retarget's ik", a.retarget.ik, b.retarget.ik);
     }
 
     void player(const std::string& where, const PlayerDocument& a, const PlayerDocument& b)

@@ -171,6 +171,21 @@ TEST(ActorRoundTrip, ClipFilesKeepTheirOptions)
                              " clip run { file \"run.bvh\" { drop_first_frame; absolute_root_position } }\n}\n");
 }
 
+TEST(ActorRoundTrip, JointMapsAndAClipsRetargetComeBack)
+{
+    const std::string maps = " jointmap { map b HumanoidRoot }\n jointmap studio { base cmu_bvh; map hip l_hip }\n";
+    const std::string text = kActor + maps + " clip walk { file \"walk.bvh\"; retarget studio { ik off } }\n"
+                                             " clip run { file \"run.bvh\"; retarget auto }\n}\n";
+    expectRoundTrip(text);
+    // The comparison sees the retarget statement: the same document without it differs there.
+    const ActorReadResult with = read(text);
+    const ActorReadResult without = read(kActor + maps + " clip walk { file \"walk.bvh\" }\n"
+                                                         " clip run { file \"run.bvh\"; retarget auto }\n}\n");
+    ASSERT_TRUE(with && without) << with.error << without.error;
+    EXPECT_EQ(documentDifference(with.document, without.document).find("clip 'walk': retarget: yes against no"), 0u)
+        << documentDifference(with.document, without.document);
+}
+
 TEST(ActorRoundTrip, TrajectoriesAndPlayersComeBackExactly)
 {
     std::string trajectory = " trajectory path {\n  play pingpong\n  paused\n  speed -1e-300\n";
