@@ -36,9 +36,10 @@ default_seconds=60
 [ "$mode" = long ] && default_seconds=3600
 seconds="${OSGACTOR_FUZZ_SECONDS:-$default_seconds}"
 fuzz_jobs="${OSGACTOR_FUZZ_JOBS:-$(nproc)}"
-targets=(${OSGACTOR_FUZZ_TARGETS:-actor bvh asf amc trajectory_csv})
+targets=(${OSGACTOR_FUZZ_TARGETS:-actor bvh asf amc trajectory_csv gltf rigged})
 mocap="$root/data/mocap"
 assimp=/usr/share/assimp/models/BVH
+gltf2=/usr/share/assimp/models/glTF2
 artifacts="${OSGACTOR_FUZZ_ARTIFACTS:-$build/fuzz-artifacts}"
 committed="$root/fuzz/corpus"
 # Inputs are cut to their first 64 KiB (a mocap file's header and first frames, where the parsing decisions are),
@@ -57,6 +58,8 @@ seeds_bvh=("$mocap"/bvh/*.bvh "$assimp"/*.bvh "$root"/tests/robustness/inputs/bv
 seeds_asf=("$mocap"/asfamc/*.asf "$root"/tests/robustness/inputs/asf/*)
 seeds_amc=("$mocap"/asfamc/11_*.amc "$root"/tests/robustness/inputs/amc/*)
 seeds_trajectory_csv=("$root"/tests/motion/data/*.csv "$root"/tests/robustness/inputs/trajectory_csv/*)
+seeds_gltf=("$gltf2"/*/*.gl[tb]* "$gltf2"/*/*/*.gl[tb]* "$root"/data/models/CesiumMan/*.gltf "$root"/tests/robustness/inputs/gltf/*)
+seeds_rigged=("$root"/tests/robustness/inputs/rigged/*)
 
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT

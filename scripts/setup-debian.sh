@@ -8,11 +8,12 @@ packages=(
     libopenscenegraph-dev openscenegraph   # OSG 3.6 headers, libraries, osgDB plugins, osgviewer/osgconv
     libglm-dev                             # the core's math
     libtinygltf-dev                        # the glTF reader (osgActor/import)
+    libassimp-dev                          # the Collada, FBX and DirectX reader (osgActor/import)
     libosmesa6-dev                         # offscreen rendering
     fonts-dejavu-core                      # the viewer panel's font
     libgtest-dev libgmock-dev googletest   # unit tests
     libbenchmark-dev                       # benchmarks
-    assimp-testmodels                      # real BVH files used by the tests
+    assimp-testmodels                      # real BVH, glTF, Collada, FBX and .x files used by the tests
     xvfb xauth                             # windowed smoke tests without a display
     libgl1-mesa-dri                        # Mesa's software GL driver under Xvfb (the ASan run preloads it)
     clang libclang-rt-14-dev               # fuzzers (libFuzzer) and sanitizer builds

@@ -32,7 +32,8 @@ namespace {
 const char* const kUsage =
     "usage: osgactorconv [options] INPUT.bvh\n"
     "       osgactorconv [options] INPUT.asf [MOTION.amc]\n"
-    "       osgactorconv --dump-positions|--dump-skinned FILE [--clip NAME] [--fps N] INPUT.gltf|INPUT.glb\n"
+    "       osgactorconv --dump-positions|--dump-skinned FILE [--clip NAME] [--fps N] RIGGED\n"
+    "         RIGGED: .gltf, .glb; .dae, .fbx, .x (Assimp); .osgt, .osgb (osgAnimation scenes)\n"
     "\n"
     "Reads motion capture into an osgActor actor and clip, then writes it out or dumps joint positions.\n"
     "\n"
@@ -45,11 +46,12 @@ const char* const kUsage =
     "                     'clip' section; .bvh exports BVH (the file's own axes and units, so it reads back\n"
     "                     the same)\n"
     "  --amc FILE         the AMC motion of an ASF skeleton (or give it after the ASF)\n"
-    "  --fps N            frame rate of AMC motion (default 120, CMU's); glTF: rows at times k / N from the\n"
+    "  --fps N            frame rate of AMC motion (default 120, CMU's); RIGGED: rows at times k / N from the\n"
     "                     clip's first key to its last inclusive (default 30), joints named by node (or node<i>)\n"
-    "  --clip NAME        glTF: the animation to dump (default the first)\n"
-    "  --dump-skinned FILE glTF: write CSV 'frame,mesh,vertex,x,y,z' of the CPU-skinned primitives (mesh: index\n"
-    "                     in meshes[] then primitives[] order) at the same times, in the file's axes and units\n"
+    "  --clip NAME        RIGGED: the animation to dump (default the first)\n"
+    "  --dump-skinned FILE RIGGED: write CSV 'frame,mesh,vertex,x,y,z' of the CPU-skinned primitives (mesh: index\n"
+    "                     among them in the file's order: glTF's meshes[] then primitives[], Assimp's meshes)\n"
+    "                     at the same times, in the file's axes and units\n"
     "  --scale S          multiply lengths by S when converting to .actor (not for --dump-positions)\n"
     "  --up y|z           the input's up axis for .actor output (default y; .actor is Z-up like OSG)\n"
     "  --drop-first-frame drop frame 0 (the reference pose of CMU BVH conversions) when converting\n"
@@ -191,7 +193,8 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         return std::string();
     }
     if (!args.retarget.mapFile.empty()) return "--map is for --retarget";
-    if (!args.dumpSkinned.empty() && !isRiggedModelFile(args.inputs[0])) return "--dump-skinned is for .gltf/.glb input";
+    if (!args.dumpSkinned.empty() && !isRiggedModelFile(args.inputs[0]))
+        return "--dump-skinned is for rigged model input (.gltf, .glb, .dae, .fbx, .x, .osgt, ...)";
     if (!args.dumpPositions && args.output.empty() && args.dumpSkinned.empty())
         return "nothing to do: give --dump-positions or -o FILE";
     if (args.linkMotion && (args.dumpPositions || !endsWith(args.output, ".actor")))
@@ -312,7 +315,7 @@ int main(int argc, char** argv)
     {
         if (!args.dumpPositions && !args.output.empty())
         {
-            std::cerr << "osgactorconv: glTF input is dumped (--dump-positions, --dump-skinned), not converted\n";
+            std::cerr << "osgactorconv: rigged model input is dumped (--dump-positions, --dump-skinned), not converted\n";
             return 2;
         }
         std::ofstream file;

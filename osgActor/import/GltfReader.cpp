@@ -1,6 +1,7 @@
 #include <osgActor/import/GltfReader>
 
 #include "GltfAccessors"
+#include "ImageDecoding"
 
 #include <glm/ext/quaternion_geometric.hpp>
 #include <glm/geometric.hpp>
@@ -92,14 +93,13 @@ private:
     {
         const std::size_t count = _gltf.nodes.size();
         _model.nodes.resize(count);
-        std::map<std::string, int> firstWithName;
         for (std::size_t n = 0; n < count; ++n)
         {
             const tinygltf::Node& source = _gltf.nodes[n];
             RiggedNode& node = _model.nodes[n];
             const std::string place = indexed("nodes", n);
             readTransform(source, node, place);
-            node.name = source.name.empty() ? "node" + std::to_string(n) : source.name;
+            node.name = source.name; // "node<i>" when empty (makeNodeNamesUnique)
             if (source.mesh >= 0 && std::size_t(source.mesh) >= _gltf.meshes.size())
                 throw Refusal(place, "mesh " + std::to_string(source.mesh) + " does not exist");
             if (source.skin >= 0 && std::size_t(source.skin) >= _gltf.skins.size())
@@ -108,15 +108,11 @@ private:
             node.skin = source.mesh >= 0 ? source.skin : -1;
             if (!source.weights.empty()) warn(place + ": morph target weights are left out");
         }
-        // Unique names: the later of two nodes of one name gets its index.
-        for (std::size_t n = 0; n < count; ++n)
+        for (int n : makeNodeNamesUnique(_model))
         {
-            RiggedNode& node = _model.nodes[n];
-            if (firstWithName.emplace(node.name, int(n)).second) continue;
-            const std::string renamed = node.name + "#" + std::to_string(n);
-            warn(indexed("nodes", n) + ": a second node named '" + node.name + "' is called '" + renamed + "'");
-            node.name = renamed;
-            firstWithName.emplace(renamed, int(n));
+            const std::string& renamed = _model.nodes[n].name;
+            const std::string original = renamed.substr(0, renamed.rfind('#'));
+            warn(indexed("nodes", n) + ": a second node named '" + original + "' is called '" + renamed + "'");
         }
         // Parents from the children lists: each node has at most one parent and is not its own ancestor.
         for (std::size_t n = 0; n < count; ++n)
@@ -175,21 +171,10 @@ private:
     {
         glm::dmat4 matrix;
         for (int i = 0; i < 16; ++i) matrix[i / 4][i % 4] = m[i];
-        if (matrix[0][3] != 0.0 || matrix[1][3] != 0.0 || matrix[2][3] != 0.0 || matrix[3][3] != 1.0)
-            throw Refusal(place, "matrix is not affine (its last row is not 0 0 0 1)");
-        node.translation = glm::dvec3(matrix[3]);
-        glm::dvec3 columns[3] = {glm::dvec3(matrix[0]), glm::dvec3(matrix[1]), glm::dvec3(matrix[2])};
-        node.scale = glm::dvec3(glm::length(columns[0]), glm::length(columns[1]), glm::length(columns[2]));
-        if (node.scale.x == 0.0 || node.scale.y == 0.0 || node.scale.z == 0.0)
-            throw Refusal(place, "matrix has a zero scale");
-        const double determinant = glm::determinant(glm::dmat3(columns[0], columns[1], columns[2]));
-        if (determinant < 0.0) node.scale.x = -node.scale.x; // a mirror: put it on X
-        glm::dmat3 rotation(columns[0] / node.scale.x, columns[1] / node.scale.y, columns[2] / node.scale.z);
-        const double shear = std::max({std::abs(glm::dot(rotation[0], rotation[1])),
-                                       std::abs(glm::dot(rotation[0], rotation[2])),
-                                       std::abs(glm::dot(rotation[1], rotation[2]))});
-        if (shear > 1e-5) warn(place + ": matrix has shear, which is left out");
-        node.rotation = glm::normalize(glm::quat_cast(rotation));
+        bool shear = false;
+        const std::string problem = decomposeNodeMatrix(matrix, node, shear);
+        if (!problem.empty()) throw Refusal(place, "matrix " + problem);
+        if (shear) warn(place + ": matrix has shear, which is left out");
     }
 
     static glm::dquat unitQuaternion(double w, double x, double y, double z, const std::string& place)
@@ -303,21 +288,9 @@ private:
             warn(place + ": " + what + " cannot be read; materials using it are drawn untextured");
             return;
         }
-        tinygltf::Image decoded;
-        std::string error, warning;
-        if (encoded.size() > std::size_t(std::numeric_limits<int>::max()) ||
-            !tinygltf::LoadImageData(&decoded, index, &error, &warning, 0, 0, encoded.data(), int(encoded.size()),
-                                     nullptr) ||
-            decoded.width <= 0 || decoded.height <= 0 || decoded.component != 4 || decoded.bits != 8 ||
-            decoded.image.size() != std::size_t(decoded.width) * decoded.height * 4)
-        {
-            warn(place + ": " + what + " cannot be decoded (" + oneLine(error) +
-                 "); materials using it are drawn untextured");
-            return;
-        }
-        image.width = unsigned(decoded.width);
-        image.height = unsigned(decoded.height);
-        image.rgba = std::move(decoded.image);
+        std::string error;
+        if (!osgActor::decodeImage(encoded.data(), encoded.size(), index, image, error))
+            warn(place + ": " + what + " cannot be decoded (" + error + "); materials using it are drawn untextured");
     }
 
     static TextureWrap wrapOf(int mode)
@@ -596,18 +569,12 @@ private:
 
     void readAnimations()
     {
-        std::set<std::string> names;
         for (std::size_t a = 0; a < _gltf.animations.size(); ++a)
         {
             const tinygltf::Animation& source = _gltf.animations[a];
             const std::string place = indexed("animations", a);
             RiggedAnimation animation;
-            animation.name = source.name.empty() ? "animation" + std::to_string(a) : source.name;
-            if (!names.insert(animation.name).second)
-            {
-                animation.name += "#" + std::to_string(a);
-                names.insert(animation.name);
-            }
+            animation.name = source.name; // "animation<i>" when empty (makeAnimationNamesUnique)
             bool morphWeights = false;
             for (std::size_t c = 0; c < source.channels.size(); ++c)
             {
@@ -640,6 +607,7 @@ private:
             if (morphWeights) warn(place + ": morph target weights are not animated (morph targets are left out)");
             _model.animations.push_back(std::move(animation));
         }
+        makeAnimationNamesUnique(_model);
     }
 
     void readSampler(const tinygltf::AnimationSampler& sampler, AnimationChannel& channel, const std::string& place)
@@ -704,39 +672,44 @@ private:
 
 } // namespace
 
-RiggedModelRead readGltfFile(const std::string& path)
+namespace {
+
+/** File access for a model read from memory: none (the files it names are not read; they "exist", so that the
+  * message is the reader's). */
+bool anyFileExists(const std::string&, void*) { return true; }
+std::string keepPath(const std::string& path, void*) { return path; }
+bool readNoFile(std::vector<unsigned char>*, std::string* error, const std::string& path, void*)
+{
+    if (error) *error += "'" + path + "' is not read (the model was read from memory)";
+    return false;
+}
+bool writeNoFile(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+/** Loads with tinygltf (load: the loader's call, file or memory) and converts: the reader's one path. */
+template <class Load>
+RiggedModelRead loadAndConvert(const std::string& name, tinygltf::TinyGLTF& loader, const Load& load)
 {
     RiggedModelRead result;
     auto fail = [&](const std::string& message) {
         result.model.reset();
         result.warnings.clear();
-        result.error = path + ": " + message;
+        result.error = name + ": " + message;
         return result;
     };
-    std::ifstream probe(path, std::ios::binary);
-    if (!probe) return fail("cannot open the file");
-    char magic[4] = {0, 0, 0, 0};
-    probe.read(magic, 4);
-    const bool binary = probe.gcount() == 4 && std::equal(magic, magic + 4, "glTF");
-    probe.close();
-
     try
     {
-        tinygltf::TinyGLTF loader;
         loader.SetImageLoader(&keepEncodedImage, nullptr);
         tinygltf::Model gltf;
         std::string error, warning;
-        const bool loaded = binary ? loader.LoadBinaryFromFile(&gltf, &error, &warning, path)
-                                   : loader.LoadASCIIFromFile(&gltf, &error, &warning, path);
-        if (!loaded) return fail(oneLine(error.empty() ? "tinygltf cannot read it" : error));
+        if (!load(gltf, error, warning)) return fail(oneLine(error.empty() ? "tinygltf cannot read it" : error));
         if (!warning.empty()) result.warnings.push_back(oneLine(warning));
         if (gltf.asset.version.compare(0, 2, "2.") != 0)
             return fail("asset.version '" + gltf.asset.version + "' is not glTF 2");
 
         auto model = std::make_shared<RiggedModel>();
-        model->sourceFile = path;
+        model->sourceFile = name;
         Converter(gltf, *model, result.warnings).convert();
-        for (std::string& warningText : result.warnings) warningText = path + ": " + warningText;
+        for (std::string& warningText : result.warnings) warningText = name + ": " + warningText;
         result.model = model;
         return result;
     }
@@ -752,6 +725,49 @@ RiggedModelRead readGltfFile(const std::string& path)
     {
         return fail(std::string("tinygltf cannot read it (") + exception.what() + ")");
     }
+}
+
+bool isBinaryGltf(const char* magic, std::size_t size) { return size >= 4 && std::equal(magic, magic + 4, "glTF"); }
+
+} // namespace
+
+RiggedModelRead readGltfFile(const std::string& path)
+{
+    std::ifstream probe(path, std::ios::binary);
+    if (!probe)
+    {
+        RiggedModelRead failed;
+        failed.error = path + ": cannot open the file";
+        return failed;
+    }
+    char magic[4] = {0, 0, 0, 0};
+    probe.read(magic, 4);
+    const bool binary = isBinaryGltf(magic, std::size_t(probe.gcount()));
+    probe.close();
+    tinygltf::TinyGLTF loader;
+    return loadAndConvert(path, loader, [&](tinygltf::Model& gltf, std::string& error, std::string& warning) {
+        return binary ? loader.LoadBinaryFromFile(&gltf, &error, &warning, path)
+                      : loader.LoadASCIIFromFile(&gltf, &error, &warning, path);
+    });
+}
+
+RiggedModelRead readGltfMemory(const void* bytes, std::size_t size, const std::string& name)
+{
+    const char* text = static_cast<const char*>(bytes);
+    if (size > std::numeric_limits<unsigned int>::max())
+    {
+        RiggedModelRead failed;
+        failed.error = name + ": too large";
+        return failed;
+    }
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&anyFileExists, &keepPath, &readNoFile, &writeNoFile, nullptr});
+    return loadAndConvert(name, loader, [&](tinygltf::Model& gltf, std::string& error, std::string& warning) {
+        return isBinaryGltf(text, size)
+                   ? loader.LoadBinaryFromMemory(&gltf, &error, &warning,
+                                                 reinterpret_cast<const unsigned char*>(text), unsigned(size))
+                   : loader.LoadASCIIFromString(&gltf, &error, &warning, text, unsigned(size), "");
+    });
 }
 
 } // namespace osgActor

@@ -9,6 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include <glm/gtc/quaternion.hpp>
 
 using namespace osgActor;
@@ -21,9 +24,9 @@ namespace {
 
 TEST(RiggedModelFile, RefusesAnExtensionItDoesNotRead)
 {
-    const RiggedModelRead read = readRiggedModelFile("hero.fbx");
+    const RiggedModelRead read = readRiggedModelFile("hero.obj");
     EXPECT_FALSE(read.model);
-    EXPECT_EQ(read.error, "hero.fbx: not a rigged model file osgActor reads (expected .gltf or .glb)");
+    EXPECT_EQ(read.error, "hero.obj: not a rigged model file osgActor reads (expected .gltf, .glb, .dae, .fbx, .x, .osgt, ...)");
     EXPECT_TRUE(isRiggedModelFile("a/b/Hero.GLB"));
     EXPECT_TRUE(isRiggedModelFile("hero.gltf"));
     EXPECT_FALSE(isRiggedModelFile("hero.gltf.actor"));
@@ -167,4 +170,27 @@ TEST(GltfReader, WarnsAboutCamerasMorphTargetsAndExtensionsAndReadsTheRest)
     const RiggedModelRead transform = readGltfFile(path);
     ASSERT_TRUE(transform.model) << transform.error;
     EXPECT_TRUE(anyWarningSays(transform.warnings, path + ": extension KHR_texture_transform is not supported"));
+}
+
+TEST(GltfReader, ReadsFromMemoryAsFromAFileButNoFileItNames)
+{
+    const auto bytesOf = [](const std::string& path) {
+        std::ifstream in(path, std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    };
+    const std::string glb = bytesOf(gltf2("BoxTextured-glTF-Binary/BoxTextured.glb"));
+    const RiggedModelRead fromMemory = readGltfMemory(glb.data(), glb.size(), "box.glb");
+    const RiggedModelRead fromFile = readGltfFile(gltf2("BoxTextured-glTF-Binary/BoxTextured.glb"));
+    ASSERT_TRUE(fromMemory) << fromMemory.error;
+    ASSERT_TRUE(fromFile) << fromFile.error;
+    EXPECT_EQ(fromMemory.model->sourceFile, "box.glb");
+    EXPECT_EQ(fromMemory.model->nodes.size(), fromFile.model->nodes.size());
+    EXPECT_EQ(fromMemory.model->meshes[0].primitives[0].positions, fromFile.model->meshes[0].primitives[0].positions);
+    EXPECT_EQ(fromMemory.model->images[0].rgba, fromFile.model->images[0].rgba); // embedded in the .glb
+    // The .gltf's buffer is a file beside it: not read from memory.
+    const std::string text = bytesOf(gltf2("BoxTextured-glTF/BoxTextured.gltf"));
+    const RiggedModelRead external = readGltfMemory(text.data(), text.size(), "box.gltf");
+    EXPECT_FALSE(external.model);
+    EXPECT_EQ(external.error.rfind("box.gltf: ", 0), 0u) << external.error;
+    EXPECT_NE(external.error.find("is not read (the model was read from memory)"), std::string::npos) << external.error;
 }

@@ -3,7 +3,10 @@
 #include "GltfTestFile"
 #include "ImportTestUtil"
 
+#include <osgActor/core/ActorPose>
+#include <osgActor/core/skin/SkinBinding>
 #include <osgActor/import/GltfReader>
+#include <osgActor/import/RiggedActorBuilder>
 
 #include <gtest/gtest.h>
 
@@ -126,6 +129,32 @@ TEST(GltfReaderRefuses, NothingOfTheOtherWrongTypesButReadsThemWithTheDefaults)
     }
     const RiggedModelRead badUint = readGltfFile(gltf2("wrongTypes/badUint.gltf"));
     EXPECT_EQ(badUint.model->materials.at(0).baseColorTexture.image, -1); // "index": -1, no texture
+}
+
+TEST(GltfReaderRefuses, NothingOfASkinWithoutInverseBindMatricesWhichAreThenIdentities)
+{
+    // The glTF spec: "When undefined, each matrix is a 4x4 identity matrix." Each joint then moves the vertices as
+    // its own model matrix does: vertex 2, (0, 1, 0) in the strip's file and weighted by joint 1 (node 2, 1 up the
+    // Y axis from node 1 at the origin) alone, is skinned to (0, 2, 0) at rest.
+    const SkinnedStrip strip;
+    const RiggedModelRead read =
+        strip.readEdited("no_inverse_bind.gltf", "\"inverseBindMatrices\"", "\"name\":\"noInverseBind\"}]");
+    ASSERT_TRUE(read.model) << read.error;
+    const RiggedSkin& fileSkin = read.model->skins.at(0);
+    EXPECT_EQ(fileSkin.name, "noInverseBind");
+    EXPECT_EQ(fileSkin.inverseBindMatrices, std::vector<glm::dmat4>(2, glm::dmat4(1.0)));
+    const RiggedActor actor = buildRiggedActor(read.model);
+    ASSERT_TRUE(actor) << actor.error;
+    ASSERT_EQ(actor.skins.size(), 1u);
+    const Skin& skin = *actor.skins[0].skin;
+    const SkinBinding binding = bindSkinToDefinition(skin, *actor.definition);
+    ASSERT_TRUE(binding) << binding.error;
+    ActorPose rest(actor.definition);
+    rest.updateMatrices();
+    const glm::dvec4 vertex(0.0, 1.0, 0.0, 1.0);
+    const glm::dvec4 skinned = rest.getModelMatrix(binding.definitionJoints[1]) * skin.getInverseBindMatrix(1) * vertex;
+    EXPECT_NEAR(glm::length(glm::dvec3(skinned) - glm::dvec3(0.0, 2.0, 0.0)), 0.0, 1e-12);
+    EXPECT_EQ(glm::dmat4(skin.getInverseBindMatrix(0)), glm::dmat4(1.0));
 }
 
 TEST(GltfReaderRefuses, ATruncatedGlb)

@@ -8,24 +8,11 @@
 
 #include <glm/ext/quaternion_trigonometric.hpp>
 
-#include <iostream>
 
 using namespace osgActor;
 using namespace osgActor::test;
 
 namespace {
-
-void expectFaithful(const std::string& what, const Fidelity& fidelity)
-{
-    ASSERT_GT(fidelity.comparisons, 0u) << what;
-    ASSERT_GT(fidelity.height, 0.0) << what;
-    EXPECT_LE(fidelity.atKeys, 1e-5 * fidelity.height) << what;
-    EXPECT_LE(fidelity.betweenKeys, 1e-3 * fidelity.height) << what;
-    // The figures docs/import.md quotes.
-    std::cout << what << ": height " << fidelity.height << ", largest error at keys " << fidelity.atKeys / fidelity.height
-              << " of the height, between keys " << fidelity.betweenKeys / fidelity.height << " ("
-              << fidelity.comparisons << " joint positions)\n";
-}
 
 /** A chain root -> a -> b -> c, 0.5 apart along Y, all four a skin's joints (so all are compared), the root scaled
   * by rootScale, a by aScale, with one animation of the given channels (JSON) over accessors the caller added. */
