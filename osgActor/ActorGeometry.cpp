@@ -1,11 +1,12 @@
 #include <osgActor/ActorGeometry>
 #include <osgActor/GlmOsg>
+#include <osgActor/io/AngleAxis>
+#include <osgActor/text/Numbers>
 
 #include <osg/BlendFunc>
 #include <osg/Geode>
 #include <osg/ShapeDrawable>
 
-#include <charconv>
 
 namespace osgActor {
 
@@ -14,15 +15,17 @@ const char* const kModelNodeDescriptionPrefix = "osgActor:model ";
 
 namespace {
 
-/** OSG's shapes and colours hold floats. Reading one back as the double nearest to the float's shortest decimal
-  * form turns 0.3f into 0.3, not 0.300000011921, so what a file said is what the writer writes again. */
-double fromFloat(float value)
+/** OSG's shapes and colours hold floats: each is read back as the double of the float's shortest text, so that
+  * 0.3f gives 0.3, what a file said, which the writer then writes again. */
+double fromFloat(float value) { return doubleFromFloatText(value); }
+
+/** Rotations and model placements are doubles, which OSG's text formats read back within a step or two of what
+  * they wrote: each is taken as the nearby number (or rotation) of short text a file wrote. */
+glm::dquat fromOsgText(const osg::Quat& rotation) { return nearestWrittenRotation(toGlm(rotation)); }
+double fromOsgText(double value) { return shortestNear(value, 4); }
+glm::dvec3 fromOsgText(const osg::Vec3d& v)
 {
-    char buffer[32];
-    const std::to_chars_result written = std::to_chars(buffer, buffer + sizeof(buffer), value);
-    double result = value;
-    std::from_chars(buffer, written.ptr, result);
-    return result;
+    return glm::dvec3(fromOsgText(v.x()), fromOsgText(v.y()), fromOsgText(v.z()));
 }
 
 glm::dvec3 fromFloat(const osg::Vec3& v) { return glm::dvec3(fromFloat(v.x()), fromFloat(v.y()), fromFloat(v.z())); }
@@ -80,7 +83,7 @@ bool describeShape(const osg::Shape& shape, GeometryDescription& d)
         d.kind = GeometryKind::Box;
         d.size = fromFloat(box->getHalfLengths() * 2.0f); // doubling a float is exact
         d.position = fromFloat(box->getCenter());
-        d.rotation = toGlm(box->getRotation());
+        d.rotation = fromOsgText(box->getRotation());
     }
     else if (const osg::Sphere* sphere = dynamic_cast<const osg::Sphere*>(&shape))
     {
@@ -94,7 +97,7 @@ bool describeShape(const osg::Shape& shape, GeometryDescription& d)
         d.radius = fromFloat(capsule->getRadius());
         d.height = fromFloat(capsule->getHeight());
         d.position = fromFloat(capsule->getCenter());
-        d.rotation = toGlm(capsule->getRotation());
+        d.rotation = fromOsgText(capsule->getRotation());
     }
     else if (const osg::Cylinder* cylinder = dynamic_cast<const osg::Cylinder*>(&shape))
     {
@@ -102,14 +105,14 @@ bool describeShape(const osg::Shape& shape, GeometryDescription& d)
         d.radius = fromFloat(cylinder->getRadius());
         d.height = fromFloat(cylinder->getHeight());
         d.position = fromFloat(cylinder->getCenter());
-        d.rotation = toGlm(cylinder->getRotation());
+        d.rotation = fromOsgText(cylinder->getRotation());
     }
     else if (const osg::Cone* cone = dynamic_cast<const osg::Cone*>(&shape))
     {
         d.kind = GeometryKind::Cone;
         d.radius = fromFloat(cone->getRadius());
         d.height = fromFloat(cone->getHeight());
-        d.rotation = toGlm(cone->getRotation());
+        d.rotation = fromOsgText(cone->getRotation());
         // Rounded to float like the other positions, so the offset's round-off does not show in the file.
         d.position =
             fromFloat(osg::Vec3(osg::Vec3d(cone->getCenter()) + coneCentreOffset(cone->getRotation(), d.height)));
@@ -171,9 +174,9 @@ bool describeGeometryNode(const osg::Node& node, GeometryDescription& descriptio
             description = GeometryDescription();
             description.kind = GeometryKind::Model;
             description.file = text.substr(prefix.size());
-            description.position = toGlm(transform->getPosition());
-            description.rotation = toGlm(transform->getAttitude());
-            description.scale = transform->getScale().x();
+            description.position = fromOsgText(transform->getPosition());
+            description.rotation = fromOsgText(transform->getAttitude());
+            description.scale = fromOsgText(transform->getScale().x());
             return !description.file.empty();
         }
         return false;

@@ -106,25 +106,38 @@ set(OSGACTOR_CORE_SKIN_SOURCES
     core/skin/SkinningJob.cpp
     core/skin/SkinningMatricesJob.cpp)
 
+# How every text format reads and writes numbers and splits lines and words: plain C++, used by io/ and mocap/
+# (which include neither each other's parsers nor OSG for it).
+set(OSGACTOR_TEXT_HEADERS
+    text/Degrees
+    text/Numbers
+    text/TextLines)
+set(OSGACTOR_TEXT_SOURCES
+    text/Degrees.cpp
+    text/Numbers.cpp
+    text/TextLines.cpp)
+
 # The .actor file format: document model, lexer, syntax, reader, writer. Plain C++ on GLM like the core (no OSG, no
 # osgDB), so it is compiled with it.
 set(OSGACTOR_IO_HEADERS
     io/ActorDocument
     io/ActorLexer
-    io/ActorNumbers
     io/ActorReader
     io/ActorSyntax
     io/ActorWriter
+    io/AngleAxis
     io/ClipRetarget
+    io/DocumentDifference
     io/JointMapSection)
 set(OSGACTOR_IO_SOURCES
     io/ActorDocument.cpp
     io/ActorLexer.cpp
-    io/ActorNumbers.cpp
     io/ActorReader.cpp
     io/ActorSyntax.cpp
     io/ActorWriter.cpp
+    io/AngleAxis.cpp
     io/ClipRetarget.cpp
+    io/DocumentDifference.cpp
     io/JointMapSection.cpp
     io/PlayerDocument.cpp)
 
@@ -137,7 +150,6 @@ set(OSGACTOR_MOCAP_HEADERS
     mocap/MocapImport
     mocap/MotionFile
     mocap/PositionsCsv
-    mocap/TextLines
     mocap/TrajectoryCsv)
 set(OSGACTOR_MOCAP_SOURCES
     mocap/AmcReader.cpp
@@ -147,5 +159,4 @@ set(OSGACTOR_MOCAP_SOURCES
     mocap/MocapImport.cpp
     mocap/MotionFile.cpp
     mocap/PositionsCsv.cpp
-    mocap/TextLines.cpp
     mocap/TrajectoryCsv.cpp)

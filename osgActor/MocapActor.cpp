@@ -1,12 +1,11 @@
 #include <osgActor/MocapActor>
 #include <osgActor/StickFigure>
 #include <osgActor/mocap/MotionFile>
+#include <osgActor/text/Numbers>
 
 #include <osg/Notify>
 
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -47,11 +46,10 @@ bool parseMocapOptionString(const std::string& text, MocapActorOptions& options,
     {
         const std::size_t equals = word.find('=');
         const std::string key = word.substr(0, equals);
-        const std::string value = equals == std::string::npos ? std::string() : word.substr(equals + 1);
+        std::string value = equals == std::string::npos ? std::string() : word.substr(equals + 1);
         auto positive = [&](double& into) {
-            char* end = nullptr;
-            const double number = std::strtod(value.c_str(), &end);
-            if (value.empty() || *end != '\0' || !(number > 0.0) || !std::isfinite(number))
+            double number = 0.0;
+            if (!parseNumber(value, number) || !(number > 0.0))
             {
                 error = "option " + key + " needs a positive number, not '" + value + "'";
                 return false;
@@ -63,28 +61,32 @@ bool parseMocapOptionString(const std::string& text, MocapActorOptions& options,
             error = "option " + key + " must be " + expected + ", not '" + value + "'";
             return false;
         };
+        // Words of earlier versions, still read: the options now use the .actor format's words.
+        auto deprecated = [&](const char* old, const char* now) {
+            if (value != old) return;
+            OSG_NOTICE << "osgActor: option " << key << "=" << old << " is deprecated; write " << key << "=" << now
+                       << std::endl;
+            value = now;
+        };
         if (key == "amc") options.amcFile = value;
         else if (key == "scale") { if (!positive(options.scale)) return false; }
         else if (key == "fps") { if (!positive(options.amcFrameRate)) return false; }
         else if (key == "up")
         {
-            if (value == "Y" || value == "y") options.fileUpAxis = UpAxis::Y;
-            else if (value == "Z" || value == "z") options.fileUpAxis = UpAxis::Z;
-            else return bad("Y or Z");
+            deprecated("Y", "y");
+            deprecated("Z", "z");
+            if (!parseUpAxis(value, options.fileUpAxis)) return bad("y or z");
         }
         else if (key == "mode")
         {
-            if (value == "loop") options.playMode = PlayMode::Loop;
-            else if (value == "once") options.playMode = PlayMode::Once;
-            else if (value == "pingpong") options.playMode = PlayMode::PingPong;
-            else return bad("loop, once or pingpong");
+            if (!parsePlayMode(value, options.playMode)) return bad("once, loop or pingpong");
         }
         else if (key == "rootMotion")
         {
-            if (value == "skeleton") options.rootMotion = RootMotion::InSkeleton;
-            else if (value == "transforms") options.rootMotion = RootMotion::ToTransforms;
-            else if (value == "inplace") options.rootMotion = RootMotion::InPlace;
-            else return bad("skeleton, transforms or inplace");
+            deprecated("skeleton", "in_skeleton");
+            deprecated("transforms", "to_transforms");
+            deprecated("inplace", "in_place");
+            if (!parseRootMotion(value, options.rootMotion)) return bad("in_skeleton, to_transforms or in_place");
         }
         else if (word == "dropFirstFrame") options.dropFirstFrame = true;
         else if (word == "absoluteRoot") options.absoluteRootPosition = true;

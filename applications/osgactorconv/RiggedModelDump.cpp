@@ -8,8 +8,8 @@
 #include <osgActor/import/RiggedModelFile>
 #include <osgActor/import/UniformClip>
 #include <osgActor/mocap/PositionsCsv>
+#include <osgActor/text/Numbers>
 
-#include <cstdio>
 #include <fstream>
 
 using namespace osgActor;
@@ -36,7 +36,7 @@ bool writeSkinnedCsv(std::ostream& out, const RiggedActor& actor, const Clip& fr
         dofOfChannel[c] = actor.definition->findDof(frames.getChannel(c).target);
     ActorPose pose(actor.definition);
     out << "frame,mesh,vertex,x,y,z\n";
-    char row[160];
+    std::string row;
     for (unsigned f = 0; f < frames.getNumFrames(); ++f)
     {
         const double* values = frames.getFrame(f);
@@ -64,8 +64,15 @@ bool writeSkinnedCsv(std::ostream& out, const RiggedActor& actor, const Clip& fr
             }
             for (std::size_t v = 0; v < positions.size(); ++v)
             {
-                const glm::vec3& p = positions[v];
-                std::snprintf(row, sizeof(row), "%u,%zu,%zu,%.9g,%.9g,%.9g\n", f, s, v, p.x + 0.0, p.y + 0.0, p.z + 0.0);
+                // Each coordinate as the shortest text that reads back as the same float (the skin's precision);
+                // a -0 the skinning gives is written 0.
+                row = std::to_string(f) + ',' + std::to_string(s) + ',' + std::to_string(v);
+                for (const float coordinate : {positions[v].x, positions[v].y, positions[v].z})
+                {
+                    row += ',';
+                    appendNumber(row, doubleFromFloatText(coordinate + 0.0f));
+                }
+                row += '\n';
                 out << row;
             }
         }

@@ -13,6 +13,7 @@
 #include <osgActor/mocap/BvhWriter>
 #include <osgActor/mocap/MotionFile>
 #include <osgActor/mocap/PositionsCsv>
+#include <osgActor/text/Numbers>
 
 #include <algorithm>
 #include <cctype>
@@ -52,7 +53,7 @@ const char* const kUsage =
     "                     among them in the file's order: glTF's meshes[] then primitives[], Assimp's meshes)\n"
     "                     at the same times, in the file's axes and units\n"
     "  --scale S          multiply lengths by S when converting to .actor (not for --dump-positions)\n"
-    "  --up Y|Z           the input's up axis for .actor output (default Y; .actor is Z-up like OSG)\n"
+    "  --up y|z           the input's up axis for .actor output (default y; .actor is Z-up like OSG)\n"
     "  --drop-first-frame drop frame 0 (the reference pose of CMU BVH conversions) when converting\n"
     "  --absolute-root    BVH root positions are absolute (3ds Max), not added to the root OFFSET\n"
     "  --link-motion      .actor output: the clip names the motion file (and an AMC's skeleton), by paths\n"
@@ -94,16 +95,18 @@ bool endsWith(std::string text, const std::string& suffix)
 
 bool parseUnsigned(const std::string& text, unsigned& value)
 {
-    if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos || text.size() > 9) return false;
-    value = static_cast<unsigned>(std::stoul(text));
+    unsigned long parsed = 0;
+    if (!parseCount(text, parsed) || parsed > std::numeric_limits<unsigned>::max()) return false;
+    value = static_cast<unsigned>(parsed);
     return true;
 }
 
 bool parsePositive(const std::string& text, double& value)
 {
-    char* end = nullptr;
-    value = std::strtod(text.c_str(), &end);
-    return !text.empty() && *end == '\0' && value > 0.0 && value < std::numeric_limits<double>::infinity();
+    double parsed = 0.0;
+    if (!parseNumber(text, parsed) || !(parsed > 0.0)) return false;
+    value = parsed;
+    return true;
 }
 
 /** Parses the command line; returns an error message, empty on success. */
@@ -156,8 +159,15 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         }
         else if (arg == "--up")
         {
-            if (!value(text) || (text != "Y" && text != "y" && text != "Z" && text != "z")) return "--up needs Y or Z";
-            args.up = text == "Y" || text == "y" ? UpAxis::Y : UpAxis::Z;
+            if (!value(text)) return "--up needs y or z";
+            if (text == "Y" || text == "Z")
+            {
+                // The word of earlier versions, still read: the option now uses the .actor format's word.
+                std::cerr << "osgactorconv: --up " << text << " is deprecated; write --up "
+                          << static_cast<char>(text[0] - 'A' + 'a') << "\n";
+                text[0] = static_cast<char>(text[0] - 'A' + 'a');
+            }
+            if (!parseUpAxis(text, args.up)) return "--up needs y or z";
         }
         else if (arg == "--frames")
         {

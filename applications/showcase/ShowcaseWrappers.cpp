@@ -10,6 +10,8 @@
 #undef OBJECT_CAST
 #define OBJECT_CAST dynamic_cast
 
+#include <osgActor/StreamNumbers>
+
 #include <osgDB/ObjectWrapper>
 #include <osgDB/Serializer>
 
@@ -44,8 +46,10 @@ bool readPath(osgDB::InputStream& is, Rig& rig)
         return false;
     }
     std::vector<osgActor::TrajectoryKey> keys(count);
+    const std::string what = "path '" + name + "'";
     for (osgActor::TrajectoryKey& key : keys)
-        is >> key.time >> key.position.x >> key.position.y >> key.position.z >> key.heading;
+        for (double* value : {&key.time, &key.position.x, &key.position.y, &key.position.z, &key.heading})
+            if (!osgActor::readStreamNumber(is, *value, what)) return false;
     is >> is.END_BRACKET;
     if (is.getException()) return false;
     const osgActor::TrajectoryBuildResult built = osgActor::TrajectoryBuilder::build(name, std::move(keys));
@@ -65,10 +69,41 @@ bool writePath(osgDB::OutputStream& os, const Rig& rig)
     os.writeWrappedString(path.getName());
     os << static_cast<unsigned int>(path.getKeys().size()) << os.BEGIN_BRACKET << std::endl;
     for (const osgActor::TrajectoryKey& key : path.getKeys())
-        os << key.time << key.position.x << key.position.y << key.position.z << key.heading << std::endl;
+    {
+        for (const double value : {key.time, key.position.x, key.position.y, key.position.z, key.heading})
+            osgActor::writeStreamNumber(os, value);
+        os << std::endl;
+    }
     os << os.END_BRACKET << std::endl;
     return true;
 }
+
+// A rig's double property NAME (setNAME/getNAME), written exactly where OSG's ADD_DOUBLE_SERIALIZER would write the
+// stream's precision in .osgt; the same "NAME value" field, so files written before read as they did.
+#define OSGACTORSHOWCASE_EXACT_DOUBLE(NAME)                                                                        \
+    template <class Rig>                                                                                           \
+    bool check##NAME(const Rig&)                                                                                   \
+    {                                                                                                              \
+        return true;                                                                                               \
+    }                                                                                                              \
+    template <class Rig>                                                                                           \
+    bool read##NAME(osgDB::InputStream& is, Rig& rig)                                                              \
+    {                                                                                                              \
+        double value = 0.0;                                                                                        \
+        if (!osgActor::readStreamNumber(is, value, #NAME)) return false;                                           \
+        rig.set##NAME(value);                                                                                      \
+        return true;                                                                                               \
+    }                                                                                                              \
+    template <class Rig>                                                                                           \
+    bool write##NAME(osgDB::OutputStream& os, const Rig& rig)                                                      \
+    {                                                                                                              \
+        osgActor::writeStreamNumber(os, rig.get##NAME());                                                          \
+        os << std::endl;                                                                                           \
+        return true;                                                                                               \
+    }
+
+OSGACTORSHOWCASE_EXACT_DOUBLE(CycleDuration)
+OSGACTORSHOWCASE_EXACT_DOUBLE(StepHeight)
 
 } // namespace
 
@@ -77,7 +112,7 @@ REGISTER_OBJECT_WRAPPER(osgActorShowcase_PathWalker, new osgActorShowcase::PathW
                         "osg::Object osg::Callback osg::NodeCallback osgActorShowcase::PathWalker")
 {
     ADD_USER_SERIALIZER(Path);
-    ADD_DOUBLE_SERIALIZER(CycleDuration, 1.1);
+    ADD_USER_SERIALIZER(CycleDuration);
 }
 } // namespace PathWalkerWrapper
 
@@ -86,8 +121,8 @@ REGISTER_OBJECT_WRAPPER(osgActorShowcase_TripodGait, new osgActorShowcase::Tripo
                         "osg::Object osg::Callback osg::NodeCallback osgActorShowcase::TripodGait")
 {
     ADD_USER_SERIALIZER(Path);
-    ADD_DOUBLE_SERIALIZER(CycleDuration, 0.8);
-    ADD_DOUBLE_SERIALIZER(StepHeight, 0.08);
+    ADD_USER_SERIALIZER(CycleDuration);
+    ADD_USER_SERIALIZER(StepHeight);
 }
 } // namespace TripodGaitWrapper
 

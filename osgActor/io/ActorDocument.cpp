@@ -4,9 +4,56 @@ namespace osgActor {
 
 namespace {
 
+// The .actor words of each enum, in the enum's order: one table each, read and written alike.
 const char* const kKindNames[] = {"box", "sphere", "capsule", "cylinder", "cone", "model"};
+const char* const kInterpolationNames[] = {"step", "linear", "cubic"};
+const char* const kTranslationModeNames[] = {"after_rotation", "before_rotation"};
+const char* const kBoundsNames[] = {"follows_pose", "covers_rotations"}; // false, true
+
+template <class Enum, std::size_t N>
+bool parseName(const char* const (&names)[N], const std::string& text, Enum& value)
+{
+    for (std::size_t i = 0; i < N; ++i)
+        if (text == names[i])
+        {
+            value = static_cast<Enum>(i);
+            return true;
+        }
+    return false;
+}
 
 } // namespace
+
+static_assert(static_cast<int>(Interpolation::Step) == 0 && static_cast<int>(Interpolation::Linear) == 1 &&
+                  static_cast<int>(Interpolation::Cubic) == 2,
+              "kInterpolationNames follows Interpolation's order");
+static_assert(static_cast<int>(TranslationMode::AfterRotation) == 0 &&
+                  static_cast<int>(TranslationMode::BeforeRotation) == 1,
+              "kTranslationModeNames follows TranslationMode's order");
+
+const char* interpolationName(Interpolation interpolation)
+{
+    return kInterpolationNames[static_cast<unsigned>(interpolation)];
+}
+
+bool parseInterpolation(const std::string& text, Interpolation& interpolation)
+{
+    return parseName(kInterpolationNames, text, interpolation);
+}
+
+const char* translationModeName(TranslationMode mode) { return kTranslationModeNames[static_cast<unsigned>(mode)]; }
+
+bool parseTranslationMode(const std::string& text, TranslationMode& mode)
+{
+    return parseName(kTranslationModeNames, text, mode);
+}
+
+const char* boundsName(bool coverRotations) { return kBoundsNames[coverRotations ? 1 : 0]; }
+
+bool parseBounds(const std::string& text, bool& coverRotations)
+{
+    return parseName(kBoundsNames, text, coverRotations);
+}
 
 const char* geometryKindName(GeometryKind kind) { return kKindNames[static_cast<unsigned>(kind)]; }
 

@@ -4,78 +4,62 @@ namespace osgActor {
 
 namespace {
 
-bool endsWord(int c)
-{
-    return c == std::char_traits<char>::eof() || c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '{' ||
-           c == '}' || c == ';' || c == '#' || c == '"';
-}
+bool endsWord(char c) { return isBlank(c) || c == '{' || c == '}' || c == ';' || c == '#' || c == '"'; }
 
 } // namespace
 
-int ActorLexer::get()
-{
-    const int c = _in.get();
-    if (c == '\n') ++_line;
-    return c;
-}
-
 Token ActorLexer::next()
 {
-    constexpr int eof = std::char_traits<char>::eof();
-    // Skip blanks and comments, but not newlines: they end statements.
-    for (;;)
-    {
-        const int c = peek();
-        if (c == ' ' || c == '\t' || c == '\r') get();
-        else if (c == '#')
-        {
-            while (peek() != '\n' && peek() != eof) get();
-        }
-        else break;
-    }
-
     Token token;
-    token.line = _line;
-    const int c = get();
-    if (c == eof)
+    if (!_inLine)
     {
-        token.type = TokenType::EndOfFile;
+        if (!_text.nextLine())
+        {
+            token.type = TokenType::EndOfFile;
+            token.line = static_cast<int>(_text.endLineNumber());
+            return token;
+        }
+        _inLine = true;
+        _position = 0;
     }
-    else if (c == '\n' || c == ';')
+    const std::string_view line = _text.line();
+    token.line = static_cast<int>(_text.lineNumber());
+    while (_position < line.size() && isBlank(line[_position])) ++_position;
+    if (_position == line.size() || line[_position] == '#')
     {
+        // The end of the line (after a comment, if any) ends the statement.
+        _inLine = false;
         token.type = TokenType::EndOfStatement;
+        return token;
     }
-    else if (c == '{')
+    const char c = line[_position++];
+    switch (c)
     {
-        token.type = TokenType::OpenBrace;
-    }
-    else if (c == '}')
-    {
-        token.type = TokenType::CloseBrace;
-    }
-    else if (c == '"')
-    {
+    case ';': token.type = TokenType::EndOfStatement; return token;
+    case '{': token.type = TokenType::OpenBrace; return token;
+    case '}': token.type = TokenType::CloseBrace; return token;
+    case '"':
         token.type = TokenType::String;
         for (;;)
         {
-            int s = get();
-            if (s == '"') break;
-            if (s == '\\' && (peek() == '"' || peek() == '\\')) s = get();
-            if (s == '\n' || s == eof)
+            if (_position == line.size())
             {
                 token.type = TokenType::Error;
                 token.text = "the string that starts here is not closed on its line";
-                break;
+                return token;
             }
-            token.text.push_back(static_cast<char>(s));
+            char s = line[_position++];
+            if (s == '"') return token;
+            if (s == '\\' && _position < line.size() && (line[_position] == '"' || line[_position] == '\\'))
+                s = line[_position++];
+            token.text.push_back(s);
         }
+    default: break;
     }
-    else
-    {
-        token.type = TokenType::Word;
-        token.text.push_back(static_cast<char>(c));
-        while (!endsWord(peek())) token.text.push_back(static_cast<char>(get()));
-    }
+    token.type = TokenType::Word;
+    const std::size_t start = _position - 1;
+    while (_position < line.size() && !endsWord(line[_position])) ++_position;
+    token.text.assign(line.data() + start, _position - start);
     return token;
 }
 

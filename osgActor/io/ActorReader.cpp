@@ -1,20 +1,22 @@
 #include <osgActor/core/ClipBuilder>
-#include <osgActor/io/ActorNumbers>
 #include <osgActor/io/ActorReader>
+#include <osgActor/io/AngleAxis>
 #include <osgActor/io/JointMapSection>
 #include <osgActor/mocap/MotionFile>
-
-#include <glm/ext/scalar_constants.hpp>
+#include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
 
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <unordered_map>
 
 namespace osgActor {
 
 namespace {
 
-constexpr double kRadiansPerDegree = glm::pi<double>() / 180.0;
+// Angles are read by readAngle(): degrees (radiansFromDegrees(), the conversion the writer inverts) or radians with
+// the suffix "rad".
 
 /** One read of one file: turns the statements into a document, stopping at the first error. */
 class DocumentReader
@@ -122,10 +124,23 @@ private:
 
     bool number(const SyntaxArgument& argument, double& value)
     {
-        if (!argument.quoted && parseNumber(argument.text, value)) return true;
-        if (!argument.quoted && isNonFiniteNumber(argument.text))
-            return fail(argument.line, "'" + argument.text + "' is not a finite number");
-        return fail(argument.line, "'" + argument.text + "' is not a number");
+        if (argument.quoted) return fail(argument.line, "\"" + argument.text + "\" is a string, not a number");
+        if (parseNumber(argument.text, value)) return true;
+        return fail(argument.line, numberProblem(argument.text));
+    }
+
+    /** An angle (degrees, or radians with the suffix "rad") as radians. */
+    bool angle(const SyntaxArgument& argument, double& radians)
+    {
+        if (argument.quoted) return fail(argument.line, "\"" + argument.text + "\" is a string, not an angle");
+        if (readAngle(argument.text, radians) == NumberWord::Finite) return true;
+        return fail(argument.line, angleProblem(argument.text));
+    }
+
+    /** A value of a DOF or a clip channel: an angle for a rotation, a length otherwise. */
+    bool dofValue(const SyntaxArgument& argument, bool angular, double& value)
+    {
+        return angular ? angle(argument, value) : number(argument, value);
     }
 
     /** A statement without values or block that sets a flag ("hidden", "blocked"). */
@@ -153,16 +168,38 @@ private:
         return true;
     }
 
-    /** "rotation <degrees> <axis x> <axis y> <axis z>" */
+    /** A translation an actor holds: within +-kMaxDofMagnitude, as ActorNode's transforms and the offsets. */
+    bool translation(const SyntaxStatement& statement, glm::dvec3& value)
+    {
+        if (!vector3(statement, value)) return false;
+        for (int i = 0; i < 3; ++i)
+            if (std::abs(value[i]) > kMaxDofMagnitude)
+                return fail(statement.line, "'" + statement.keyword + "' " + statement.arguments[i].text +
+                                                " lies beyond what an actor holds (+-" +
+                                                formatNumber(kMaxDofMagnitude) + ")");
+        return true;
+    }
+
+    /** "rotation <degrees> <axis x> <axis y> <axis z>", or "rotation quaternion <w> <x> <y> <z>" (what the writer
+      * writes where no angle and axis give back exactly the rotation it holds). */
     bool rotation(const SyntaxStatement& statement, glm::dquat& value)
     {
         double v[4];
+        if (!statement.arguments.empty() && !statement.arguments.front().quoted &&
+            statement.arguments.front().text == "quaternion")
+        {
+            if (!expectNoBlock(statement) || !expectArguments(statement, 5)) return false;
+            for (unsigned i = 0; i < 4; ++i)
+                if (!number(statement.arguments[i + 1], v[i])) return false;
+            if (quaternionAsWritten(v, value)) return true;
+            return fail(statement.line, "the rotation quaternion has no length a double holds (zero or too large)");
+        }
         if (!numbers(statement, 4, v)) return false;
         AngleAxis angleAxis;
         angleAxis.degrees = v[0];
         for (unsigned i = 0; i < 3; ++i) angleAxis.axis[i] = v[i + 1];
         if (toQuaternion(angleAxis, value)) return true;
-        return fail(statement.line, "the rotation axis is zero");
+        return fail(statement.line, "the rotation axis is zero, or too long for a double");
     }
 
     bool positive(const SyntaxStatement& statement, double& value)
@@ -207,9 +244,9 @@ private:
             const std::string& k = s.keyword;
             bool ok = true;
             if (k == "joint") ok = readJoint(s, std::string(), document);
-            else if (k == "pre_translation") ok = once(seen, s) && vector3(s, document.preTranslation);
+            else if (k == "pre_translation") ok = once(seen, s) && translation(s, document.preTranslation);
             else if (k == "pre_rotation") ok = once(seen, s) && rotation(s, document.preRotation);
-            else if (k == "post_translation") ok = once(seen, s) && vector3(s, document.postTranslation);
+            else if (k == "post_translation") ok = once(seen, s) && translation(s, document.postTranslation);
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
             else if (k == "bounds") ok = once(seen, s) && readBounds(s, document.boundsCoverRotations);
@@ -278,12 +315,20 @@ private:
             bool ok = true;
             if (k == "key")
             {
+                // "key time x y z heading": the heading an angle.
                 double v[5];
-                ok = numbers(c, 5, v);
+                ok = expectNoBlock(c) && expectArguments(c, 5);
+                for (unsigned i = 0; i < 5 && ok; ++i)
+                    ok = i < 4 ? number(c.arguments[i], v[i]) : angle(c.arguments[i], v[i]);
+                for (unsigned i = 1; i < 4 && ok; ++i)
+                    if (std::abs(v[i]) > kMaxDofMagnitude)
+                        return fail(c.line, "the key's position " + c.arguments[i].text +
+                                                " lies beyond what an actor holds (+-" +
+                                                formatNumber(kMaxDofMagnitude) + ")");
                 if (ok && !keys.empty() && !(v[0] > keys.back().time))
                     return fail(c.line, "key times must increase (" + c.arguments[0].text + " follows " +
                                             formatNumber(keys.back().time) + ")");
-                if (ok) keys.push_back(TrajectoryKey{v[0], glm::dvec3(v[1], v[2], v[3]), v[4] * kRadiansPerDegree});
+                if (ok) keys.push_back(TrajectoryKey{v[0], glm::dvec3(v[1], v[2], v[3]), v[4]});
             }
             else if (k == "play")
             {
@@ -440,20 +485,16 @@ private:
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         const std::string& word = s.arguments.front().text;
-        if (word == "follows_pose") coverRotations = false;
-        else if (word == "covers_rotations") coverRotations = true;
-        else return fail(s.line, "'" + word + "' is not a bound mode (follows_pose, covers_rotations)");
-        return true;
+        if (parseBounds(word, coverRotations)) return true;
+        return fail(s.line, "'" + word + "' is not a bound mode (follows_pose, covers_rotations)");
     }
 
     bool readTranslationMode(const SyntaxStatement& s, TranslationMode& mode)
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         const std::string& word = s.arguments.front().text;
-        if (word == "after_rotation") mode = TranslationMode::AfterRotation;
-        else if (word == "before_rotation") mode = TranslationMode::BeforeRotation;
-        else return fail(s.line, "'" + word + "' is not a translation mode (after_rotation, before_rotation)");
-        return true;
+        if (parseTranslationMode(word, mode)) return true;
+        return fail(s.line, "'" + word + "' is not a translation mode (after_rotation, before_rotation)");
     }
 
     /** "dof rx [min a] [max b] [default c] [weight w] [value v]": degrees for rotations, model units otherwise. */
@@ -467,26 +508,29 @@ private:
         DofSpec& spec = joint.spec.dofs[static_cast<unsigned>(dof)];
         if (spec.active) return fail(s.line, "DOF '" + s.arguments.front().text + "' is given twice");
         spec.active = true;
-        const double unit = isRotation(dof) ? kRadiansPerDegree : 1.0;
         std::set<std::string> seen;
         for (std::size_t i = 1; i < s.arguments.size(); i += 2)
         {
             const SyntaxArgument& key = s.arguments[i];
             if (i + 1 >= s.arguments.size()) return fail(key.line, "'" + key.text + "' needs a value");
             double value = 0.0;
-            if (!number(s.arguments[i + 1], value)) return false;
+            if (!dofValue(s.arguments[i + 1], isRotation(dof) && key.text != "weight", value)) return false;
             if (!seen.insert(key.text).second) return fail(key.line, "'" + key.text + "' is given twice");
-            if (key.text == "min") spec.min = value * unit;
-            else if (key.text == "max") spec.max = value * unit;
-            else if (key.text == "default") spec.defaultValue = value * unit;
+            if (key.text == "min") spec.min = value;
+            else if (key.text == "max") spec.max = value;
+            else if (key.text == "default") spec.defaultValue = value;
             else if (key.text == "weight") spec.weight = value;
-            else if (key.text == "value") joint.values[static_cast<unsigned>(dof)] = value * unit;
+            else if (key.text == "value") joint.values[static_cast<unsigned>(dof)] = value;
             else return fail(key.line, "unknown DOF attribute '" + key.text + "' (min, max, default, weight, value)");
         }
         // The builder checks the default against the limits; the current value is the file's to check.
         const std::optional<double>& value = joint.values[static_cast<unsigned>(dof)];
         if (value && (*value < spec.min || *value > spec.max))
             return fail(s.line, "the value of DOF '" + s.arguments.front().text + "' lies outside its limits");
+        if (value && std::abs(*value) > kMaxDofMagnitude)
+            return fail(s.line, "the value of DOF '" + s.arguments.front().text +
+                                    "' lies beyond what a pose holds (+-" + formatNumber(kMaxDofMagnitude) +
+                                    (isRotation(dof) ? " radians)" : ")"));
         return true;
     }
 
@@ -572,12 +616,12 @@ private:
 
     // --- clips ---
 
-    /** The unit a channel's values are written in: degrees for rotation DOFs (as radians per written unit). */
-    bool channelUnit(const SyntaxArgument& target, const ActorDefinition& definition, double& unit)
+    /** Whether a channel's values are angles (it drives a rotation DOF) or lengths. */
+    bool channelIsAngular(const SyntaxArgument& target, const ActorDefinition& definition, bool& angular)
     {
         const int dof = definition.findDof(target.text);
         if (dof < 0) return fail(target.line, "channel '" + target.text + "' names no DOF of the actor");
-        unit = isRotation(definition.getDofType(static_cast<unsigned>(dof))) ? kRadiansPerDegree : 1.0;
+        angular = isRotation(definition.getDofType(static_cast<unsigned>(dof)));
         return true;
     }
 
@@ -585,19 +629,16 @@ private:
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         const std::string& word = s.arguments.front().text;
-        if (word == "step") interpolation = Interpolation::Step;
-        else if (word == "linear") interpolation = Interpolation::Linear;
-        else if (word == "cubic") interpolation = Interpolation::Cubic;
-        else return fail(s.line, "'" + word + "' is not an interpolation (step, linear, cubic)");
-        return true;
+        if (parseInterpolation(word, interpolation)) return true;
+        return fail(s.line, "'" + word + "' is not an interpolation (step, linear, cubic)");
     }
 
     /** "channel target { [interpolation i] key time value ... }": a keyed channel. */
     bool readChannel(const SyntaxStatement& s, const ActorDefinition& definition, ClipBuilder& builder)
     {
         if (!expectArguments(s, 1)) return false;
-        double unit = 1.0;
-        if (!channelUnit(s.arguments.front(), definition, unit)) return false;
+        bool angular = false;
+        if (!channelIsAngular(s.arguments.front(), definition, angular)) return false;
         Interpolation interpolation = Interpolation::Linear;
         std::vector<std::pair<double, double>> keys; // seconds, API units
         std::set<std::string> seen;
@@ -610,10 +651,12 @@ private:
             else if (c.keyword == "key")
             {
                 double v[2];
-                if (!numbers(c, 2, v)) return false;
+                if (!expectNoBlock(c) || !expectArguments(c, 2) || !number(c.arguments[0], v[0]) ||
+                    !dofValue(c.arguments[1], angular, v[1]))
+                    return false;
                 if (!keys.empty() && !(v[0] > keys.back().first))
                     return fail(c.line, "key times must increase");
-                keys.emplace_back(v[0], v[1] * unit);
+                keys.emplace_back(v[0], v[1]);
             }
             else return unknownKeyword(c, "in a channel");
         }
@@ -627,7 +670,7 @@ private:
     bool readFrames(const SyntaxStatement& clip, const ActorDefinition& definition, ClipBuilder& builder)
     {
         double frameRate = 0.0;
-        std::vector<double> units;
+        std::vector<bool> angular; // per channel
         std::vector<double> values;
         std::set<std::string> seen;
         for (const SyntaxStatement& c : clip.children)
@@ -642,20 +685,21 @@ private:
                 if (c.arguments.empty()) return fail(c.line, "'channels' needs at least one DOF name");
                 for (const SyntaxArgument& target : c.arguments)
                 {
-                    units.emplace_back();
-                    if (!channelUnit(target, definition, units.back())) return false;
+                    bool isAngle = false;
+                    if (!channelIsAngular(target, definition, isAngle)) return false;
+                    angular.push_back(isAngle);
                     builder.addChannel(target.text);
                 }
             }
             else if (c.keyword == "frame")
             {
-                if (units.empty()) return fail(c.line, "'frame' must follow 'channels'");
-                if (!expectNoBlock(c) || !expectArguments(c, units.size())) return false;
-                for (std::size_t i = 0; i < units.size(); ++i)
+                if (angular.empty()) return fail(c.line, "'frame' must follow 'channels'");
+                if (!expectNoBlock(c) || !expectArguments(c, angular.size())) return false;
+                for (std::size_t i = 0; i < angular.size(); ++i)
                 {
                     double value = 0.0;
-                    if (!number(c.arguments[i], value)) return false;
-                    values.push_back(value * units[i]);
+                    if (!dofValue(c.arguments[i], angular[i], value)) return false;
+                    values.push_back(value);
                 }
             }
             else if (c.keyword == "play") continue; // read by readClip
@@ -842,10 +886,8 @@ private:
     {
         if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
         const std::string& word = s.arguments.front().text;
-        if (word == "y") axis = UpAxis::Y;
-        else if (word == "z") axis = UpAxis::Z;
-        else return fail(s.line, "'" + word + "' is not an up axis (y, z)");
-        return true;
+        if (parseUpAxis(word, axis)) return true;
+        return fail(s.line, "'" + word + "' is not an up axis (y, z)");
     }
 
     /** "clip name { channel ... }" (keys), "clip name { frame_rate ...; channels ...; frame ... }" (frames), or
@@ -917,6 +959,20 @@ private:
     std::vector<const SyntaxStatement*> _playerStatements; // likewise
 };
 
+/** Joints in the definition's order (parents first, depth first, each parent's children in file order): the order
+  * the writer nests them in, so that what it writes reads back in the same order whatever order the file gave
+  * (joints at the actor's level with 'parent' statements come in any). */
+void putInDefinitionOrder(const ActorDefinition& definition, std::vector<JointDocument>& joints)
+{
+    std::unordered_map<std::string, std::size_t> byName;
+    for (std::size_t j = 0; j < joints.size(); ++j) byName.emplace(joints[j].spec.name, j);
+    std::vector<JointDocument> ordered;
+    ordered.reserve(joints.size());
+    for (unsigned j = 0; j < definition.getNumJoints(); ++j)
+        ordered.push_back(std::move(joints[byName.at(definition.getJointName(j))]));
+    joints.swap(ordered);
+}
+
 } // namespace
 
 ActorReadResult readActor(std::istream& in, const std::string& fileName)
@@ -937,6 +993,7 @@ ActorReadResult readActor(std::istream& in, const std::string& fileName)
         result.error = built.error;
         return result;
     }
+    putInDefinitionOrder(*built.definition, document.joints);
     if (!checkActorJointMaps(document.sections, *built.definition, fileName, result.error)) return result;
     if (!reader.readClips(*built.definition, document))
     {

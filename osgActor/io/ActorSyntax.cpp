@@ -14,7 +14,7 @@ constexpr unsigned kMaxDepth = 200;
 class SyntaxParser
 {
 public:
-    SyntaxParser(std::istream& in, const std::string& fileName) : _lexer(in), _fileName(fileName) { advance(); }
+    SyntaxParser(TextLines& text, const std::string& fileName) : _lexer(text), _fileName(fileName) { advance(); }
 
     /** Statements up to the end of the file (depth 0) or to the brace that closes the current block. */
     bool parseStatements(std::vector<SyntaxStatement>& statements, unsigned depth, int openLine)
@@ -100,7 +100,13 @@ bool parseSyntax(std::istream& in, const std::string& fileName, std::vector<Synt
                  std::string& error)
 {
     statements.clear();
-    SyntaxParser parser(in, fileName);
+    TextLines text(in, fileName);
+    if (!text.error().empty())
+    {
+        error = text.error();
+        return false;
+    }
+    SyntaxParser parser(text, fileName);
     if (parser.parseStatements(statements, 0, 0)) return true;
     statements.clear();
     error = parser.error();

@@ -1,34 +1,23 @@
-#include <osgActor/io/ActorNumbers>
 #include <osgActor/io/ActorWriter>
-
-#include <glm/ext/scalar_constants.hpp>
+#include <osgActor/io/AngleAxis>
+#include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
 
 #include <cmath>
-#include <limits>
 #include <map>
 
 namespace osgActor {
 
 namespace {
 
-constexpr double kDegreesPerRadian = 180.0 / glm::pi<double>();
+// Every number is written as the shortest text that reads back as exactly the double the document holds
+// (text/Numbers), angles in degrees as the shortest text the reader turns into exactly the radians held, or in
+// radians ("1rad") where no degrees do (text/Degrees): so reading what was written gives the same document.
 
 SyntaxArgument word(const std::string& text) { return SyntaxArgument{text, false, 0}; }
 SyntaxArgument nameArgument(const std::string& name) { return SyntaxArgument{name, quoteIfNeeded(name) != name, 0}; }
 SyntaxArgument numberArgument(double value) { return word(formatNumber(value)); }
-
-/** Key times, increasing as the reader requires: to 12 digits like every number, or exactly where 12 digits would
-  * not come after the key before (keys closer than a part in 10^12). previous is what the key before reads back
-  * as; updated. */
-SyntaxArgument keyTimeArgument(double time, double& previous)
-{
-    std::string text = formatNumber(time);
-    double readBack = 0.0;
-    if (!parseNumber(text, readBack) || !(readBack > previous)) text = formatExactNumber(time);
-    parseNumber(text, readBack);
-    previous = readBack;
-    return word(text);
-}
+SyntaxArgument angleArgument(double radians) { return word(formatAngle(radians)); }
 
 SyntaxStatement statement(const std::string& keyword, std::vector<SyntaxArgument> arguments = {})
 {
@@ -43,19 +32,22 @@ SyntaxStatement vectorStatement(const std::string& keyword, const glm::dvec3& v)
     return statement(keyword, {numberArgument(v.x), numberArgument(v.y), numberArgument(v.z)});
 }
 
+/** "keyword angle axis" where an angle and an axis read back as exactly the rotation, "keyword quaternion w x y z"
+  * otherwise. */
 SyntaxStatement rotationStatement(const std::string& keyword, const glm::dquat& rotation)
 {
-    const AngleAxis a = toAngleAxis(rotation);
-    return statement(keyword, {numberArgument(a.degrees), numberArgument(a.axis[0]), numberArgument(a.axis[1]),
-                               numberArgument(a.axis[2])});
+    AngleAxis a;
+    if (toExactAngleAxis(rotation, a))
+        return statement(keyword, {numberArgument(a.degrees), numberArgument(a.axis[0]), numberArgument(a.axis[1]),
+                                   numberArgument(a.axis[2])});
+    return statement(keyword, {word("quaternion"), numberArgument(rotation.w), numberArgument(rotation.x),
+                               numberArgument(rotation.y), numberArgument(rotation.z)});
 }
 
-bool isZero(const glm::dvec3& v)
-{
-    return formatNumber(v.x) == "0" && formatNumber(v.y) == "0" && formatNumber(v.z) == "0";
-}
+bool isZero(const glm::dvec3& v) { return v.x == 0.0 && v.y == 0.0 && v.z == 0.0; }
 
-/** Appends "keyword x y z" and "keyword angle axis" lines where they differ from the identity. */
+/** Appends "keyword x y z" and "keyword angle axis" lines where they differ from what the reader takes when they
+  * are left out (zero, the identity). */
 void addPlacement(std::vector<SyntaxStatement>& out, const std::string& translationKeyword,
                   const glm::dvec3& translation, const std::string& rotationKeyword, const glm::dquat& rotation)
 {
@@ -65,19 +57,18 @@ void addPlacement(std::vector<SyntaxStatement>& out, const std::string& translat
 
 SyntaxStatement dofStatement(Dof dof, const DofSpec& spec, const std::optional<double>& value)
 {
-    const double unit = isRotation(dof) ? kDegreesPerRadian : 1.0;
     SyntaxStatement s = statement("dof", {word(dofName(dof))});
-    auto add = [&](const char* key, double v) {
+    auto add = [&](const char* key, const SyntaxArgument& v) {
         s.arguments.push_back(word(key));
-        s.arguments.push_back(numberArgument(v));
+        s.arguments.push_back(v);
     };
-    if (std::isfinite(spec.min)) add("min", spec.min * unit);
-    if (std::isfinite(spec.max)) add("max", spec.max * unit);
-    if (formatNumber(spec.defaultValue) != "0") add("default", spec.defaultValue * unit);
-    if (spec.weight != 1.0) add("weight", spec.weight);
-    // Compared as written: a value one rounding step from its default (after a trip through another format)
-    // is the default as far as the file can tell.
-    if (value && formatNumber(*value * unit) != formatNumber(spec.defaultValue * unit)) add("value", *value * unit);
+    // Limits, default and value in degrees for a rotation, model units for a translation.
+    auto dofValue = [&](double v) { return isRotation(dof) ? angleArgument(v) : numberArgument(v); };
+    if (std::isfinite(spec.min)) add("min", dofValue(spec.min));
+    if (std::isfinite(spec.max)) add("max", dofValue(spec.max));
+    if (spec.defaultValue != 0.0) add("default", dofValue(spec.defaultValue));
+    if (spec.weight != 1.0) add("weight", numberArgument(spec.weight));
+    if (value) add("value", dofValue(*value));
     return s;
 }
 
@@ -88,7 +79,7 @@ SyntaxStatement geometryStatement(const GeometryDescription& g)
     {
         s = statement("model", {SyntaxArgument{g.file, true, 0}});
         addPlacement(s.children, "position", g.position, "rotation", g.rotation);
-        if (formatNumber(g.scale) != "1") s.children.push_back(statement("scale", {numberArgument(g.scale)}));
+        if (g.scale != 1.0) s.children.push_back(statement("scale", {numberArgument(g.scale)}));
     }
     else
     {
@@ -100,22 +91,11 @@ SyntaxStatement geometryStatement(const GeometryDescription& g)
         addPlacement(s.children, "position", g.position, "rotation", g.rotation);
         SyntaxStatement color = statement("color", {numberArgument(g.color.r), numberArgument(g.color.g),
                                                     numberArgument(g.color.b)});
-        if (formatNumber(g.color.a) != "1") color.arguments.push_back(numberArgument(g.color.a));
+        if (g.color.a != 1.0) color.arguments.push_back(numberArgument(g.color.a));
         s.children.push_back(color);
     }
     s.hasBlock = !s.children.empty();
     return s;
-}
-
-const char* interpolationName(Interpolation interpolation)
-{
-    switch (interpolation)
-    {
-    case Interpolation::Step: return "step";
-    case Interpolation::Cubic: return "cubic";
-    case Interpolation::Linear: break;
-    }
-    return "linear";
 }
 
 /** "file "walk.bvh"" with a block of the options that differ from MotionFileOptions' defaults, if any. */
@@ -127,7 +107,7 @@ SyntaxStatement clipFileStatement(const std::string& file, const MotionFileOptio
         s.children.push_back(statement("skeleton", {SyntaxArgument{options.skeletonFile, true, 0}}));
     if (options.scale != defaults.scale) s.children.push_back(statement("scale", {numberArgument(options.scale)}));
     if (options.fileUpAxis != defaults.fileUpAxis)
-        s.children.push_back(statement("up", {word(options.fileUpAxis == UpAxis::Z ? "z" : "y")}));
+        s.children.push_back(statement("up", {word(upAxisName(options.fileUpAxis))}));
     if (options.dropFirstFrame) s.children.push_back(statement("drop_first_frame"));
     if (options.absoluteRootPosition) s.children.push_back(statement("absolute_root_position"));
     if (options.amcFrameRate != defaults.amcFrameRate)
@@ -150,7 +130,9 @@ SyntaxStatement clipStatement(const ClipDocument& document)
         return s;
     }
     const Clip& clip = *document.clip;
-    auto unit = [&](unsigned channel) { return clip.getChannel(channel).angular ? kDegreesPerRadian : 1.0; };
+    auto value = [&](unsigned channel, double v) {
+        return clip.getChannel(channel).angular ? angleArgument(v) : numberArgument(v);
+    };
     if (clip.isUniform())
     {
         s.children.push_back(statement("frame_rate", {numberArgument(clip.getFrameRate())}));
@@ -162,7 +144,7 @@ SyntaxStatement clipStatement(const ClipDocument& document)
         {
             SyntaxStatement frame = statement("frame");
             for (unsigned c = 0; c < clip.getNumChannels(); ++c)
-                frame.arguments.push_back(numberArgument(clip.getFrame(f)[c] * unit(c)));
+                frame.arguments.push_back(value(c, clip.getFrame(f)[c]));
             s.children.push_back(frame);
         }
         return s;
@@ -174,10 +156,9 @@ SyntaxStatement clipStatement(const ClipDocument& document)
         if (clip.getChannel(c).interpolation != Interpolation::Linear)
             channel.children.push_back(
                 statement("interpolation", {word(interpolationName(clip.getChannel(c).interpolation))}));
-        double previous = -std::numeric_limits<double>::infinity();
         for (unsigned k = 0; k < clip.getNumKeys(c); ++k)
-            channel.children.push_back(statement("key", {keyTimeArgument(clip.getKeyTime(c, k), previous),
-                                                         numberArgument(clip.getKeyValue(c, k) * unit(c))}));
+            channel.children.push_back(
+                statement("key", {numberArgument(clip.getKeyTime(c, k)), value(c, clip.getKeyValue(c, k))}));
         s.children.push_back(channel);
     }
     return s;
@@ -242,8 +223,9 @@ private:
         addPlacement(s.children, "offset", joint.spec.translation, "rotation", joint.spec.rotation);
         if (joint.spec.eulerOrder != EulerOrder::XYZ)
             s.children.push_back(statement("euler", {word(eulerOrderName(joint.spec.eulerOrder))}));
-        if (joint.spec.translationMode == TranslationMode::BeforeRotation)
-            s.children.push_back(statement("translation_mode", {word("before_rotation")}));
+        if (joint.spec.translationMode != TranslationMode::AfterRotation)
+            s.children.push_back(
+                statement("translation_mode", {word(translationModeName(joint.spec.translationMode))}));
         for (unsigned d = 0; d < kNumDofTypes; ++d)
             if (joint.spec.dofs[d].active)
                 s.children.push_back(dofStatement(static_cast<Dof>(d), joint.spec.dofs[d], joint.values[d]));
@@ -283,11 +265,10 @@ SyntaxStatement trajectoryStatement(const TrajectoryDocument& document)
         s.children.push_back(statement("file", {SyntaxArgument{document.file, true, 0}}));
         return s;
     }
-    double previous = -std::numeric_limits<double>::infinity();
     for (const TrajectoryKey& key : document.trajectory->getKeys())
-        s.children.push_back(statement("key", {keyTimeArgument(key.time, previous), numberArgument(key.position.x),
+        s.children.push_back(statement("key", {numberArgument(key.time), numberArgument(key.position.x),
                                                numberArgument(key.position.y), numberArgument(key.position.z),
-                                               numberArgument(key.heading * kDegreesPerRadian)}));
+                                               angleArgument(key.heading)}));
     return s;
 }
 
@@ -333,7 +314,8 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     addPlacement(actor.children, "pre_translation", document.preTranslation, "pre_rotation", document.preRotation);
     addPlacement(actor.children, "post_translation", document.postTranslation, "post_rotation", document.postRotation);
     if (document.blocked) actor.children.push_back(statement("blocked"));
-    if (!document.boundsCoverRotations) actor.children.push_back(statement("bounds", {word("follows_pose")}));
+    if (!document.boundsCoverRotations)
+        actor.children.push_back(statement("bounds", {word(boundsName(document.boundsCoverRotations))}));
     JointTreeWriter(document).write(actor.children);
     for (const SkinFileDocument& skin : document.skinFiles)
         actor.children.push_back(statement("skin", {SyntaxArgument{skin.file, true, 0}}));

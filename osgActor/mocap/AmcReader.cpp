@@ -1,13 +1,13 @@
 #include <osgActor/mocap/AmcReader>
-#include <osgActor/io/ActorNumbers>
-#include <osgActor/mocap/TextLines>
+#include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
+#include <osgActor/text/TextLines>
 
 #include <osgActor/core/ClipBuilder>
 
-#include <glm/ext/scalar_constants.hpp>
-
 #include <algorithm>
 #include <fstream>
+#include <limits>
 #include <unordered_map>
 
 namespace osgActor {
@@ -31,10 +31,16 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
         error.error = text.where() + message;
         return error;
     };
+    if (!text.error().empty())
+    {
+        result.error = text.error();
+        return result;
+    }
     const unsigned numDofs = def.getNumDofs();
     bool degrees = skeleton.degrees;
     std::vector<double> values;    // frame-major, numDofs per frame
     unsigned long numFrames = 0;
+    unsigned long lastFrameNumber = 0; // as the file numbers frames
     unsigned linesInFrame = 0;
     unsigned long incompleteFrames = 0;
     auto endFrame = [&]() {
@@ -53,6 +59,13 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
         unsigned long frameNumber;
         if (t.size() == 1 && parseCount(t[0], frameNumber))
         {
+            // Frames are stored one after the other at the frame rate: a frame missing, repeated or out of order
+            // would move every later one in time, so the numbers must count up by one from the first.
+            if (numFrames > 0 && (lastFrameNumber == std::numeric_limits<unsigned long>::max() ||
+                                  frameNumber != lastFrameNumber + 1))
+                return failed("frame number " + std::string(t[0]) + " follows frame " +
+                              std::to_string(lastFrameNumber) + "; AMC frames must be numbered one after the other");
+            lastFrameNumber = frameNumber;
             endFrame();
             // A new frame starts from the previous one, so a bone left out keeps its values.
             if (numFrames == 0) values.assign(def.getDefaultDofs().begin(), def.getDefaultDofs().end());
@@ -74,15 +87,15 @@ MocapImport readAmc(std::istream& in, const std::string& fileName, const AsfImpo
             return failed("bone '" + layout.bone + "' has " + std::to_string(t.size() - 1) +
                           " values; its dof list has " + std::to_string(layout.dofs.size()));
         double* row = values.data() + (numFrames - 1) * numDofs;
-        const double angle = degrees ? glm::pi<double>() / 180.0 : 1.0;
+        const double angle = degrees ? kRadiansPerDegree : 1.0; // radiansFromDegrees()
         bool hasTranslation = false;
         glm::dvec3 translation(0.0); // file units and axes; a component the line leaves out is 0
         for (std::size_t i = 0; i < layout.dofs.size(); ++i)
         {
             double value;
             if (!parseNumber(t[i + 1], value))
-                return failed("value " + std::to_string(i + 1) + " of bone '" + layout.bone + "' ('" +
-                              std::string(t[i + 1]) + "') is not a finite number");
+                return failed("value " + std::to_string(i + 1) + " of bone '" + layout.bone + "': " +
+                              numberProblem(t[i + 1]));
             if (layout.angular[i]) row[layout.dofs[i]] = value * angle;
             else
             {

@@ -1,10 +1,10 @@
 #include <osgActor/mocap/AsfReader>
-#include <osgActor/io/ActorNumbers>
-#include <osgActor/mocap/TextLines>
+#include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
+#include <osgActor/text/TextLines>
 
 #include <osgActor/core/ActorDefinitionBuilder>
 
-#include <glm/ext/scalar_constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include <cctype>
@@ -101,7 +101,7 @@ bool AsfParser::readVector(const std::vector<std::string_view>& tokens, std::siz
     if (tokens.size() < first + 3) return fail(std::string(what) + " needs three numbers");
     for (unsigned i = 0; i < 3; ++i)
         if (!parseNumber(tokens[first + i], v[i]))
-            return fail(std::string(what) + ": '" + std::string(tokens[first + i]) + "' is not a finite number");
+            return fail(std::string(what) + ": " + numberProblem(tokens[first + i]));
     return true;
 }
 
@@ -197,9 +197,9 @@ bool AsfParser::parseLimits(AsfBone& bone)
         unsigned tokenNumber = 0;
         while (i < cleaned.size())
         {
-            while (i < cleaned.size() && std::isspace(static_cast<unsigned char>(cleaned[i]))) ++i;
+            while (i < cleaned.size() && isBlank(cleaned[i])) ++i;
             const std::size_t start = i;
-            while (i < cleaned.size() && !std::isspace(static_cast<unsigned char>(cleaned[i]))) ++i;
+            while (i < cleaned.size() && !isBlank(cleaned[i])) ++i;
             if (i == start) break;
             const std::string_view token(cleaned.data() + start, i - start);
             if (firstLine && tokenNumber++ == 0) continue; // the word "limits"
@@ -207,7 +207,7 @@ bool AsfParser::parseLimits(AsfBone& bone)
             if (sameWord(token, "inf") || sameWord(token, "+inf")) value = std::numeric_limits<double>::infinity();
             else if (sameWord(token, "-inf")) value = -std::numeric_limits<double>::infinity();
             else if (!parseNumber(token, value))
-                return fail("limit '" + std::string(token) + "' of '" + bone.name + "' is not a number");
+                return fail("a limit of '" + bone.name + "': " + numberProblem(token));
             numbers.push_back(value);
         }
         firstLine = false;
@@ -313,7 +313,7 @@ bool AsfParser::parseHierarchy()
 
 bool AsfParser::build()
 {
-    const double angle = _result.degrees ? glm::pi<double>() / 180.0 : 1.0;
+    const double angle = _result.degrees ? kRadiansPerDegree : 1.0; // radiansFromDegrees()
     const double scale = _options.scale;
     ActorDefinitionBuilder builder(_options.name.empty() ? baseNameOf(_text.fileName()) : _options.name);
     auto axisOf = [&](const AsfBone& bone) { return asfAxisRotation(bone.axisAngles * angle, bone.axisOrder); };
@@ -371,7 +371,10 @@ bool AsfParser::build()
     const BuildResult built = builder.build();
     if (!built)
     {
-        _error = _text.fileName() + ": " + built.error;
+        // The builder's joints are the root and then the bones, in file order: its index names the joint's line.
+        const int joint = built.errorJoint;
+        const unsigned line = joint == 0 ? _root.line : joint > 0 ? _bones[static_cast<unsigned>(joint - 1)].line : 0;
+        _error = (line > 0 ? _text.where(line) : _text.fileName() + ": ") + built.error;
         return false;
     }
     _result.definition = built.definition;
@@ -398,7 +401,8 @@ bool AsfParser::build()
 
 AsfImport AsfParser::run()
 {
-    bool ok = true;
+    bool ok = _text.error().empty();
+    _error = _text.error();
     while (ok && (_pending || nextContentLine()))
     {
         _pending = false;

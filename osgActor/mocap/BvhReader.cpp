@@ -1,11 +1,11 @@
 #include <osgActor/mocap/BvhReader>
-#include <osgActor/io/ActorNumbers>
-#include <osgActor/mocap/TextLines>
+#include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
+#include <osgActor/text/TextLines>
 
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/core/ClipBuilder>
 
-#include <glm/ext/scalar_constants.hpp>
 #include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
@@ -81,7 +81,7 @@ bool BvhParser::readNumber(double& value, const char* what)
     std::string_view token;
     if (!_text.nextToken(token)) return fail(std::string("the file ends where ") + what + " was expected");
     if (!parseNumber(token, value))
-        return fail(std::string("expected ") + what + ", found '" + std::string(token) + "'");
+        return fail(std::string("expected ") + what + ": " + numberProblem(token));
     return true;
 }
 
@@ -228,7 +228,12 @@ bool BvhParser::buildDefinition(MocapImport& result)
     const BuildResult built = builder.build();
     if (!built)
     {
-        _error = _text.fileName() + ": " + built.error;
+        // The builder's joints are those added above, in file order: its index names the joint's line.
+        unsigned line = 0;
+        for (std::size_t j = 0, added = 0; j < _joints.size() && built.errorJoint >= 0; ++j)
+            if (!_joints[j].endSite || _options.endSitesAsJoints)
+                if (static_cast<int>(added++) == built.errorJoint) line = _joints[j].line;
+        _error = (line > 0 ? _text.where(line) : _text.fileName() + ": ") + built.error;
         return false;
     }
     result.definition = built.definition;
@@ -241,7 +246,6 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
     // Where each file column goes in a frame (the DOF index) and the factor that converts it.
     std::vector<unsigned> columnDof;
     std::vector<double> columnFactor;
-    const double degrees = glm::pi<double>() / 180.0;
     for (const BvhJoint& joint : _joints)
     {
         if (joint.endSite) continue;
@@ -249,7 +253,7 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
         for (Dof dof : joint.channels)
         {
             columnDof.push_back(static_cast<unsigned>(def.getDofIndex(j, dof)));
-            columnFactor.push_back(isRotation(dof) ? degrees : _options.scale);
+            columnFactor.push_back(isRotation(dof) ? kRadiansPerDegree : _options.scale); // radiansFromDegrees()
         }
     }
     const unsigned numChannels = def.getNumDofs();
@@ -276,8 +280,8 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
         {
             double value;
             if (!parseNumber(tokens[c], value))
-                return fail("value " + std::to_string(c + 1) + " of frame " + std::to_string(frame) + " ('" +
-                            std::string(tokens[c]) + "') is not a finite number");
+                return fail("value " + std::to_string(c + 1) + " of frame " + std::to_string(frame) + ": " +
+                            numberProblem(tokens[c]));
             row[columnDof[c]] = value * columnFactor[c];
         }
         ++frame;
@@ -308,6 +312,11 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
 MocapImport BvhParser::run()
 {
     MocapImport result;
+    if (!_text.error().empty())
+    {
+        result.error = _text.error();
+        return result;
+    }
     std::string_view token;
     bool ok = expect("HIERARCHY");
     while (ok && _text.nextToken(token) && !sameWord(token, "MOTION"))

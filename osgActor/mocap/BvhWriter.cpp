@@ -1,8 +1,8 @@
 #include <osgActor/mocap/BvhWriter>
+#include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
+#include <osgActor/text/TextLines>
 
-#include <glm/ext/scalar_constants.hpp>
-
-#include <cstdio>
 #include <vector>
 
 namespace osgActor {
@@ -25,11 +25,27 @@ std::vector<Dof> channelOrder(const ActorDefinition& def, unsigned joint)
     return order;
 }
 
-std::string formatNumber(double value)
+/** The reader's frame rate is 1 / Frame Time. */
+double frameRateOf(double frameTime) { return 1.0 / frameTime; }
+
+/** What a BVH reader names an End Site: "<parent>_end" (BvhImportOptions::endSitesAsJoints). A joint without DOFs
+  * or children of that name is written as one, so that it reads back as the same joint; any other is a JOINT with
+  * no channels. */
+bool isEndSite(const ActorDefinition& def, unsigned joint, const std::vector<unsigned>& numChildren)
 {
-    char buffer[32];
-    std::snprintf(buffer, sizeof(buffer), "%.10g", value == 0.0 ? 0.0 : value); // no "-0"
-    return buffer;
+    const int parent = def.getParent(joint);
+    return parent >= 0 && def.getDofMask(joint) == 0 && numChildren[joint] == 0 &&
+           def.getJointName(joint) == def.getJointName(static_cast<unsigned>(parent)) + "_end";
+}
+
+/** A BVH reader takes a joint's name as the words after JOINT, joined by single spaces: a name is written as it
+  * is only when that gives it back. */
+bool readsBackAsName(const std::string& name)
+{
+    if (name.empty() || isBlank(name.front()) || isBlank(name.back())) return false;
+    for (std::size_t i = 0; i < name.size(); ++i)
+        if (name[i] == '\t' || (name[i] == ' ' && name[i + 1] == ' ')) return false;
+    return true;
 }
 
 } // namespace
@@ -42,9 +58,15 @@ bool writeBvh(std::ostream& out, const ActorDefinition& def, const Clip* clip, s
     {
         if (def.getParent(j) >= 0) ++numChildren[static_cast<unsigned>(def.getParent(j))];
         const glm::dquat& q = def.getOffsetRotation(j);
-        if (std::abs(std::abs(q.w) - 1.0) > 1e-12)
+        if (q.x != 0.0 || q.y != 0.0 || q.z != 0.0)
         {
             error = "joint '" + def.getJointName(j) + "' has an offset rotation, which BVH cannot express";
+            return false;
+        }
+        if (!readsBackAsName(def.getJointName(j)))
+        {
+            error = "joint '" + def.getJointName(j) +
+                    "' has a name BVH cannot hold (empty, or with blanks at its ends or two in a row)";
             return false;
         }
         if ((def.getDofMask(j) & kTranslationDofs) && def.getTranslationMode(j) != TranslationMode::BeforeRotation)
@@ -88,7 +110,7 @@ bool writeBvh(std::ostream& out, const ActorDefinition& def, const Clip* clip, s
             out << std::string(2 * open.size(), ' ') << "}\n";
         }
         const std::string indent(2 * open.size(), ' ');
-        const bool endSite = def.getDofMask(j) == 0 && numChildren[j] == 0 && def.getParent(j) >= 0;
+        const bool endSite = isEndSite(def, j, numChildren);
         if (endSite) out << indent << "End Site\n";
         else out << indent << (def.getParent(j) < 0 ? "ROOT " : "JOINT ") << def.getJointName(j) << "\n";
         out << indent << "{\n";
@@ -115,10 +137,11 @@ bool writeBvh(std::ostream& out, const ActorDefinition& def, const Clip* clip, s
         out << std::string(2 * open.size(), ' ') << "}\n";
     }
 
-    const unsigned numFrames = clip ? clip->getNumFrames() : 1;
-    out << "MOTION\nFrames: " << numFrames << "\nFrame Time: " << formatNumber(clip ? 1.0 / clip->getFrameRate() : 1.0)
-        << "\n";
-    const double toDegrees = 180.0 / glm::pi<double>();
+    // No clip, no frames: what a reader reads back as a skeleton without motion.
+    const unsigned numFrames = clip ? clip->getNumFrames() : 0;
+    const double frameRate = clip ? clip->getFrameRate() : 1.0;
+    out << "MOTION\nFrames: " << std::to_string(numFrames) << "\nFrame Time: "
+        << formatInverse(frameRate, 1.0 / frameRate, frameRateOf) << "\n";
     std::string line;
     for (unsigned f = 0; f < numFrames; ++f)
     {
@@ -128,7 +151,8 @@ bool writeBvh(std::ostream& out, const ActorDefinition& def, const Clip* clip, s
             const unsigned d = columnDofs[c];
             const double value = channelOf[d] >= 0 ? clip->getFrame(f)[channelOf[d]] : def.getDofDefault(d);
             if (c > 0) line += ' ';
-            line += formatNumber(isRotation(columns[c]) ? value * toDegrees : value);
+            if (isRotation(columns[c])) line += formatDegrees(value);
+            else appendNumber(line, value);
         }
         out << line << "\n";
     }

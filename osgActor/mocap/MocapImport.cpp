@@ -7,6 +7,16 @@
 
 namespace osgActor {
 
+const char* upAxisName(UpAxis axis) { return axis == UpAxis::Z ? "z" : "y"; }
+
+bool parseUpAxis(const std::string& text, UpAxis& axis)
+{
+    if (text == "y") axis = UpAxis::Y;
+    else if (text == "z") axis = UpAxis::Z;
+    else return false;
+    return true;
+}
+
 glm::dquat upAxisToZUp(UpAxis fileUpAxis)
 {
     if (fileUpAxis == UpAxis::Z) return glm::dquat(1.0, 0.0, 0.0, 0.0);

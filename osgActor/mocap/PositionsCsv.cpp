@@ -1,9 +1,9 @@
 #include <osgActor/mocap/PositionsCsv>
 
 #include <osgActor/core/ActorPose>
+#include <osgActor/text/Numbers>
 
 #include <algorithm>
-#include <cstdio>
 #include <vector>
 
 namespace osgActor {
@@ -42,7 +42,7 @@ bool writePositionsCsv(std::ostream& out, const ActorDefinitionPtr& definition, 
 
     ActorPose pose(definition);
     out << "frame,joint,x,y,z\n";
-    char number[128];
+    std::string row;
     for (unsigned f = firstFrame; f < endFrame; ++f)
     {
         const double* values = clip.getFrame(f);
@@ -52,8 +52,14 @@ bool writePositionsCsv(std::ostream& out, const ActorDefinitionPtr& definition, 
         for (unsigned j = 0; j < definition->getNumJoints(); ++j)
         {
             const glm::dvec4& p = pose.getModelMatrix(j)[3];
-            std::snprintf(number, sizeof(number), ",%.12g,%.12g,%.12g\n", p.x + 0.0, p.y + 0.0, p.z + 0.0);
-            out << f << ',' << names[j] << number;
+            row = std::to_string(f) + ',' + names[j];
+            for (const double coordinate : {p.x, p.y, p.z})
+            {
+                row += ',';
+                appendNumber(row, coordinate);
+            }
+            row += '\n';
+            out << row;
         }
     }
     if (!out)

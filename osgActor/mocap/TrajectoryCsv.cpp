@@ -1,10 +1,10 @@
-#include <osgActor/io/ActorNumbers>
 #include <osgActor/mocap/MocapImport>
-#include <osgActor/mocap/TextLines>
 #include <osgActor/mocap/TrajectoryCsv>
+#include <osgActor/text/Degrees>
+#include <osgActor/text/Numbers>
+#include <osgActor/text/TextLines>
 
-#include <glm/ext/scalar_constants.hpp>
-
+#include <cmath>
 #include <fstream>
 
 namespace osgActor {
@@ -43,7 +43,13 @@ TrajectoryBuildResult readTrajectoryCsv(std::istream& in, const std::string& fil
         result.error = text.where() + message;
         return result;
     };
-    const double angle = headingInDegrees ? glm::pi<double>() / 180.0 : 1.0;
+    if (!text.error().empty())
+    {
+        TrajectoryBuildResult result;
+        result.error = text.error();
+        return result;
+    }
+    const double angle = headingInDegrees ? kRadiansPerDegree : 1.0; // radiansFromDegrees()
     static const char* const kColumns[5] = {"time", "x", "y", "z", "heading"};
     bool first = true;
     while (text.nextLine())
@@ -65,8 +71,12 @@ TrajectoryBuildResult readTrajectoryCsv(std::istream& in, const std::string& fil
             continue;
         }
         for (unsigned i = 0; i < 5; ++i)
-            if (!parseNumber(f[i], values[i]))
-                return failed(std::string(kColumns[i]) + " '" + std::string(f[i]) + "' is not a finite number");
+            if (!parseNumber(f[i], values[i])) return failed(std::string(kColumns[i]) + " " + numberProblem(f[i]));
+        // The path places the actor (its pre-transform), which holds positions within +-kMaxDofMagnitude.
+        for (unsigned i = 1; i < 4; ++i)
+            if (std::abs(values[i]) > kMaxDofMagnitude)
+                return failed(std::string(kColumns[i]) + " " + std::string(f[i]) +
+                              " lies beyond what an actor holds (+-" + formatNumber(kMaxDofMagnitude) + ")");
         if (!keys.empty() && !(values[0] > keys.back().time))
             return failed("time " + std::string(f[0]) + " does not come after the line before");
         TrajectoryKey key;

@@ -37,10 +37,15 @@ public:
         supportsExtension("actor", "osgActor actor (definition, pose and geometry)");
         supportsOption("amc=<file>", "walk.asf.actor: the AMC motion of the ASF skeleton (else one found beside it)");
         supportsOption("scale=<s>", "walk.bvh.actor / .asf.actor: file units to model units");
-        supportsOption("up=<Y|Z>", "walk.bvh.actor / .asf.actor: the file's up axis (Y by default)");
+        supportsOption("up=<y|z>", "walk.bvh.actor / .asf.actor: the file's up axis (y by default)");
         supportsOption("fps=<n>", "walk.asf.actor: AMC frame rate (120 by default)");
         supportsOption("dropFirstFrame", "walk.bvh.actor: drop the reference pose in frame 0");
-        supportsOption("rootMotion=<skeleton|transforms|inplace>", "mocap pseudo-loader: where the root's travel goes");
+        supportsOption("absoluteRoot", "walk.bvh.actor: root positions are absolute, not added to the root's OFFSET");
+        supportsOption("limits", "walk.asf.actor: the ASF's limits become DOF limits");
+        supportsOption("noFigure", "mocap pseudo-loader: no stick figure on the skeleton");
+        supportsOption("mode=<once|loop|pingpong>", "mocap pseudo-loader: how the motion plays (loop by default)");
+        supportsOption("rootMotion=<in_skeleton|to_transforms|in_place>",
+                       "mocap pseudo-loader: where the root's travel goes (in_skeleton by default)");
         supportsOption("clip=<name>", "hero.glb.actor / .gltf.actor: the animation to play (else the first)");
         supportsOption("rootScale=<above|lengths>", "hero.glb.actor: the root's scale above the actor or in its lengths");
     }

@@ -138,6 +138,33 @@ TEST(AmcReader, RefusesUnknownBonesWrongCountsAndNonNumbers)
     expectAmcError(":DEGREES\n", "inline.amc:1: ", "no frame");
 }
 
+TEST(AmcReader, RefusesFrameNumbersThatGoBackRepeatOrJump)
+{
+    // Frames are stored one after the other at the frame rate: a renumbering would move every later frame in time.
+    const std::string frame = "root 0 0 0 0 0 0\nfemur 1 2\ntibia 3\n";
+    expectAmcError("1\n" + frame + "2\n" + frame + "1\n" + frame, "inline.amc:9: ",
+                   "frame number 1 follows frame 2; AMC frames must be numbered one after the other");
+    expectAmcError("7\n" + frame + "7\n" + frame, "inline.amc:5: ", "frame number 7 follows frame 7");
+    expectAmcError("1\n" + frame + "3\n" + frame, "inline.amc:5: ", "frame number 3 follows frame 1");
+    expectAmcError("18446744073709551615\n" + frame + "0\n" + frame, "inline.amc:5: ",
+                   "frame number 0 follows frame 18446744073709551615");
+    // Any first number, then one more each frame.
+    const AsfImport skeleton = readAsfText(kSmallAsf, fileFrame());
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    std::istringstream in("0\n" + frame + "1\n" + frame + "2\n" + frame);
+    const MocapImport motion = readAmc(in, "inline.amc", skeleton);
+    ASSERT_TRUE(motion) << motion.error;
+    EXPECT_EQ(motion.clip->getNumFrames(), 3u);
+}
+
+TEST(AsfAmc, ControlCharactersInNamesAreRefusedWithTheLine)
+{
+    std::string asf = kSmallAsf;
+    asf.replace(asf.find("name femur"), 10, std::string("name fe\0mur", 12));
+    expectAsfError(asf, "inline.asf:15: ", "a control character (0x00)");
+    expectAmcError("1\nroot 0 0 0 0 0 0\nfemur\x1b 1 2\n", "inline.amc:3: ", "a control character (0x1B)");
+}
+
 // --- the mapping ---
 
 TEST(AsfReader, MapsBonesAxesDofsAndLimitsOntoJoints)

@@ -120,6 +120,13 @@ TEST(BvhReader, RefusesABadOffsetAndDuplicateNames)
                 "inline.bvh:5: ", "a second joint is named 'a'");
 }
 
+TEST(BvhReader, RefusesControlCharactersInNamesWithTheLine)
+{
+    expectError(std::string("HIERARCHY\nROOT hips\n{\n OFFSET 0 0 0\n JOINT chest\0\n", 50), "inline.bvh:5: ",
+                "a control character (0x00)");
+    expectError("HIERARCHY\nROOT hi\x7fps\n{\n OFFSET 0 0 0\n}\n", "inline.bvh:2: ", "a control character (0x7F)");
+}
+
 TEST(BvhReader, RefusesWrongValueCountsAndNonNumbers)
 {
     expectError(std::string(kTwoJoints) + "0 0 0 0 0 0 0\n0 0 0 0 0 0\n", "inline.bvh:20: ",

@@ -96,7 +96,8 @@ TEST(PositionsCsv, WritesOneRowPerJointPerFrame)
     std::ostringstream out;
     std::string error;
     ASSERT_TRUE(writePositionsCsv(out, imported.definition, *imported.clip, 0, 2, error)) << error;
+    // Numbers are written exactly: cos(90 degrees) in doubles is 6.1e-17, so the hand's x is 1 + 2 * 6.1e-17.
     EXPECT_EQ(out.str(), "frame,joint,x,y,z\n"
                          "0,\"arm,1\",1,0,0\n0,hand,3,0,0\n"
-                         "1,\"arm,1\",1,0,0\n1,hand,1,2,0\n");
+                         "1,\"arm,1\",1,0,0\n1,hand,1.0000000000000002,2,0\n");
 }

@@ -128,17 +128,21 @@ TEST(MocapOptionString, RefusesBadValuesOfKnownWords)
     EXPECT_NE(error.find("scale needs a positive number"), std::string::npos) << error;
     EXPECT_FALSE(parseMocapOptionString("fps=-3", options, error));
     EXPECT_FALSE(parseMocapOptionString("up=X", options, error));
-    EXPECT_NE(error.find("up must be Y or Z"), std::string::npos) << error;
+    EXPECT_NE(error.find("up must be y or z, not 'X'"), std::string::npos) << error;
     EXPECT_FALSE(parseMocapOptionString("mode=forever", options, error));
+    EXPECT_NE(error.find("mode must be once, loop or pingpong"), std::string::npos) << error;
     EXPECT_FALSE(parseMocapOptionString("rootMotion=sideways", options, error));
+    EXPECT_NE(error.find("rootMotion must be in_skeleton, to_transforms or in_place"), std::string::npos) << error;
+    EXPECT_FALSE(parseMocapOptionString("scale=1e999", options, error)) << "not finite";
+    EXPECT_FALSE(parseMocapOptionString("scale=1,5", options, error)) << "numbers do not follow the locale";
 }
 
 TEST(MocapOptionString, ReadsEveryOptionAndLeavesOtherWordsAlone)
 {
     MocapActorOptions options;
     std::string error;
-    ASSERT_TRUE(parseMocapOptionString("amc=11_01.amc scale=0.5 up=Z fps=60 dropFirstFrame absoluteRoot limits "
-                                       "mode=pingpong rootMotion=inplace noFigure noRotation",
+    ASSERT_TRUE(parseMocapOptionString("amc=11_01.amc scale=0.5 up=z fps=60 dropFirstFrame absoluteRoot limits "
+                                       "mode=pingpong rootMotion=in_place noFigure noRotation",
                                        options, error))
         << error;
     EXPECT_EQ(options.amcFile, "11_01.amc");
@@ -151,6 +155,35 @@ TEST(MocapOptionString, ReadsEveryOptionAndLeavesOtherWordsAlone)
     EXPECT_EQ(options.playMode, PlayMode::PingPong);
     EXPECT_EQ(options.rootMotion, RootMotion::InPlace);
     EXPECT_FALSE(options.addFigure);
+}
+
+TEST(MocapOptionString, UsesTheWordsOfTheActorFormatAndStillReadsTheOldOnes)
+{
+    // One vocabulary: the option values are the .actor format's words for the same enums.
+    for (const RootMotion mode : {RootMotion::InSkeleton, RootMotion::ToTransforms, RootMotion::InPlace})
+    {
+        MocapActorOptions options;
+        std::string error;
+        ASSERT_TRUE(parseMocapOptionString(std::string("rootMotion=") + rootMotionName(mode), options, error)) << error;
+        EXPECT_EQ(options.rootMotion, mode);
+    }
+    for (const UpAxis axis : {UpAxis::Y, UpAxis::Z})
+    {
+        MocapActorOptions options;
+        std::string error;
+        ASSERT_TRUE(parseMocapOptionString(std::string("up=") + upAxisName(axis), options, error)) << error;
+        EXPECT_EQ(options.fileUpAxis, axis);
+    }
+    // Earlier versions' words, deprecated, still mean what they meant.
+    MocapActorOptions options;
+    std::string error;
+    ASSERT_TRUE(parseMocapOptionString("up=Z rootMotion=transforms", options, error)) << error;
+    EXPECT_EQ(options.fileUpAxis, UpAxis::Z);
+    EXPECT_EQ(options.rootMotion, RootMotion::ToTransforms);
+    ASSERT_TRUE(parseMocapOptionString("rootMotion=skeleton", options, error)) << error;
+    EXPECT_EQ(options.rootMotion, RootMotion::InSkeleton);
+    ASSERT_TRUE(parseMocapOptionString("rootMotion=inplace", options, error)) << error;
+    EXPECT_EQ(options.rootMotion, RootMotion::InPlace);
 }
 
 TEST(MocapActor, StartsItsClipAtTheFirstFrameStampItSees)

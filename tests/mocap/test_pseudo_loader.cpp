@@ -136,7 +136,7 @@ TEST(MocapPseudoLoader, LoadsAnAsfWithItsAmcNamedOrFound)
     osgDB::ReaderWriter::ReadResult found = readThroughOsgDB(repositoryMocap("asfamc/charleston.asf.actor"));
     ASSERT_TRUE(found.validNode()) << found.message();
     osgDB::ReaderWriter::ReadResult named =
-        readThroughOsgDB(repositoryMocap("asfamc/11.asf.actor"), "amc=11_01.amc fps=60 rootMotion=inplace");
+        readThroughOsgDB(repositoryMocap("asfamc/11.asf.actor"), "amc=11_01.amc fps=60 rootMotion=in_place");
     ASSERT_TRUE(named.validNode()) << named.message();
     ActorNode* actor = dynamic_cast<ActorNode*>(named.getNode());
     ASSERT_NE(actor, nullptr);

@@ -10,6 +10,8 @@
 
 #include <osgDB/WriteFile>
 
+#include <cstring>
+
 using namespace osgActor;
 using namespace osgActor::test;
 
@@ -129,6 +131,38 @@ TEST_P(OsgFormats, EverythingTheActorFormatDescribesComesBackAtFullPrecision)
     // Definition, geometry, pose and flags, compared as .actor text.
     EXPECT_EQ(asActorText(*actor, "back_" + extension + ".actor"),
               asActorText(*actorOf(scene.get()), "original_" + extension + ".actor"));
+}
+
+TEST_P(OsgFormats, EdgeNumbersOfTheActorsOwnFieldsComeBackBitForBitWithoutAPrecisionOption)
+{
+    // The smallest subnormal, -0, the largest translation an actor holds, 0.1 + 0.2 and its neighbours: each
+    // written as its shortest exact text (or raw in .osgb), whatever precision the stream has.
+    const std::string extension = GetParam();
+    osg::ref_ptr<ActorNode> actor = readActorFile(dataFile("humanoid.actor"));
+    ASSERT_TRUE(actor.valid());
+    const osg::Vec3d pre(5e-324, -0.0, 1e150);
+    const osg::Vec3d post(0.1 + 0.2, -1e-300, -1e150);
+    const osg::Quat preRotation(0.30000000000000004, -0.0, 2.2250738585072014e-308, 0.9);
+    actor->setPreTranslation(pre);
+    actor->setPostTranslation(post);
+    actor->setPreRotation(preRotation);
+    ASSERT_TRUE(actor->setDof("HumanoidRoot.tz", -2.5e-320));
+    const std::string path = outFile("edges." + extension);
+    ASSERT_TRUE(osgDB::writeNodeFile(*actor, path));
+    osg::ref_ptr<osg::Node> node = osgDB::readRefNodeFile(path);
+    const ActorNode* back = dynamic_cast<ActorNode*>(node.get());
+    ASSERT_NE(back, nullptr) << extension;
+    const auto sameBits = [](double a, double b) { return std::memcmp(&a, &b, sizeof(double)) == 0; };
+    for (int i = 0; i < 3; ++i)
+    {
+        EXPECT_TRUE(sameBits(back->getPreTranslation()[i], pre[i])) << extension << " " << i;
+        EXPECT_TRUE(sameBits(back->getPostTranslation()[i], post[i])) << extension << " " << i;
+    }
+    for (int i = 0; i < 4; ++i)
+        EXPECT_TRUE(sameBits(back->getPreRotation()[i], preRotation[i])) << extension << " " << i;
+    const int tz = back->getDofIndex("HumanoidRoot.tz");
+    ASSERT_GE(tz, 0);
+    EXPECT_TRUE(sameBits(back->getDof(unsigned(tz)), -2.5e-320)) << extension;
 }
 
 TEST_P(OsgFormats, TheUpdateCallbackAndSkeletonNodesHaveTheirOwnWrappers)
@@ -276,6 +310,70 @@ TEST(OsgFormatsBroken, SkeletonNodesThatDoNotMatchTheDefinitionFailTheRead)
     osgDB::ReaderWriter::ReadResult result = osgDB::Registry::instance()->readNode(path, nullptr);
     EXPECT_FALSE(result.validNode());
     EXPECT_NE(result.message().find("do not match its definition"), std::string::npos) << result.message();
+}
+
+TEST(OsgFormatsBroken, ADofValueThatIsNotANumberInOsgtFailsTheReadNamingTheWord)
+{
+    osg::ref_ptr<osg::Group> scene = makeScene(false);
+    ASSERT_TRUE(scene.valid());
+    ASSERT_TRUE(osgDB::writeNodeFile(*scene, outFile("good3.osgt")));
+    std::string text = readTextFile(outFile("good3.osgt"));
+    const std::size_t dofs = text.find("Dofs ");
+    ASSERT_NE(dofs, std::string::npos);
+    const std::size_t elbow = text.find(" -1.1 ", dofs); // l_elbow.rx, set by makeScene()
+    ASSERT_NE(elbow, std::string::npos) << text.substr(dofs, 400);
+    text.replace(elbow, 6, " -1.1x ");
+    osgDB::ReaderWriter::ReadResult result =
+        osgDB::Registry::instance()->readNode(writeTextFile("broken_dof.osgt", text), nullptr);
+    EXPECT_FALSE(result.validNode());
+    EXPECT_NE(result.message().find("DOF values of actor 'humanoid': '-1.1x' is not a number"), std::string::npos)
+        << result.message();
+}
+
+TEST(OsgFormatsBroken, ATransformNumberThatIsNotFiniteOrThatTheActorCannotHoldFailsTheRead)
+{
+    osg::ref_ptr<osg::Group> scene = makeScene(false);
+    ASSERT_TRUE(scene.valid());
+    ASSERT_TRUE(osgDB::writeNodeFile(*scene, outFile("good4.osgt")));
+    const std::string good = readTextFile(outFile("good4.osgt"));
+    ASSERT_NE(good.find("PreTranslation 2.5 -1.25 0"), std::string::npos);
+    const struct
+    {
+        const char* word;
+        const char* message;
+    } cases[] = {{"1e999", "PreTranslation of actor 'humanoid': '1e999' is not a finite number"},
+                 {"nan", "PreTranslation of actor 'humanoid': 'nan' is not a finite number"},
+                 {"1e-400", "PreTranslation of actor 'humanoid': '1e-400' is too small for a double"},
+                 {"2e150", "PreTranslation of actor 'humanoid' is not one an actor holds"}};
+    for (const auto& c : cases)
+    {
+        const std::string path = writeTextFile("broken_pre.osgt", replaced(good, "PreTranslation 2.5 -1.25 0",
+                                                                           "PreTranslation " + std::string(c.word) +
+                                                                               " -1.25 0"));
+        osgDB::ReaderWriter::ReadResult result = osgDB::Registry::instance()->readNode(path, nullptr);
+        EXPECT_FALSE(result.validNode()) << c.word;
+        EXPECT_NE(result.message().find(c.message), std::string::npos) << c.word << ": " << result.message();
+    }
+}
+
+TEST(OsgFormatsBroken, ATransformWordThatIsNotANumberInOsgIsIgnoredAndTheRestIsRead)
+{
+    // The .osg wrappers warn and go on, as osgDB's own .osg wrappers do with a field they cannot read.
+    osg::ref_ptr<osg::Group> scene = makeScene(false);
+    ASSERT_TRUE(scene.valid());
+    ASSERT_TRUE(osgDB::writeNodeFile(*scene, outFile("good5.osg")));
+    const std::string good = readTextFile(outFile("good5.osg"));
+    ASSERT_NE(good.find("PreTranslation 2.5 -1.25 0"), std::string::npos);
+    const std::string path =
+        writeTextFile("broken_pre.osg", replaced(good, "PreTranslation 2.5 -1.25 0", "PreTranslation 2.5 x 0"));
+    osg::ref_ptr<osg::Node> back = osgDB::readRefNodeFile(path);
+    ActorNode* actor = actorOf(back.get());
+    ASSERT_NE(actor, nullptr);
+    EXPECT_EQ(actor->getPreTranslation(), osg::Vec3d(0, 0, 0));
+    EXPECT_EQ(actor->getPreRotation(), actorOf(scene.get())->getPreRotation());
+    const int elbow = actor->getDofIndex("l_elbow.rx");
+    ASSERT_GE(elbow, 0);
+    EXPECT_EQ(actor->getDof(unsigned(elbow)), -1.1);
 }
 
 TEST(OsgFormatsBroken, NamesThatNeedQuotesSurviveEveryFormat)

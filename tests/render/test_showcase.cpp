@@ -457,12 +457,21 @@ TEST(ShowcaseWrappers, PathsGoThroughOsgtAndBadOnesAreRefused)
     osgDB::ReaderWriter::ReadResult read = osgt->readObject(text, ascii.get());
     const TripodGait* back = dynamic_cast<const TripodGait*>(read.getObject());
     ASSERT_NE(back, nullptr) << "libosgActorShowcase on OSG_LIBRARY_PATH?";
-    EXPECT_NEAR(back->getStepHeight(), 0.05, 1e-9);
+    // Every number exactly (OSG's own double serializer would write the stream's 6 digits).
+    EXPECT_EQ(back->getStepHeight(), 0.05);
+    EXPECT_EQ(back->getCycleDuration(), gait->getCycleDuration());
     ASSERT_TRUE(back->getPath());
     EXPECT_EQ(back->getPath()->getName(), "straight");
     ASSERT_EQ(back->getPath()->getKeys().size(), 2u);
-    EXPECT_NEAR(back->getPath()->getKeys()[1].position.x, 25.0, 1e-9);
-    EXPECT_NEAR(back->getPath()->getKeys()[1].heading, osg::PI_2, 1e-5);
+    for (std::size_t k = 0; k < 2; ++k)
+    {
+        const osgActor::TrajectoryKey& key = back->getPath()->getKeys()[k];
+        const osgActor::TrajectoryKey& written = gait->getPath()->getKeys()[k];
+        EXPECT_EQ(key.time, written.time) << k;
+        EXPECT_EQ(key.position, written.position) << k;
+        EXPECT_EQ(key.heading, written.heading) << k;
+    }
+    EXPECT_EQ(back->getPath()->getKeys()[1].position.x, 25.0);
 
     // The same file with the second key's time before the first: refused as a whole.
     std::string broken = text.str();
@@ -471,6 +480,15 @@ TEST(ShowcaseWrappers, PathsGoThroughOsgtAndBadOnesAreRefused)
     broken.replace(at, 3, "-1 ");
     std::stringstream brokenText(broken);
     EXPECT_EQ(osgt->readObject(brokenText, ascii.get()).getObject(), nullptr);
+
+    // A key's word that is not a number: refused with the word, not read as 0 or as the number it starts with.
+    std::string notANumber = text.str();
+    notANumber.replace(at, 6, "100 25x");
+    std::stringstream notANumberText(notANumber);
+    osgDB::ReaderWriter::ReadResult refused = osgt->readObject(notANumberText, ascii.get());
+    EXPECT_EQ(refused.getObject(), nullptr);
+    EXPECT_NE(refused.message().find("path 'straight': '25x' is not a number"), std::string::npos)
+        << refused.message();
 }
 
 TEST(ShowcaseFile, LoadsAndItsInsectKeepsItsFeetPlantedAllRoundItsPath)

@@ -71,6 +71,64 @@ TEST(ParserFindings, TrajectoryCsv)
     expectContractKept("trajectory_csv", contract::checkTrajectoryCsv);
 }
 
+// A name (or any word) holding a control character, a NUL from a binary file, is refused by every reader, with the
+// line it is on, before anything is read.
+TEST(ParserContract, EveryReaderRefusesControlCharactersWithTheLine)
+{
+    const std::string nul(1, '\0');
+    const std::string expected = ":2: a control character (0x00) in the text";
+    std::istringstream actor("osgactor 1\nactor a" + nul + " {\n joint b\n}\n");
+    EXPECT_EQ(readActor(actor, "t.actor").error.find("t.actor" + expected), 0u);
+    std::istringstream bvh("HIERARCHY\nROOT hi" + nul + "ps\n{\n OFFSET 0 0 0\n}\nMOTION\nFrames: 0\nFrame Time: 1\n");
+    EXPECT_EQ(readBvh(bvh, "t.bvh").error.find("t.bvh" + expected), 0u);
+    std::istringstream asf(":root\n order TX" + nul + "\n:hierarchy\nbegin\nend\n");
+    EXPECT_EQ(readAsf(asf, "t.asf").error.find("t.asf" + expected), 0u);
+    const AsfImport skeleton = readAsfFile(std::string(OSGACTOR_TEST_MOCAP_DIR) + "/asfamc/11.asf");
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    std::istringstream amc("1\nroot" + nul + " 0 0 0 0 0 0\n");
+    EXPECT_EQ(readAmc(amc, "t.amc", skeleton).error.find("t.amc" + expected), 0u);
+    std::istringstream csv("0,0,0,0,0\n1,0," + nul + "0,0,0\n");
+    EXPECT_EQ(readTrajectoryCsv(csv, "t.csv").error.find("t.csv" + expected), 0u);
+}
+
+// A value the actor could not hold (a position or offset beyond +-1e150, kMaxDofMagnitude) is refused with the line
+// it is on, not clamped or dropped later.
+TEST(ParserContract, ValuesAnActorCannotHoldAreRefusedWithTheLine)
+{
+    std::istringstream actor("osgactor 1\nactor a {\n joint b\n trajectory t {\n  key 0 0 0 0 0\n"
+                             "  key 1 2e150 0 0 0\n }\n}\n");
+    EXPECT_EQ(readActor(actor, "t.actor").error,
+              "t.actor:6: the key's position 2e150 lies beyond what an actor holds (+-1e+150)");
+    std::istringstream csv("0,0,0,0,0\n1,0,-1e200,0,0\n");
+    EXPECT_EQ(readTrajectoryCsv(csv, "t.csv").error, "t.csv:2: y -1e200 lies beyond what an actor holds (+-1e+150)");
+    std::istringstream bvh("HIERARCHY\nROOT hips\n{\n OFFSET 0 0 0\n JOINT far\n {\n  OFFSET 1e300 0 0\n }\n}\n"
+                           "MOTION\nFrames: 0\nFrame Time: 1\n");
+    const std::string bvhError = readBvh(bvh, "t.bvh").error;
+    EXPECT_EQ(bvhError.rfind("t.bvh:5: ", 0), 0u) << bvhError;
+    EXPECT_NE(bvhError.find("offset beyond"), std::string::npos) << bvhError;
+    std::istringstream asf(":root\n order TX TY TZ\n axis XYZ\n position 1e200 0 0\n:hierarchy\nbegin\nend\n");
+    const std::string asfError = readAsf(asf, "t.asf").error;
+    EXPECT_EQ(asfError.rfind("t.asf:1: ", 0), 0u) << asfError;
+}
+
+// The contract's round trips on the real files the fuzzers start from: read, write, read again, the same document.
+TEST(ParserContract, EveryRealFileReadsWritesAndReadsBackTheSame)
+{
+    const std::string data = std::string(OSGACTOR_TEST_DATA_DIR) + "/";
+    const std::string mocap = std::string(OSGACTOR_TEST_MOCAP_DIR) + "/";
+    for (const char* actor : {"humanoid.actor", "insect.actor", "robot_arm.actor"})
+        EXPECT_EQ(contract::checkActor(bytesOf(data + actor)), "") << actor;
+    for (const char* bvh : {"bvh/12_03.bvh", "bvh/tpose.bvh"})
+        EXPECT_EQ(contract::checkBvh(bytesOf(mocap + bvh)), "") << bvh;
+    for (const char* asf : {"asfamc/11.asf", "asfamc/charleston.asf"})
+        EXPECT_EQ(contract::checkAsf(bytesOf(mocap + asf)), "") << asf;
+    const AsfImport skeleton = readAsfFile(mocap + "asfamc/11.asf");
+    ASSERT_TRUE(skeleton) << skeleton.error;
+    EXPECT_EQ(contract::checkAmc(bytesOf(mocap + "asfamc/11_01.amc"), skeleton), "");
+    const std::string csv = std::string(OSGACTOR_TEST_SOURCE_DIR) + "/motion/data/cockroach.csv";
+    EXPECT_EQ(contract::checkTrajectoryCsv(bytesOf(csv)), "");
+}
+
 // Found with the fuzz targets: BVH joints nest by recursion, and 100000 nested JOINTs overflowed the stack. Too big to
 // keep
 // as a file, so made here; the .actor syntax has the same bound.

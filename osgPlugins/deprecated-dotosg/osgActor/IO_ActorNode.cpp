@@ -5,14 +5,16 @@
  * per line (ActorPartsText). Files that hold a whole .actor text per actor ("Definition <n> { ... }", the form
  * written before) are still read. */
 #include "DotOsgBlocks"
-#include "DotOsgNumbers"
 
 #include <osgActor/ActorNode>
 #include <osgActor/ActorPartsText>
+#include <osgActor/text/Numbers>
 
 #include <osgDB/Input>
 #include <osgDB/Output>
 #include <osgDB/Registry>
+
+#include <algorithm>
 
 using namespace osgActorDotOsg;
 
@@ -21,25 +23,34 @@ namespace {
 bool readActorNode(osg::Object& object, osgDB::Input& fr);
 bool writeActorNode(const osg::Object& object, osgDB::Output& fw);
 
-bool readVec3d(osgDB::Input& fr, const char* keyword, osg::Vec3d& value)
+/** Reads the field "keyword v1 .. vCount" when it is next: true, and fr passes over it. valid says whether every
+  * value is a finite number (read exactly, osgActor/text/Numbers); values are set only then, and a warning names
+  * the word that is not. */
+bool readNumbersField(osgDB::Input& fr, const char* keyword, double* values, int count,
+                      const osgActor::ActorNode& actor, bool& valid)
 {
-    if (!fr[0].matchWord(keyword) || !readExact(fr[1].getStr(), value.x()) || !readExact(fr[2].getStr(), value.y()) ||
-        !readExact(fr[3].getStr(), value.z()))
-        return false;
-    fr += 4;
+    if (!fr[0].matchWord(keyword)) return false;
+    double read[4];
+    valid = true;
+    for (int i = 0; i < count && valid; ++i)
+    {
+        const char* word = fr[i + 1].getStr();
+        valid = word && osgActor::parseNumber(word, read[i]);
+        if (!valid)
+            OSG_WARN << "osgActor: actor '" << actor.getName() << "' " << keyword << ": "
+                     << osgActor::numberProblem(word ? word : "") << " (field ignored)" << std::endl;
+    }
+    if (valid) std::copy(read, read + count, values);
+    fr += count + 1;
     return true;
 }
 
-bool readQuat(osgDB::Input& fr, const char* keyword, osg::Quat& value)
+/** Writes the field "keyword v1 .. vCount", each value exactly (readNumbersField reads it back equal). */
+void writeNumbersField(osgDB::Output& fw, const char* keyword, const double* values, int count)
 {
-    double v[4];
-    if (!fr[0].matchWord(keyword))
-        return false;
-    for (int i = 0; i < 4; ++i)
-        if (!readExact(fr[i + 1].getStr(), v[i])) return false;
-    value.set(v[0], v[1], v[2], v[3]);
-    fr += 5;
-    return true;
+    fw.indent() << keyword;
+    for (int i = 0; i < count; ++i) fw << ' ' << osgActor::formatNumber(values[i]);
+    fw << std::endl;
 }
 
 bool readActorNode(osg::Object& object, osgDB::Input& fr)
@@ -84,22 +95,43 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
     {
         std::vector<double> values;
         bool valid = true;
+        std::string problem;
         for (const std::string& token : readBlockTokens(fr))
         {
             values.emplace_back();
-            valid = readExact(token.c_str(), values.back()) && valid;
+            if (!osgActor::parseNumber(token, values.back()) && valid)
+            {
+                valid = false;
+                problem = osgActor::numberProblem(token);
+            }
         }
         if (valid) actor.setDofs(values);
-        else OSG_WARN << "osgActor: actor '" << actor.getName() << "' has a DOF value that is not a number"
-                      << std::endl;
+        else OSG_WARN << "osgActor: actor '" << actor.getName() << "' Dofs: " << problem << " (DOFs kept)" << std::endl;
         advanced = true;
     }
     osg::Vec3d translation;
     osg::Quat rotation;
-    if (readVec3d(fr, "PreTranslation", translation)) { actor.setPreTranslation(translation); advanced = true; }
-    if (readQuat(fr, "PreRotation", rotation)) { actor.setPreRotation(rotation); advanced = true; }
-    if (readVec3d(fr, "PostTranslation", translation)) { actor.setPostTranslation(translation); advanced = true; }
-    if (readQuat(fr, "PostRotation", rotation)) { actor.setPostRotation(rotation); advanced = true; }
+    bool valid = false;
+    if (readNumbersField(fr, "PreTranslation", translation.ptr(), 3, actor, valid))
+    {
+        if (valid) actor.setPreTranslation(translation);
+        advanced = true;
+    }
+    if (readNumbersField(fr, "PreRotation", rotation._v, 4, actor, valid))
+    {
+        if (valid) actor.setPreRotation(rotation);
+        advanced = true;
+    }
+    if (readNumbersField(fr, "PostTranslation", translation.ptr(), 3, actor, valid))
+    {
+        if (valid) actor.setPostTranslation(translation);
+        advanced = true;
+    }
+    if (readNumbersField(fr, "PostRotation", rotation._v, 4, actor, valid))
+    {
+        if (valid) actor.setPostRotation(rotation);
+        advanced = true;
+    }
     if (fr[0].matchWord("BoundMode"))
     {
         if (fr[1].matchWord("COVERS_ROTATIONS")) actor.setBoundMode(osgActor::ActorNode::BOUND_COVERS_ROTATIONS);
@@ -138,21 +170,14 @@ bool writeActorNode(const osg::Object& object, osgDB::Output& fw)
 
         fw.indent() << "Dofs " << actor.getNumDofs() << " {" << std::endl;
         fw.moveIn();
-        for (const double value : actor.getDofs()) fw.indent() << exact(value) << std::endl;
+        for (const double value : actor.getDofs()) fw.indent() << osgActor::formatNumber(value) << std::endl;
         fw.moveOut();
         fw.indent() << "}" << std::endl;
     }
-    const osg::Vec3d& pre = actor.getPreTranslation();
-    const osg::Vec3d& post = actor.getPostTranslation();
-    const osg::Quat& preRotation = actor.getPreRotation();
-    const osg::Quat& postRotation = actor.getPostRotation();
-    fw.indent() << "PreTranslation " << exact(pre.x()) << " " << exact(pre.y()) << " " << exact(pre.z()) << std::endl;
-    fw.indent() << "PreRotation " << exact(preRotation.x()) << " " << exact(preRotation.y()) << " "
-                << exact(preRotation.z()) << " " << exact(preRotation.w()) << std::endl;
-    fw.indent() << "PostTranslation " << exact(post.x()) << " " << exact(post.y()) << " " << exact(post.z())
-                << std::endl;
-    fw.indent() << "PostRotation " << exact(postRotation.x()) << " " << exact(postRotation.y()) << " "
-                << exact(postRotation.z()) << " " << exact(postRotation.w()) << std::endl;
+    writeNumbersField(fw, "PreTranslation", actor.getPreTranslation().ptr(), 3);
+    writeNumbersField(fw, "PreRotation", actor.getPreRotation()._v, 4);
+    writeNumbersField(fw, "PostTranslation", actor.getPostTranslation().ptr(), 3);
+    writeNumbersField(fw, "PostRotation", actor.getPostRotation()._v, 4);
     fw.indent() << "BoundMode "
                 << (actor.getBoundMode() == osgActor::ActorNode::BOUND_COVERS_ROTATIONS ? "COVERS_ROTATIONS"
                                                                                      : "FOLLOWS_POSE")

@@ -15,6 +15,7 @@
 
 #include <osgActor/ActorNode>
 #include <osgActor/ActorPartsText>
+#include <osgActor/StreamNumbers>
 
 #include <osgDB/InputStream>
 #include <osgDB/ObjectWrapper>
@@ -22,33 +23,32 @@
 
 namespace {
 
-using osgActorSerializers::readExact;
-using osgActorSerializers::writeExact;
-
+// Every number of the actor's own fields is written exactly (osgActor/StreamNumbers); a word that is not a finite
+// number fails the read with its message.
 void writeExact(osgDB::OutputStream& os, const osg::Vec3d& v)
 {
-    for (int i = 0; i < 3; ++i) writeExact(os, v[i]);
+    for (int i = 0; i < 3; ++i) osgActor::writeStreamNumber(os, v[i]);
     os << std::endl;
 }
 
-osg::Vec3d readExactVec3d(osgDB::InputStream& is)
+bool readExact(osgDB::InputStream& is, osg::Vec3d& v, const std::string& what)
 {
-    osg::Vec3d v;
-    for (int i = 0; i < 3; ++i) v[i] = readExact(is);
-    return v;
+    for (int i = 0; i < 3; ++i)
+        if (!osgActor::readStreamNumber(is, v[i], what)) return false;
+    return true;
 }
 
 void writeExact(osgDB::OutputStream& os, const osg::Quat& q)
 {
-    for (int i = 0; i < 4; ++i) writeExact(os, q[i]);
+    for (int i = 0; i < 4; ++i) osgActor::writeStreamNumber(os, q[i]);
     os << std::endl;
 }
 
-osg::Quat readExactQuat(osgDB::InputStream& is)
+bool readExact(osgDB::InputStream& is, osg::Quat& q, const std::string& what)
 {
-    osg::Quat q;
-    for (int i = 0; i < 4; ++i) q[i] = readExact(is);
-    return q;
+    for (int i = 0; i < 4; ++i)
+        if (!osgActor::readStreamNumber(is, q[i], what)) return false;
+    return true;
 }
 
 /** What messages call an actor's texts ("definition of actor 'a'", "motion of actor 'a'"). */
@@ -111,7 +111,8 @@ static bool readDofs(osgDB::InputStream& is, osgActor::ActorNode& actor)
     const unsigned int count = is.readSize();
     is >> is.BEGIN_BRACKET;
     std::vector<double> values(count);
-    for (double& value : values) value = readExact(is);
+    for (double& value : values)
+        if (!osgActor::readStreamNumber(is, value, textName("DOF values", actor))) return false;
     is >> is.END_BRACKET;
     if (is.getException()) return false; // the definition failed already; keep its message
     if (actor.setDofs(values)) return true;
@@ -126,21 +127,25 @@ static bool writeDofs(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
     os << os.BEGIN_BRACKET << std::endl;
     for (const double value : actor.getDofs())
     {
-        writeExact(os, value);
+        osgActor::writeStreamNumber(os, value);
         os << std::endl;
     }
     os << os.END_BRACKET << std::endl;
     return true;
 }
 
-// Pre- and post-transforms (model units, unit quaternions), always written, exactly. One macro makes the check,
-// read and write functions ADD_USER_SERIALIZER(NAME) expects for a field with setNAME/getNAME.
-#define OSGACTOR_EXACT_TRANSFORM_FIELD(NAME, READ_EXACT)                                                           \
+// Pre- and post-transforms (model units, unit quaternions), always written, exactly; one the actor refuses (not
+// finite, beyond kMaxDofMagnitude, a zero rotation) fails the read. One macro makes the check, read and write
+// functions ADD_USER_SERIALIZER(NAME) expects for a field with setNAME/getNAME.
+#define OSGACTOR_EXACT_TRANSFORM_FIELD(NAME, TYPE)                                                                 \
     static bool check##NAME(const osgActor::ActorNode&) { return true; }                                          \
     static bool read##NAME(osgDB::InputStream& is, osgActor::ActorNode& actor)                                    \
     {                                                                                                              \
-        actor.set##NAME(READ_EXACT(is));                                                                           \
-        return true;                                                                                               \
+        TYPE value;                                                                                                \
+        if (!readExact(is, value, textName(#NAME, actor))) return false;                                           \
+        actor.set##NAME(value);                                                                                    \
+        if (actor.get##NAME() == value) return true;                                                               \
+        return failRead(is, textName(#NAME, actor) + " is not one an actor holds");                                \
     }                                                                                                              \
     static bool write##NAME(osgDB::OutputStream& os, const osgActor::ActorNode& actor)                            \
     {                                                                                                              \
@@ -148,10 +153,10 @@ static bool writeDofs(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
         return true;                                                                                               \
     }
 
-OSGACTOR_EXACT_TRANSFORM_FIELD(PreTranslation, readExactVec3d)
-OSGACTOR_EXACT_TRANSFORM_FIELD(PreRotation, readExactQuat)
-OSGACTOR_EXACT_TRANSFORM_FIELD(PostTranslation, readExactVec3d)
-OSGACTOR_EXACT_TRANSFORM_FIELD(PostRotation, readExactQuat)
+OSGACTOR_EXACT_TRANSFORM_FIELD(PreTranslation, osg::Vec3d)
+OSGACTOR_EXACT_TRANSFORM_FIELD(PreRotation, osg::Quat)
+OSGACTOR_EXACT_TRANSFORM_FIELD(PostTranslation, osg::Vec3d)
+OSGACTOR_EXACT_TRANSFORM_FIELD(PostRotation, osg::Quat)
 
 // The block flag. An actor is posed before it is blocked, so a blocked actor read back shows its frozen pose.
 static bool checkBlocked(const osgActor::ActorNode& actor) { return actor.getBlocked(); }
