@@ -96,17 +96,6 @@ void BM_BvhLoadRatio(benchmark::State& state)
 }
 
 /** The CMU walk as a uniform clip (Y-up turned Z-up, as an application loads it). */
-/** Every channel of a clip at a time, through the job a player runs. */
-void sampleEveryChannel(const Clip& clip, double time, ClipCursor& cursor, std::vector<double>& values)
-{
-    SamplingJob job;
-    job.clip = &clip;
-    job.time = time;
-    job.cursor = &cursor;
-    job.values = values;
-    job.run();
-}
-
 const MocapImport& walk()
 {
     static const MocapImport imported = readBvhFile(std::string(OSGACTOR_BENCH_MOCAP_DIR) + "/bvh/12_03.bvh");

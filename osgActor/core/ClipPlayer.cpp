@@ -2,6 +2,8 @@
 #include <osgActor/core/LocalMatricesJob>
 #include <osgActor/core/SamplingJob>
 
+#include "detail/EnumNames.h"
+
 #include <glm/ext/matrix_double3x3.hpp>
 #include <glm/ext/quaternion_trigonometric.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -27,16 +29,6 @@ double* drivenValuesScratch(unsigned count)
 
 glm::dquat headingRotation(double heading) { return glm::angleAxis(heading, kUp); }
 
-/** Every channel of a clip at a time (seconds) into values, one per channel. */
-void sampleEveryChannel(const Clip& clip, double time, ClipCursor& cursor, std::vector<double>& values)
-{
-    SamplingJob job;
-    job.clip = &clip;
-    job.time = time;
-    job.cursor = &cursor;
-    job.values = values;
-    job.run();
-}
 
 } // namespace
 
@@ -48,16 +40,7 @@ const char* const kRootMotionNames[] = {"in_skeleton", "to_transforms", "in_plac
 
 const char* rootMotionName(RootMotion mode) { return kRootMotionNames[static_cast<unsigned>(mode)]; }
 
-bool parseRootMotion(const std::string& text, RootMotion& mode)
-{
-    for (unsigned i = 0; i < 3; ++i)
-        if (text == kRootMotionNames[i])
-        {
-            mode = static_cast<RootMotion>(i);
-            return true;
-        }
-    return false;
-}
+bool parseRootMotion(const std::string& text, RootMotion& mode) { return parseEnumName(kRootMotionNames, text, mode); }
 
 ClipPlayer::ClipPlayer(ClipPtr clip) : _clip(std::move(clip)) {}
 

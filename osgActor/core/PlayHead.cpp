@@ -1,5 +1,7 @@
 #include <osgActor/core/PlayHead>
 
+#include "detail/EnumNames.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,16 +15,7 @@ const char* const kPlayModeNames[] = {"once", "loop", "pingpong"}; // in PlayMod
 
 const char* playModeName(PlayMode mode) { return kPlayModeNames[static_cast<unsigned>(mode)]; }
 
-bool parsePlayMode(const std::string& text, PlayMode& mode)
-{
-    for (unsigned i = 0; i < 3; ++i)
-        if (text == kPlayModeNames[i])
-        {
-            mode = static_cast<PlayMode>(i);
-            return true;
-        }
-    return false;
-}
+bool parsePlayMode(const std::string& text, PlayMode& mode) { return parseEnumName(kPlayModeNames, text, mode); }
 
 bool PlayHead::setSpeed(double speed)
 {

@@ -193,4 +193,15 @@ bool SamplingJob::run() const
     return true;
 }
 
+bool sampleEveryChannel(const Clip& clip, double time, ClipCursor& cursor, Span<double> values)
+{
+    if (values.size() != clip.getNumChannels()) return false;
+    SamplingJob job;
+    job.clip = &clip;
+    job.time = time;
+    job.cursor = &cursor;
+    job.values = values;
+    return job.run();
+}
+
 } // namespace osgActor

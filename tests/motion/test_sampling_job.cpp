@@ -39,15 +39,10 @@ ClipPtr twoChannelFrames()
     return b.build().clip;
 }
 
-/** Every channel of clip at time into values (count of them), through the job. */
+/** Every channel of clip at time into values (count of them). */
 void sampleAll(const Clip& clip, double time, ClipCursor& cursor, double* values, unsigned count)
 {
-    SamplingJob job;
-    job.clip = &clip;
-    job.time = time;
-    job.cursor = &cursor;
-    job.values = {values, count};
-    ASSERT_TRUE(job.run());
+    ASSERT_TRUE(sampleEveryChannel(clip, time, cursor, {values, count}));
 }
 
 /** Channels first .. first + count - 1 of clip at time into values, through the job. */
@@ -150,6 +145,20 @@ TEST(SamplingJob, RefusesChannelsTheClipDoesNotHave)
     EXPECT_TRUE(job.run());
     EXPECT_EQ(values[0], 0.5) << "channel 1 at frame 1";
     EXPECT_EQ(values[1], 1.0) << "channel 0 at frame 1";
+}
+
+TEST(SamplingJob, EveryChannelNeedsRoomForEveryChannel)
+{
+    const ClipPtr clip = twoChannelFrames();
+    ClipCursor cursor;
+    clip->initCursor(cursor);
+    double values[3] = {-1.0, -1.0, -1.0};
+    EXPECT_FALSE(sampleEveryChannel(*clip, 0.0, cursor, {values, 1}));
+    EXPECT_FALSE(sampleEveryChannel(*clip, 0.0, cursor, {values, 3}));
+    EXPECT_EQ(values[0], -1.0);
+    EXPECT_TRUE(sampleEveryChannel(*clip, 2.0 / 30.0, cursor, {values, 2}));
+    EXPECT_EQ(values[0], 4.0);
+    EXPECT_EQ(values[1], 1.0);
 }
 
 TEST(SamplingJob, TimeOutsideTheClipIsClampedAndNaNOrInfinitySamplesTheStart)
