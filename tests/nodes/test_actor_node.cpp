@@ -1,4 +1,5 @@
 #include "NodeTestUtil"
+#include "TestMath"
 
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/GlmOsg>
@@ -47,6 +48,23 @@ TEST(ActorNode, RefusesNonFiniteTransforms)
     EXPECT_EQ(actor->getPreTranslation(), osg::Vec3d(1, 2, 3));
     EXPECT_EQ(actor->getPostRotation(), osg::Quat());
     EXPECT_TRUE(actor->getActorMatrix().valid());
+}
+
+TEST(ActorNode, SetTransformsRefusesEachBadValueOnItsOwn)
+{
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    ActorTransforms t;
+    t.preTranslation = glm::dvec3(1, 2, 3);
+    t.preRotation = glm::dquat(0, 0, 0, 0); // refused
+    t.postTranslation = glm::dvec3(0, 0, 2 * kMaxDofMagnitude); // refused
+    t.postRotation = glm::dquat(0, 0, 0, 1); // half a turn about Z
+    EXPECT_FALSE(actor->setTransforms(t));
+    EXPECT_EQ(actor->getTransforms().preTranslation, glm::dvec3(1, 2, 3));
+    EXPECT_EQ(actor->getTransforms().preRotation, glm::dquat(1, 0, 0, 0)) << "the old value kept";
+    EXPECT_EQ(actor->getTransforms().postTranslation, glm::dvec3(0, 0, 0)) << "the old value kept";
+    EXPECT_EQ(actor->getPostRotation(), osg::Quat(0, 0, 1, 0)) << "the OSG getter reads the same value";
+    // actor_m = T(1, 2, 3) * Rz(180).
+    EXPECT_TRUE(matricesNear(toGlm(actor->getActorMatrix()), fromRows(-1, 0, 0, 1, 0, -1, 0, 2, 0, 0, 1, 3), 1e-15));
 }
 
 TEST(ActorNode, AnEmptyActorIsHarmless)
