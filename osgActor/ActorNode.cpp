@@ -2,6 +2,7 @@
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/GlmOsg>
 #include <osgActor/detail/PlacedSkeletonNode.h>
+#include <osgActor/detail/Prefetch.h>
 #include <osgActor/detail/SkeletonNodeAccess.h>
 
 #include <osg/FrameStamp>
@@ -521,11 +522,12 @@ bool ActorNode::claimFrame(const osg::FrameStamp* stamp)
 void ActorNode::computeFrame(double time)
 {
     // The skeleton nodes are written after the controllers and the local-matrices job have run: start fetching
-    // them now.
+    // them now, and the pointers to their matrices the job will write through.
     if (!_controllers.empty() || _pose.hasDirtyJoints())
     {
         const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
         const std::size_t numNodes = _skeletonNodes.size();
+        detail::prefetchForRead(_pose.getLocalMatrixTargets(), numNodes * sizeof(double*));
         // Two loops, so that neither tests the mode per node.
         if (_boundMode == BOUND_FOLLOWS_POSE)
             for (std::size_t j = 0; j < numNodes; ++j) SkeletonNodeAccess::prefetchForMatrixWrite(*nodes[j], true);

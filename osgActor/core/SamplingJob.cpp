@@ -171,7 +171,8 @@ bool SamplingJob::validate() const
 {
     if (!clip || !cursor) return false;
     const unsigned numChannels = clip->getNumChannels();
-    if (cursor->keys.size() != (clip->isUniform() ? 0u : numChannels)) return false;
+    // A uniform clip's sampling reads no cursor (so any will do, and a player's is not touched for it).
+    if (!clip->isUniform() && cursor->keys.size() != numChannels) return false;
     if (channels.empty()) return firstChannel <= numChannels && values.size() <= numChannels - firstChannel;
     if (channels.size() != values.size()) return false;
     return std::all_of(channels.begin(), channels.end(), [numChannels](std::uint32_t c) { return c < numChannels; });

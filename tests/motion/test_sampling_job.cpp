@@ -109,6 +109,12 @@ TEST(SamplingJob, RefusesACursorMadeForAnotherClip)
     job.cursor = &keyedCursor;
     EXPECT_TRUE(job.run());
     EXPECT_EQ(value, 0.0);
+    // A uniform clip reads no cursor: any will do.
+    double values[2] = {-1.0, -1.0};
+    job.clip = uniform.get();
+    job.values = values;
+    EXPECT_TRUE(job.run());
+    EXPECT_EQ(values[1], 0.0);
 }
 
 TEST(SamplingJob, RefusesChannelsTheClipDoesNotHave)
