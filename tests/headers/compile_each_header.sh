@@ -25,5 +25,6 @@ done <"$list"
 # The compiler on each unit, jobs at a time; every failure is printed, and any fails the test.
 export compiler work
 printf '%s\0' "$work"/units/*.cpp | xargs -0 -n 1 -P "$jobs" sh -c \
-    'out=$("$compiler" @"$work/flags" -fsyntax-only "$1" 2>&1) || { echo "FAILED: $(cat "$1")"; echo "$out"; exit 1; }' _
+    'out=$("$compiler" @"$work/flags" -fsyntax-only "$1" 2>&1) ||
+     { echo "FAILED: $(cat "$1")"; echo "$out"; exit 1; }' _
 echo "$(grep -c . "$list") headers compile on their own with $compiler $*"
