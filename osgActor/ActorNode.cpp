@@ -92,7 +92,8 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
       _postTransformMatrix(actor._postTransformMatrix), _actorMatrix(actor._actorMatrix),
       _transformMatricesDirty(actor._transformMatricesDirty), _boundsToPropagate(false),
       _actorMatrixWritten(actor._actorMatrixWritten),
-      _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+      _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame),
+      _definitionObject(actor._definitionObject), _clipLibraryObject(actor._clipLibraryObject)
 {
     for (const ControllerPtr& controller : actor._controllers)
         if (controller) _controllers.push_back(controller->cloneController());
@@ -108,6 +109,7 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     }
     releaseSkeletonNodes();
     _pose = ActorPose(std::move(definition));
+    updateSharedObjects();
     dropUnfittingIkChains();
     buildSkeletonNodes();
     // Pose the new nodes at once, so a fresh actor has correct bounds and queries before its first frame.
@@ -124,8 +126,21 @@ bool ActorNode::setDefinition(ActorDefinitionPtr definition, SkeletonNodePolicy 
         return true;
     }
     _pose = ActorPose(std::move(definition));
+    updateSharedObjects();
     dropUnfittingIkChains();
     return rebindSkeletonNodes();
+}
+
+void ActorNode::setClipLibrary(ClipLibraryPtr library)
+{
+    _clipLibrary = std::move(library);
+    updateSharedObjects();
+}
+
+void ActorNode::updateSharedObjects()
+{
+    _definitionObject = ActorDefinitionObject::of(getDefinition());
+    _clipLibraryObject = ClipLibraryObject::of(_clipLibrary, _definitionObject.get());
 }
 
 void ActorNode::dropUnfittingIkChains()

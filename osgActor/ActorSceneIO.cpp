@@ -341,17 +341,6 @@ void addIkChains(const ActorNode& actor, ActorDocument& document)
         document.ikChains.push_back(IkChainDocument{chain->getSpec(), 0});
 }
 
-ActorDocument makeDefinitionDocument(const ActorNode& actor)
-{
-    if (!actor.getDefinition()) return ActorDocument();
-    ActorDocument document = makeDocument(*actor.getDefinition());
-    addClips(actor, document);
-    addTrajectories(actor, document);
-    addPlayers(actor, document);
-    addIkChains(actor, document);
-    return document;
-}
-
 void applyDefinitionDocument(ActorNode& actor, const ActorDocument& document, const std::vector<IkChainPtr>& ikChains)
 {
     applyClips(actor, document);

@@ -79,6 +79,25 @@ set(OSGACTOR_CORE_SOURCES
     core/ik/TwoBoneClosedForm.cpp
     core/ik/TwoBoneIkJob.cpp)
 
+# Skinned meshes (core/skin): the skin data, its builder and binding, and the per-frame jobs (skinning matrices,
+# CPU skinning, bounds).
+set(OSGACTOR_CORE_SKIN_HEADERS
+    core/skin/Skin
+    core/skin/SkinBinding
+    core/skin/SkinBoundBoxes
+    core/skin/SkinBoundsJob
+    core/skin/SkinBuilder
+    core/skin/SkinningJob
+    core/skin/SkinningMatricesJob)
+set(OSGACTOR_CORE_SKIN_SOURCES
+    core/skin/Skin.cpp
+    core/skin/SkinBinding.cpp
+    core/skin/SkinBoundBoxes.cpp
+    core/skin/SkinBoundsJob.cpp
+    core/skin/SkinBuilder.cpp
+    core/skin/SkinningJob.cpp
+    core/skin/SkinningMatricesJob.cpp)
+
 # The .actor file format: document model, lexer, syntax, reader, writer. Plain C++ on GLM like the core (no OSG, no
 # osgDB), so it is compiled with it.
 set(OSGACTOR_IO_HEADERS

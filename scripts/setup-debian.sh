@@ -7,6 +7,7 @@ packages=(
     build-essential cmake pkg-config git
     libopenscenegraph-dev openscenegraph   # OSG 3.6 headers, libraries, osgDB plugins, osgviewer/osgconv
     libglm-dev                             # the core's math
+    libtinygltf-dev                        # the glTF reader (osgActor/import)
     libosmesa6-dev                         # offscreen rendering
     fonts-dejavu-core                      # the viewer panel's font
     libgtest-dev libgmock-dev googletest   # unit tests
@@ -16,6 +17,7 @@ packages=(
     libgl1-mesa-dri                        # Mesa's software GL driver under Xvfb (the ASan run preloads it)
     clang libclang-rt-14-dev               # fuzzers (libFuzzer) and sanitizer builds
     gnuplot-nox                            # the benchmark's plot
+    doxygen                                # the API reference (scripts/docs.sh)
 )
 
 missing=()

@@ -1,5 +1,8 @@
 /* osgactorconv: converts motion capture (BVH, ASF+AMC) and dumps joint positions so other tools can check the
  * import. Exit status 0 on success, 1 on bad input (with file:line on stderr), 2 on bad usage. */
+#include "RiggedModelDump"
+
+#include <osgActor/import/RiggedModelFile>
 #include <osgActor/io/ActorDocument>
 #include <osgActor/io/ActorWriter>
 #include <osgActor/mocap/AmcReader>
@@ -26,6 +29,7 @@ namespace {
 const char* const kUsage =
     "usage: osgactorconv [options] INPUT.bvh\n"
     "       osgactorconv [options] INPUT.asf [MOTION.amc]\n"
+    "       osgactorconv --dump-positions|--dump-skinned FILE [--clip NAME] [--fps N] INPUT.gltf|INPUT.glb\n"
     "\n"
     "Reads motion capture into an osgActor actor and clip, then writes it out or dumps joint positions.\n"
     "\n"
@@ -38,7 +42,11 @@ const char* const kUsage =
     "                     'clip' section; .bvh exports BVH (the file's own axes and units, so it reads back\n"
     "                     the same)\n"
     "  --amc FILE         the AMC motion of an ASF skeleton (or give it after the ASF)\n"
-    "  --fps N            frame rate of AMC motion (default 120, CMU's)\n"
+    "  --fps N            frame rate of AMC motion (default 120, CMU's); glTF: rows at times k / N from the\n"
+    "                     clip's first key to its last inclusive (default 30), joints named by node (or node<i>)\n"
+    "  --clip NAME        glTF: the animation to dump (default the first)\n"
+    "  --dump-skinned FILE glTF: write CSV 'frame,mesh,vertex,x,y,z' of the CPU-skinned primitives (mesh: index\n"
+    "                     in meshes[] then primitives[] order) at the same times, in the file's axes and units\n"
     "  --scale S          multiply lengths by S when converting to .actor (not for --dump-positions)\n"
     "  --up Y|Z           the input's up axis for .actor output (default Y; .actor is Z-up like OSG)\n"
     "  --drop-first-frame drop frame 0 (the reference pose of CMU BVH conversions) when converting\n"
@@ -62,6 +70,9 @@ struct Arguments
     bool absoluteRoot = false;
     bool linkMotion = false;
     UpAxis up = UpAxis::Y;
+    bool fpsGiven = false;
+    std::string clip;
+    std::string dumpSkinned;
 };
 
 bool endsWith(std::string text, const std::string& suffix)
@@ -106,6 +117,14 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         {
             if (!value(args.output)) return arg + " needs a file name";
         }
+        else if (arg == "--clip")
+        {
+            if (!value(args.clip)) return "--clip needs an animation name";
+        }
+        else if (arg == "--dump-skinned")
+        {
+            if (!value(args.dumpSkinned)) return "--dump-skinned needs a file name";
+        }
         else if (arg == "--amc")
         {
             if (!value(args.amc)) return "--amc needs a file name";
@@ -113,6 +132,7 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         else if (arg == "--fps")
         {
             if (!value(text) || !parsePositive(text, args.fps)) return "--fps needs a positive number";
+            args.fpsGiven = true;
         }
         else if (arg == "--scale")
         {
@@ -137,7 +157,9 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
     if (help) return std::string();
     if (args.inputs.empty() || args.inputs.size() > 2) return "give one input file (and an AMC after an ASF)";
     if (args.inputs.size() == 2) args.amc = args.inputs[1];
-    if (!args.dumpPositions && args.output.empty()) return "nothing to do: give --dump-positions or -o FILE";
+    if (!args.dumpSkinned.empty() && !isRiggedModelFile(args.inputs[0])) return "--dump-skinned is for .gltf/.glb input";
+    if (!args.dumpPositions && args.output.empty() && args.dumpSkinned.empty())
+        return "nothing to do: give --dump-positions or -o FILE";
     if (args.linkMotion && (args.dumpPositions || !endsWith(args.output, ".actor")))
         return "--link-motion is for .actor output";
     return std::string();
@@ -250,6 +272,29 @@ int main(int argc, char** argv)
     {
         std::cerr << "osgactorconv: " << usageError << "\n\n" << kUsage;
         return 2;
+    }
+
+    if (isRiggedModelFile(args.inputs[0]))
+    {
+        if (!args.dumpPositions && !args.output.empty())
+        {
+            std::cerr << "osgactorconv: glTF input is dumped (--dump-positions, --dump-skinned), not converted\n";
+            return 2;
+        }
+        std::ofstream file;
+        if (args.dumpPositions && !args.output.empty()) file.open(args.output, std::ios::binary);
+        if (args.dumpPositions && !args.output.empty() && !file)
+        {
+            std::cerr << "osgactorconv: " << args.output << ": cannot write the file\n";
+            return 1;
+        }
+        RiggedModelDumpRequest request;
+        request.input = args.inputs[0];
+        request.clip = args.clip;
+        request.fps = args.fpsGiven ? args.fps : 30.0;
+        request.positions = args.dumpPositions ? (args.output.empty() ? &std::cout : &file) : nullptr;
+        request.skinnedPath = args.dumpSkinned;
+        return runRiggedModelDump(request, std::cerr);
     }
 
     const bool toActor = !args.dumpPositions && endsWith(args.output, ".actor");

@@ -43,6 +43,14 @@ bool OutputPattern::parse(const std::string& pattern, std::string& error)
     return true;
 }
 
+OutputPattern OutputPattern::fromChecked(const std::string& pattern)
+{
+    OutputPattern parsed;
+    std::string unused;
+    if (!pattern.empty()) parsed.parse(pattern, unused);
+    return parsed;
+}
+
 std::string OutputPattern::format(unsigned frame) const
 {
     if (!_hasField) return _prefix;

@@ -14,6 +14,9 @@ public:
     /** False, with the reason in error, if the pattern is empty or holds any other % conversion. */
     bool parse(const std::string& pattern, std::string& error);
 
+    /** A pattern parse() accepted before (an empty one formats every frame as ""). */
+    static OutputPattern fromChecked(const std::string& pattern);
+
     /** True if the pattern has a frame-number field (needed to write more than one frame). */
     bool hasFrameField() const { return _hasField; }
     /** The file name of a frame. */

@@ -2,54 +2,69 @@
 #ifndef OSGACTORRENDER_RENDEROPTIONS_H
 #define OSGACTORRENDER_RENDEROPTIONS_H 1
 
-#include "CameraView.h"
+#include "ReferenceCheck.h"
+
+#include <osgActor/Offscreen/RenderFrames>
 
 #include <osg/ArgumentParser>
-#include <osg/Vec4>
 
 #include <string>
 #include <vector>
 
 namespace osgActorRender {
 
-using osgActorApps::CameraView;
-using osgActorApps::frameBoundingSphere;
-
 /** Everything osgactorrender was asked to do. */
 struct RenderOptions
 {
     std::vector<std::string> files;
-    int width = 640;
-    int height = 480;
-    double fovyDegrees = 30.0;
-
-    /** Camera: auto-framed from what the scene draws at the first frame unless eye is given. */
-    bool hasEye = false;
-    bool hasCenter = false;
-    CameraView view;
+    /** Size, frame rate, camera, background, seed: what the library renders with. */
+    osgActor::RenderSettings settings;
 
     /** Frames firstFrame..lastFrame, each at simulation time frame / fps seconds; or one frame at time. */
     unsigned firstFrame = 0;
     unsigned lastFrame = 0;
-    double fps = 30.0;
     bool hasTime = false;
     double time = 0.0;
+    /** This run renders part `part` (1..numParts) of the frames: a contiguous share, numParts about equal shares. */
+    unsigned part = 1;
+    unsigned numParts = 1;
+    /** Processes to spread the parts over (--jobs). */
+    unsigned jobs = 1;
 
     std::string outputPattern = "frame_%04d.png";
     bool writeFrames = true;
-    osg::Vec4 background{0.2f, 0.2f, 0.4f, 1.0f}; // osgViewer's clear colour
 
     std::string contactSheet; // empty: none
     unsigned sheetColumns = 0;
     int sheetTileWidth = 160;
 
+    /** --compare: the references' pattern; empty: no comparison. */
+    std::string referencePattern;
+    /** --tolerance, --allowed-share, --update-references. */
+    ReferenceRules rules;
+    std::string diffPattern;   // empty: no diff images
+    std::string compareSheet;  // empty: none
+    std::string reportFile;    // empty: none
+
+    bool checkDeterminism = false;
     bool forceProgress = false;
 
+    /** Set by a --jobs parent for its children (not for users): where to report each frame, and a pattern to
+      * write frames to for the parent's sheets (every frame with jobScratchAll, else only the differing ones). */
+    int jobReportFd = -1;
+    std::string jobScratchPattern;
+    bool jobScratchAll = false;
+
+    bool isJobChild() const { return jobReportFd >= 0; }
+    bool comparing() const { return !referencePattern.empty(); }
     unsigned getNumFrames() const { return lastFrame - firstFrame + 1; }
-    /** Simulation time of the i-th frame rendered (0-based), in seconds. */
-    double frameTime(unsigned i) const { return hasTime ? time : (firstFrame + i) / fps; }
-    /** The number that names the i-th frame rendered in the output pattern. */
-    unsigned frameNumber(unsigned i) const { return hasTime ? 0 : firstFrame + i; }
+    /** The frames part `part` of numParts renders: [first, last]; empty (first > last) if there are fewer frames
+      * than parts. */
+    void getPartFrames(unsigned part, unsigned numParts, unsigned& first, unsigned& last) const;
+    /** Simulation time of a frame, in seconds. */
+    double frameTime(unsigned frame) const { return hasTime ? time : frame / settings.fps; }
+    /** The number that names a frame in the patterns (0 for --time). */
+    unsigned frameNumber(unsigned frame) const { return hasTime ? 0 : frame; }
 };
 
 /** Describes the options in the parser's ApplicationUsage (for --help and errors). */

@@ -43,6 +43,17 @@ public:
 
     const std::string& error() const { return _error; }
 
+    /** The statements of an actor's motion alone (readActorMotion()): motion sections only. */
+    bool readMotionFile(const std::vector<SyntaxStatement>& statements, ActorDocument& document)
+    {
+        for (const SyntaxStatement& s : statements)
+        {
+            if (!isMotionSection(s.keyword)) return unknownKeyword(s, "in an actor's motion");
+            if (!readMotionSection(s, document)) return false;
+        }
+        return true;
+    }
+
     /** The clips of the actor block, after readFile() and once the definition is built. */
     bool readClips(const ActorDefinition& definition, ActorDocument& document)
     {
@@ -201,20 +212,7 @@ private:
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
             else if (k == "bounds") ok = once(seen, s) && readBounds(s, document.boundsCoverRotations);
-            else if (k == "clip")
-            {
-                // Read once the definition is built: channels are checked against its DOFs.
-                if (!s.hasBlock) return fail(s.line, "'clip' needs a block in braces");
-                _clipStatements.push_back(&s);
-            }
-            else if (k == "player")
-            {
-                // Read after the clips: a player names its clip, and its DOF selection names DOFs.
-                if (!s.hasBlock) return fail(s.line, "'player' needs a block in braces");
-                _playerStatements.push_back(&s);
-            }
-            else if (k == "trajectory") ok = readTrajectory(s, document);
-            else if (k == "ikchain") ok = readIkChain(s, document);
+            else if (isMotionSection(k)) ok = readMotionSection(s, document);
             else if (isReservedSection(k))
             {
                 if (!s.hasBlock) return fail(s.line, "'" + k + "' needs a block in braces");
@@ -223,6 +221,26 @@ private:
             else return unknownKeyword(s, "in an actor");
             if (!ok) return false;
         }
+        return true;
+    }
+
+    /** The sections of an actor block that give its motion rather than its skeleton: clips, trajectories, players
+      * and IK chains. */
+    static bool isMotionSection(const std::string& keyword)
+    {
+        return keyword == "clip" || keyword == "player" || keyword == "trajectory" || keyword == "ikchain";
+    }
+
+    /** One section isMotionSection() names. Clips and players are only collected here: they are read once the
+      * definition is built (readClips(), readPlayers()). */
+    bool readMotionSection(const SyntaxStatement& s, ActorDocument& document)
+    {
+        if (s.keyword == "trajectory") return readTrajectory(s, document);
+        if (s.keyword == "ikchain") return readIkChain(s, document);
+        if (!s.hasBlock) return fail(s.line, "'" + s.keyword + "' needs a block in braces");
+        // Clips are checked against the definition's DOFs; a player names its clip and DOFs, so it comes after them.
+        if (s.keyword == "clip") _clipStatements.push_back(&s);
+        else _playerStatements.push_back(&s);
         return true;
     }
 
@@ -911,6 +929,50 @@ ActorReadResult readActor(std::istream& in, const std::string& fileName)
     if (!buildIkChains(document, *built.definition, fileName, result.ikChains, result.error)) return result;
     result.document = std::move(document);
     result.definition = built.definition;
+    return result;
+}
+
+ActorReadResult readActorMotion(std::istream& in, const std::string& fileName, const ActorDefinitionPtr& definition,
+                                const std::vector<ClipPtr>& knownClips)
+{
+    ActorReadResult result;
+    if (!definition)
+    {
+        result.error = fileName + ": an actor's motion needs the actor's definition";
+        return result;
+    }
+    std::vector<SyntaxStatement> statements;
+    if (!parseSyntax(in, fileName, statements, result.error)) return result;
+    DocumentReader reader(fileName);
+    ActorDocument document;
+    document.name = definition->getName();
+    if (!reader.readMotionFile(statements, document) || !reader.readClips(*definition, document))
+    {
+        result.error = reader.error();
+        return result;
+    }
+    for (const ClipPtr& known : knownClips)
+    {
+        for (const ClipDocument& clip : document.clips)
+        {
+            if (clip.name() != known->getName()) continue;
+            result.error = fileName + ":" + std::to_string(clip.line) + ": clip '" + clip.name() +
+                           "' is in the actor's clip library already";
+            return result;
+        }
+    }
+    // The known clips come first, as the library's clips do in a whole file: players may play them.
+    std::vector<ClipDocument> clips(knownClips.size());
+    for (std::size_t i = 0; i < knownClips.size(); ++i) clips[i].clip = knownClips[i];
+    document.clips.insert(document.clips.begin(), clips.begin(), clips.end());
+    if (!reader.readPlayers(*definition, document))
+    {
+        result.error = reader.error();
+        return result;
+    }
+    if (!buildIkChains(document, *definition, fileName, result.ikChains, result.error)) return result;
+    result.document = std::move(document);
+    result.definition = definition;
     return result;
 }
 

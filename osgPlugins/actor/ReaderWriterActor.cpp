@@ -1,6 +1,7 @@
 /* osgdb_actor: the osgDB plugin for .actor files (docs/actor-format.md), and the mocap pseudo-loader
  * ("walk.bvh.actor", docs/mocap.md). */
 #include "MocapPseudoLoader"
+#include "RiggedModelPseudoLoader"
 
 #include <osgActor/ActorSceneIO>
 #include <osgActor/io/ActorReader>
@@ -40,6 +41,8 @@ public:
         supportsOption("fps=<n>", "walk.asf.actor: AMC frame rate (120 by default)");
         supportsOption("dropFirstFrame", "walk.bvh.actor: drop the reference pose in frame 0");
         supportsOption("rootMotion=<skeleton|transforms|inplace>", "mocap pseudo-loader: where the root's travel goes");
+        supportsOption("clip=<name>", "hero.glb.actor / .gltf.actor: the animation to play (else the first)");
+        supportsOption("rootScale=<above|lengths>", "hero.glb.actor: the root's scale above the actor or in its lengths");
     }
 
     const char* className() const override { return "osgActor .actor reader/writer"; }
@@ -64,6 +67,7 @@ public:
         if (!acceptsExtension(extension)) return ReadResult::FILE_NOT_HANDLED;
         // Pseudo-loaders ("walk.bvh.actor") dispatch on the inner extension; plain files are .actor.
         if (osgActorPlugin::isMocapPseudoFile(file)) return osgActorPlugin::readMocapPseudoFile(file, options);
+        if (osgActorPlugin::isRiggedModelPseudoFile(file)) return osgActorPlugin::readRiggedModelPseudoFile(file, options);
         return readActorFile(file, options);
     }
 

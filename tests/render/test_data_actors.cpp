@@ -1,9 +1,9 @@
 // The project's own actors (data/*.actor, read through osgdb_actor) rendered offscreen: reference images, and the
 // humanoid's joints projected onto its pixels.
 #include "ImageCompare.h"
-#include "OffscreenRenderer.h"
 
 #include <osgActor/ActorNode>
+#include <osgActor/Offscreen/OffscreenRenderer>
 
 #include <osgDB/ReadFile>
 
@@ -13,8 +13,6 @@
 
 using namespace osgActor;
 using namespace osgActor::test;
-using osgActorRender::CameraView;
-using osgActorRender::OffscreenRenderer;
 
 namespace {
 
@@ -52,11 +50,11 @@ protected:
     {
         renderer->setScene(&actor);
         renderer->update(0.0);
-        renderer->setCameraView(renderer->frameScene());
+        renderer->frameScene();
         return renderer->draw();
     }
 
-    std::unique_ptr<OffscreenRenderer> renderer;
+    osg::ref_ptr<OffscreenRenderer> renderer;
 };
 
 } // namespace

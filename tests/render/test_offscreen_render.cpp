@@ -1,11 +1,12 @@
 // Offscreen renders of actors through OSMesa: reference images, joint projections, the hide flag, animation time.
 #include "ImageCompare.h"
-#include "OffscreenRenderer.h"
 #include "TestFigure.h"
 
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/core/Controller>
+#include <osgActor/Offscreen/ImageComparison>
+#include <osgActor/Offscreen/OffscreenRenderer>
 
 #include <osg/Group>
 
@@ -15,9 +16,6 @@
 
 using namespace osgActor;
 using namespace osgActor::test;
-using osgActorRender::CameraView;
-using osgActorRender::OffscreenRenderer;
-using osgActorRender::OsMesaContext;
 
 namespace {
 
@@ -26,12 +24,9 @@ const int kHeight = 240;
 const osg::Vec4 kBackground(0.55f, 0.65f, 0.8f, 1.0f);
 
 /** The test camera: in front of the figure (which faces -Y), a little to its left and above. */
-CameraView figureCamera()
+void placeFigureCamera(OffscreenRenderer& renderer)
 {
-    CameraView view;
-    view.eye = osg::Vec3d(1.5, -4.6, 1.7);
-    view.center = osg::Vec3d(0.0, 0.0, 0.85);
-    return view;
+    renderer.setViewMatrixAsLookAt(osg::Vec3d(1.5, -4.6, 1.7), osg::Vec3d(0.0, 0.0, 0.85), osg::Vec3d(0.0, 0.0, 1.0));
 }
 
 /** Arms and legs away from the body, so that every limb shows. */
@@ -69,7 +64,7 @@ protected:
         scene = new osg::Group;
         scene->addChild(figure.get());
         renderer->setScene(scene.get());
-        renderer->setCameraView(figureCamera());
+        placeFigureCamera(*renderer);
     }
 
     /** The window position (pixels, bottom-left origin) of a joint in the current pose. */
@@ -80,7 +75,7 @@ protected:
         return renderer->projectToWindow(figure->getJointWorldPosition(unsigned(index)));
     }
 
-    std::unique_ptr<OffscreenRenderer> renderer;
+    osg::ref_ptr<OffscreenRenderer> renderer;
     osg::ref_ptr<ActorNode> figure;
     osg::ref_ptr<osg::Group> scene;
 };
@@ -117,7 +112,7 @@ std::shared_ptr<ClipPlayer> makeElbowClipPlayer()
 TEST(OffscreenContext, RefusesAnEmptyBuffer)
 {
     std::string error;
-    EXPECT_FALSE(OsMesaContext::create(0, 10, error));
+    EXPECT_FALSE(OffscreenRenderer::create(0, 10, error));
     EXPECT_NE(error.find("0x10"), std::string::npos) << error;
     EXPECT_FALSE(OffscreenRenderer::create(10, -1, error));
 }
@@ -125,7 +120,7 @@ TEST(OffscreenContext, RefusesAnEmptyBuffer)
 TEST(OffscreenContext, GlResolvesIntoOsMesaInThisProcess)
 {
     std::string error;
-    EXPECT_TRUE(OsMesaContext::glResolvesToOsMesa(error)) << error;
+    EXPECT_TRUE(OffscreenRenderer::glResolvesToOsMesa(error)) << error;
 }
 
 TEST_F(OffscreenRender, EmptySceneIsAllBackground)
@@ -149,7 +144,7 @@ TEST_F(OffscreenRender, RestPoseFromTheDefaultCameraMatchesItsReference)
 {
     // The auto-framed camera, as osgactorrender uses it by default.
     renderer->update(0.0);
-    renderer->setCameraView(renderer->frameScene());
+    renderer->frameScene();
     EXPECT_TRUE(matchesReference(*renderer->draw(), "figure_rest_autoframed"));
 }
 
@@ -166,9 +161,9 @@ TEST_F(OffscreenRender, RenderingIsRepeatable)
     poseFigure(*figure);
     const osg::ref_ptr<osg::Image> first = renderer->renderFrame(0.0);
     const osg::ref_ptr<osg::Image> second = renderer->renderFrame(0.0);
-    const ImageDifference difference = compareImages(*first, *second, 0);
+    const ImageComparison difference = compareImages(*first, *second, 0);
     ASSERT_TRUE(difference.comparable);
-    EXPECT_EQ(difference.numDiffering, 0u);
+    EXPECT_EQ(difference.numOverTolerance, 0u);
 }
 
 TEST_F(OffscreenRender, JointsProjectOntoTheActorsPixels)
@@ -223,13 +218,13 @@ TEST_F(OffscreenRender, ControllersAnimateWithTheFrameStampsSimulationTime)
     const osg::ref_ptr<osg::Image> later = renderer->renderFrame(0.5);
     EXPECT_TRUE(matchesReference(*atStart, "figure_wave_t0000"));
     EXPECT_TRUE(matchesReference(*later, "figure_wave_t0500"));
-    const ImageDifference difference = compareImages(*atStart, *later, 24);
+    const ImageComparison difference = compareImages(*atStart, *later, 24);
     ASSERT_TRUE(difference.comparable);
-    EXPECT_GT(difference.numDiffering, 200u) << "the arm did not move between t = 0 and t = 0.5";
+    EXPECT_GT(difference.numOverTolerance, 200u) << "the arm did not move between t = 0 and t = 0.5";
 
     // Going back to t = 0 gives the first image again.
-    const ImageDifference back = compareImages(*atStart, *renderer->renderFrame(0.0), 0);
-    EXPECT_EQ(back.numDiffering, 0u);
+    const ImageComparison back = compareImages(*atStart, *renderer->renderFrame(0.0), 0);
+    EXPECT_EQ(back.numOverTolerance, 0u);
 }
 
 TEST_F(OffscreenRender, SteppingToATimeShowsWhatTheFramesFromZeroShow)
@@ -249,19 +244,19 @@ TEST_F(OffscreenRender, SteppingToATimeShowsWhatTheFramesFromZeroShow)
     posedScene->addChild(posed.get());
     renderer->setScene(posedScene.get());
     const osg::ref_ptr<osg::Image> byHand = renderer->renderFrame(0.0);
-    const ImageDifference fromHand = compareImages(*stepped, *byHand, 0);
+    const ImageComparison fromHand = compareImages(*stepped, *byHand, 0);
     ASSERT_TRUE(fromHand.comparable);
-    EXPECT_EQ(fromHand.numDiffering, 0u);
+    EXPECT_EQ(fromHand.numOverTolerance, 0u);
     posed->setDof("l_elbow.rx", 0.0);
-    EXPECT_GT(compareImages(*stepped, *renderer->renderFrame(0.0), 0).numDiffering, 200u)
+    EXPECT_GT(compareImages(*stepped, *renderer->renderFrame(0.0), 0).numOverTolerance, 200u)
         << "the elbow's bend shows: the first frame of the clip looks different";
 
     // ... and like frame 10 of frames 0..10 at 20 frames per second, drawn one after the other by a new renderer.
     std::string error;
-    std::unique_ptr<OffscreenRenderer> sequence = OffscreenRenderer::create(kWidth, kHeight, error);
+    osg::ref_ptr<OffscreenRenderer> sequence = OffscreenRenderer::create(kWidth, kHeight, error);
     ASSERT_TRUE(sequence) << error;
     sequence->setBackground(kBackground);
-    sequence->setCameraView(figureCamera());
+    placeFigureCamera(*sequence);
     osg::ref_ptr<ActorNode> played = makeTestFigure();
     played->addController(makeElbowClipPlayer());
     osg::ref_ptr<osg::Group> playedScene = new osg::Group;
@@ -273,6 +268,6 @@ TEST_F(OffscreenRender, SteppingToATimeShowsWhatTheFramesFromZeroShow)
         sequence->stepTo(i / 20.0, 20.0);
         frame = sequence->draw();
     }
-    EXPECT_EQ(compareImages(*stepped, *frame, 0).numDiffering, 0u);
+    EXPECT_EQ(compareImages(*stepped, *frame, 0).numOverTolerance, 0u);
     EXPECT_EQ(played->getDof(unsigned(played->getDofIndex("l_elbow.rx"))), elbow) << "the same frames, the same pose";
 }

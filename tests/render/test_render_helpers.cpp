@@ -1,7 +1,8 @@
 // The renderer's helpers that need no GL: output file patterns, camera framing, contact sheets.
 #include "CameraView.h"
-#include "ContactSheet.h"
 #include "OutputPattern.h"
+
+#include <osgActor/Offscreen/ContactSheet>
 
 #include <osg/Geode>
 #include <osg/MatrixTransform>
@@ -13,6 +14,7 @@
 
 using namespace osgActorRender;
 using namespace osgActorApps;
+using osgActor::ContactSheet;
 
 TEST(OutputPattern, RefusesEmptyAndUnsafePatterns)
 {

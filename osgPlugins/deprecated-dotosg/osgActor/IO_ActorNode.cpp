@@ -1,41 +1,25 @@
 /* osgActor::ActorNode in the .osg format. Its fields follow osg::Group's children (the associates list puts
- * Group first), so reading the definition binds the skeleton nodes already read. The definition and clips are
- * written as a .actor file holding the joints and clips, one quoted string per line. */
+ * Group first), so reading the definition binds the skeleton nodes already read. The definition and the clip
+ * library are written as shared objects (ActorDefinitionObject, ClipLibraryObject), which osgDB writes once and
+ * then as "Use <id>"; the actor's own motion (players, trajectories, IK chains) as .actor text, one quoted string
+ * per line (ActorPartsText). Files that hold a whole .actor text per actor ("Definition <n> { ... }", the form
+ * written before) are still read. */
+#include "DotOsgBlocks"
 #include "DotOsgNumbers"
 
 #include <osgActor/ActorNode>
-#include <osgActor/ActorSceneIO>
-#include <osgActor/io/ActorReader>
-#include <osgActor/io/ActorWriter>
+#include <osgActor/ActorPartsText>
 
 #include <osgDB/Input>
 #include <osgDB/Output>
 #include <osgDB/Registry>
 
-#include <sstream>
-
-using osgActorDotOsg::exact;
-using osgActorDotOsg::readExact;
+using namespace osgActorDotOsg;
 
 namespace {
 
 bool readActorNode(osg::Object& object, osgDB::Input& fr);
 bool writeActorNode(const osg::Object& object, osgDB::Output& fw);
-
-/** Reads the lines of a "Keyword n { ... }" block of quoted strings or numbers, one token each. */
-std::vector<std::string> readBlockTokens(osgDB::Input& fr)
-{
-    std::vector<std::string> tokens;
-    const int entry = fr[0].getNoNestedBrackets();
-    fr += 3; // Keyword n {
-    while (!fr.eof() && fr[0].getNoNestedBrackets() > entry)
-    {
-        tokens.push_back(fr[0].getStr());
-        ++fr;
-    }
-    ++fr; // }
-    return tokens;
-}
 
 bool readVec3d(osgDB::Input& fr, const char* keyword, osg::Vec3d& value)
 {
@@ -62,18 +46,38 @@ bool readActorNode(osg::Object& object, osgDB::Input& fr)
 {
     osgActor::ActorNode& actor = static_cast<osgActor::ActorNode&>(object);
     bool advanced = false;
-    if (fr.matchSequence("Definition %i {"))
+    std::string error;
+    if (atLines(fr, "Definition"))
     {
-        std::string text;
-        for (const std::string& line : readBlockTokens(fr)) text += line + "\n";
-        std::istringstream in(text);
-        const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
-        if (read && actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
+        if (!osgActor::readWholeActorLines(actor, readBlockTokens(fr), "definition of actor '" + actor.getName() + "'",
+                                           error))
+            OSG_WARN << "osgActor: " << error << std::endl;
+        advanced = true;
+    }
+    osg::ref_ptr<osgActor::ActorDefinitionObject> definition;
+    if (readObjectBlock(fr, "DefinitionObject", definition))
+    {
+        advanced = true;
+        if (!definition || !definition->getDefinition())
         {
-            osgActor::applyDefinitionDocument(actor, read.document, read.ikChains);
+            OSG_WARN << "osgActor: actor '" << actor.getName() << "' has no definition" << std::endl;
         }
-        else if (!read)
-            OSG_WARN << "osgActor: " << read.error << std::endl;
+        else if (!actor.setDefinition(definition->getDefinition(), osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
+        {
+            OSG_WARN << "osgActor: the skeleton nodes of actor '" << actor.getName()
+                     << "' do not match its definition" << std::endl;
+        }
+    }
+    osg::ref_ptr<osgActor::ClipLibraryObject> library;
+    if (readObjectBlock(fr, "ClipLibraryObject", library))
+    {
+        advanced = true;
+        if (library) actor.setClipLibrary(library->getLibrary());
+    }
+    if (atLines(fr, "Motion"))
+    {
+        if (!osgActor::readMotionLines(actor, readBlockTokens(fr), "motion of actor '" + actor.getName() + "'", error))
+            OSG_WARN << "osgActor: " << error << std::endl;
         advanced = true;
     }
     if (fr.matchSequence("Dofs %i {"))
@@ -127,16 +131,10 @@ bool writeActorNode(const osg::Object& object, osgDB::Output& fw)
     const osgActor::ActorNode& actor = static_cast<const osgActor::ActorNode&>(object);
     if (actor.getDefinition())
     {
-        std::ostringstream text;
-        osgActor::writeActor(text, osgActor::makeDefinitionDocument(actor));
-        std::vector<std::string> lines;
-        std::istringstream in(text.str());
-        for (std::string line; std::getline(in, line);) lines.push_back(line);
-        fw.indent() << "Definition " << lines.size() << " {" << std::endl;
-        fw.moveIn();
-        for (const std::string& line : lines) fw.indent() << fw.wrapString(line) << std::endl;
-        fw.moveOut();
-        fw.indent() << "}" << std::endl;
+        writeObjectBlock(fw, "DefinitionObject", actor.getDefinitionObject());
+        writeObjectBlock(fw, "ClipLibraryObject", actor.getClipLibraryObject());
+        const std::vector<std::string> motion = osgActor::writeMotionLines(actor);
+        if (!motion.empty()) writeLines(fw, "Motion", motion);
 
         fw.indent() << "Dofs " << actor.getNumDofs() << " {" << std::endl;
         fw.moveIn();

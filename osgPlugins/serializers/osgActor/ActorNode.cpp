@@ -1,20 +1,25 @@
 /* osgActor::ActorNode in OSG's serializer formats (.osgt, .osgb, .osgx).
  *
  * The skeleton nodes and attached geometry are ordinary children, written by osg::Group's wrapper before the
- * fields here. The definition and the clips are not osg::Objects: they are written as a .actor file holding the
- * joints and clips, one line per string, and read with the .actor reader; reading binds the skeleton nodes
- * already read. */
+ * fields here. The definition and the clip library are written as osg::Objects (ActorDefinitionObject,
+ * ClipLibraryObject, the same for every actor that shares them), so that osgDB writes each once and reads it back
+ * as one object; the actor's own motion (players, trajectories, IK chains) as .actor text (ActorPartsText). Reading
+ * the definition binds the skeleton nodes already read.
+ *
+ * The Definition field, in both of its forms:
+ *   Definition 0 { <ActorDefinitionObject> <ClipLibraryObject or NULL> Motion <n> { <n lines> } }   written now
+ *   Definition <n> { <n lines of one whole .actor text> }                                         still read
+ * An old file's count is never 0 (its text has a header), which tells the two apart in the binary format too. */
+#include "SerializedLines"
+
 #include <osgActor/ActorNode>
-#include <osgActor/ActorSceneIO>
-#include <osgActor/io/ActorReader>
-#include <osgActor/io/ActorWriter>
+#include <osgActor/ActorPartsText>
 
 #include <osgDB/InputStream>
 #include <osgDB/ObjectWrapper>
 #include <osgDB/OutputStream>
 
 #include <charconv>
-#include <sstream>
 
 namespace {
 
@@ -73,61 +78,54 @@ osg::Quat readExactQuat(osgDB::InputStream& is)
     return q;
 }
 
-/** The definition, clips and IK chains, as the lines of a .actor file. */
-std::vector<std::string> definitionLines(const osgActor::ActorNode& actor)
+/** What messages call an actor's texts ("definition of actor 'a'", "motion of actor 'a'"). */
+std::string textName(const char* what, const osgActor::ActorNode& actor)
 {
-    std::ostringstream text;
-    osgActor::writeActor(text, osgActor::makeDefinitionDocument(actor));
-    std::vector<std::string> lines;
-    std::istringstream in(text.str());
-    for (std::string line; std::getline(in, line);) lines.push_back(line);
-    return lines;
+    return std::string(what) + " of actor '" + actor.getName() + "'";
 }
 
 } // namespace
+
+using namespace osgActorSerializers;
 
 static bool checkDefinition(const osgActor::ActorNode& actor) { return actor.getDefinition() != nullptr; }
 
 static bool readDefinition(osgDB::InputStream& is, osgActor::ActorNode& actor)
 {
-    const unsigned int count = is.readSize();
+    std::string error;
+    const unsigned int wholeTextLines = is.readSize();
+    if (wholeTextLines > 0)
+    {
+        const std::vector<std::string> lines = readLinesAfterCount(is, wholeTextLines);
+        if (is.getException()) return false;
+        if (osgActor::readWholeActorLines(actor, lines, textName("definition", actor), error)) return true;
+        return failRead(is, error);
+    }
     is >> is.BEGIN_BRACKET;
-    std::string text;
-    for (unsigned int i = 0; i < count; ++i)
-    {
-        std::string line;
-        is.readWrappedString(line);
-        text += line + "\n";
-    }
+    const osg::ref_ptr<osgActor::ActorDefinitionObject> definition =
+        is.readObjectOfType<osgActor::ActorDefinitionObject>();
+    const osg::ref_ptr<osgActor::ClipLibraryObject> library = is.readObjectOfType<osgActor::ClipLibraryObject>();
+    is >> is.PROPERTY("Motion");
+    const std::vector<std::string> motion = readLines(is);
     is >> is.END_BRACKET;
-    std::istringstream in(text);
-    const osgActor::ActorReadResult read = osgActor::readActor(in, "definition of actor '" + actor.getName() + "'");
-    // A broken definition or skeleton fails the whole read (the ReadResult carries the message): no half-built actor.
-    if (!read)
-    {
-        is.throwException("osgActor: " + read.error);
-        return false;
-    }
-    if (!actor.setDefinition(read.definition, osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
-    {
-        is.throwException("osgActor: the skeleton nodes of actor '" + actor.getName() +
-                          "' do not match its definition");
-        return false;
-    }
-    osgActor::applyDefinitionDocument(actor, read.document, read.ikChains);
-    return true;
+    if (is.getException()) return false;
+    if (!definition || !definition->getDefinition())
+        return failRead(is, "actor '" + actor.getName() + "' has no definition");
+    if (!actor.setDefinition(definition->getDefinition(), osgActor::ActorNode::BIND_EXISTING_SKELETON_NODES))
+        return failRead(is, "the skeleton nodes of actor '" + actor.getName() + "' do not match its definition");
+    if (library) actor.setClipLibrary(library->getLibrary());
+    if (osgActor::readMotionLines(actor, motion, textName("motion", actor), error)) return true;
+    return failRead(is, error);
 }
 
 static bool writeDefinition(osgDB::OutputStream& os, const osgActor::ActorNode& actor)
 {
-    const std::vector<std::string> lines = definitionLines(actor);
-    os.writeSize(static_cast<unsigned int>(lines.size()));
+    os.writeSize(0u); // no whole .actor text: the shared objects follow
     os << os.BEGIN_BRACKET << std::endl;
-    for (const std::string& line : lines)
-    {
-        os.writeWrappedString(line);
-        os << std::endl;
-    }
+    os.writeObject(actor.getDefinitionObject());
+    os.writeObject(actor.getClipLibraryObject());
+    os << os.PROPERTY("Motion");
+    writeLines(os, osgActor::writeMotionLines(actor));
     os << os.END_BRACKET << std::endl;
     return true;
 }

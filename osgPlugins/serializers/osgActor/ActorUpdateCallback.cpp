@@ -7,4 +7,5 @@ REGISTER_OBJECT_WRAPPER(osgActor_ActorUpdateCallback, new osgActor::ActorUpdateC
                         osgActor::ActorUpdateCallback,
                         "osg::Object osg::Callback osg::NodeCallback osgActor::ActorUpdateCallback")
 {
+    static_cast<void>(wrapper); // no fields to add
 }

@@ -1,12 +1,13 @@
-/* osgactorrender: an OSMesa context rendering into a client memory buffer (docs/architecture.md). */
-#ifndef OSGACTORRENDER_OSMESACONTEXT_H
-#define OSGACTORRENDER_OSMESACONTEXT_H 1
+/* osgActor::Offscreen (not installed): an OSMesa context rendering into a client memory buffer
+ * (docs/architecture.md). */
+#ifndef OSGACTOR_OFFSCREEN_OSMESACONTEXT_H
+#define OSGACTOR_OFFSCREEN_OSMESACONTEXT_H 1
 
 #include <memory>
 #include <string>
 #include <vector>
 
-namespace osgActorRender {
+namespace osgActor {
 
 /** A compatibility-profile OSMesa context (RGBA, depth 24, stencil 8) made current on a buffer this object owns.
   * The buffer holds RGBA bytes, rows bottom-first, as osg::Image expects. Everything that uses the context (an
@@ -44,6 +45,6 @@ private:
     void* _context; // OSMesaContext, kept opaque so that no GL header leaks into users of this class
 };
 
-} // namespace osgActorRender
+} // namespace osgActor
 
 #endif

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <new>
 
-namespace osgActorRender {
+namespace osgActor {
 
 bool OsMesaContext::glResolvesToOsMesa(std::string& error)
 {
@@ -21,8 +21,10 @@ bool OsMesaContext::glResolvesToOsMesa(std::string& error)
     }
     if (std::strstr(info.dli_fname, "libOSMesa") == nullptr)
     {
+        // The executable's link line decides; a CMake target linked to osgActor::Offscreen gets libOSMesa first.
         error = std::string("glGetString resolves into ") + info.dli_fname +
-                ", not libOSMesa: libOSMesa must come first on the executable's link line (docs/architecture.md)";
+                ", not libOSMesa: libOSMesa must come first on the executable's link line (link the program to "
+                "osgActor::Offscreen with CMake, or put -Wl,--no-as-needed -lOSMesa ahead of every other library)";
         return false;
     }
     return true;
@@ -84,4 +86,4 @@ bool OsMesaContext::makeCurrent()
     return true;
 }
 
-} // namespace osgActorRender
+} // namespace osgActor

@@ -1,9 +1,9 @@
-#include "ContactSheet.h"
+#include <osgActor/Offscreen/ContactSheet>
 
 #include <algorithm>
 #include <cmath>
 
-namespace osgActorRender {
+namespace osgActor {
 
 ContactSheet::ContactSheet(unsigned numFrames, unsigned columns, int frameWidth, int frameHeight, int tileWidth,
                            const osg::Vec4& background)
@@ -62,4 +62,4 @@ bool ContactSheet::addFrame(unsigned index, const osg::Image& frame)
     return true;
 }
 
-} // namespace osgActorRender
+} // namespace osgActor
