@@ -1,4 +1,5 @@
 #include <osgActor/ActorGroup>
+#include <osgActor/core/detail/WorkerPool>
 
 #include <osg/FrameStamp>
 

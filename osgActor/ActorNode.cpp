@@ -1,6 +1,9 @@
 #include <osgActor/ActorNode>
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/GlmOsg>
+#include <osgActor/detail/PlacedSkeletonNode.h>
+#include <osgActor/detail/Prefetch.h>
+#include <osgActor/detail/SkeletonNodeAccess.h>
 
 #include <osg/FrameStamp>
 #include <osg/Notify>
@@ -16,20 +19,8 @@ namespace osgActor {
 namespace {
 
 constexpr unsigned kNoFrame = std::numeric_limits<unsigned>::max();
-
-// Not Vec3d::valid(): that only rejects NaN, and an infinite translation makes the actor matrix NaN; nor every finite
-// one: two translations of 1e308 overflow the actor matrix, so components beyond kMaxDofMagnitude are refused too
-// (both found by tests/robustness/test_error_handling.cpp).
-bool isAcceptable(const osg::Vec3d& v)
-{
-    return std::abs(v.x()) <= kMaxDofMagnitude && std::abs(v.y()) <= kMaxDofMagnitude &&
-           std::abs(v.z()) <= kMaxDofMagnitude;
-}
-bool isAcceptable(const osg::Quat& q)
-{
-    return std::isfinite(q.x()) && std::isfinite(q.y()) && std::isfinite(q.z()) && std::isfinite(q.w()) &&
-           q.length2() > 0.0 && std::isfinite(q.length2());
-}
+/** The simulation time of a frame without a frame stamp: controllers do not run. */
+constexpr double kNoTime = std::numeric_limits<double>::quiet_NaN();
 
 /** A CopyOp that always copies skeleton nodes (they carry one instance's matrices) and defers everything else to
   * the user's CopyOp, so an actor's copy is an independent instance that shares geometry by default. */
@@ -41,7 +32,7 @@ public:
     osg::Node* operator()(const osg::Node* node) const override
     {
         if (const SkeletonNode* skeleton = dynamic_cast<const SkeletonNode*>(node))
-            return new SkeletonNode(*skeleton, *this);
+            return new detail::PlacedSkeletonNode(*skeleton, *this);
         return _user(node);
     }
 
@@ -64,31 +55,26 @@ bool collectSkeletonNodes(osg::Group& group, std::vector<osg::ref_ptr<SkeletonNo
     return true;
 }
 
-/** A joint's skeleton node, from the pose's pointers to the nodes' matrices (the per-frame loops use them rather
-  * than the array of node pointers: see SkeletonNode::fromMatrixStorageForActor()). */
-inline SkeletonNode* nodeOf(double* const* matrices, unsigned joint)
-{
-    return SkeletonNode::fromMatrixStorageForActor(matrices[joint]);
-}
+using detail::SkeletonNodeAccess;
 
 /** Dirties the bounds of a joint's ancestors, up to the first one already dirty (whose ancestors are too). */
-inline void dirtyBoundsAbove(const int* parents, double* const* matrices, unsigned joint)
+inline void dirtyBoundsAbove(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint)
 {
     int parent = parents[joint];
-    while (parent >= 0 && nodeOf(matrices, parent)->markBoundDirtyWithinActor()) parent = parents[parent];
+    while (parent >= 0 && SkeletonNodeAccess::markBoundDirty(*nodes[parent])) parent = parents[parent];
 }
 
-/** Marks a joint's node as written (FK wrote its matrix in place), and dirties its bound and its ancestors'. */
-inline void writeDirtyingBounds(const int* parents, double* const* matrices, unsigned joint)
+/** Marks a joint's node as written (the job wrote its matrix in place), and dirties its bound and its ancestors'. */
+inline void writeDirtyingBounds(const int* parents, const osg::ref_ptr<SkeletonNode>* nodes, unsigned joint)
 {
-    if (nodeOf(matrices, joint)->setMatrixWithinActor(matrices[joint])) dirtyBoundsAbove(parents, matrices, joint);
+    if (SkeletonNodeAccess::matrixWritten(*nodes[joint])) dirtyBoundsAbove(parents, nodes, joint);
 }
 
 } // namespace
 
 ActorNode::ActorNode()
-    : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _preTransformDirty(true),
-      _postTransformDirty(true), _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false),
+    : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _transformMatricesDirty(true),
+      _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false),
       _boundMode(BOUND_COVERS_ROTATIONS), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
 {
     setDataVariance(osg::Object::DYNAMIC);
@@ -103,11 +89,9 @@ ActorNode::ActorNode(ActorDefinitionPtr definition) : ActorNode()
 ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
     : osg::MatrixTransform(actor, SkeletonCopyOp(copyop)), _pose(actor._pose), _clipLibrary(actor._clipLibrary),
       _lastControllerTime(std::numeric_limits<double>::quiet_NaN()),
-      _preTranslation(actor._preTranslation), _preRotation(actor._preRotation),
-      _postTranslation(actor._postTranslation), _postRotation(actor._postRotation),
-      _preTransformMatrix(actor._preTransformMatrix), _postTransformMatrix(actor._postTransformMatrix),
-      _actorMatrix(actor._actorMatrix), _preTransformDirty(actor._preTransformDirty),
-      _postTransformDirty(actor._postTransformDirty), _boundsToPropagate(false),
+      _transforms(actor._transforms), _preTransformMatrix(actor._preTransformMatrix),
+      _postTransformMatrix(actor._postTransformMatrix), _actorMatrix(actor._actorMatrix),
+      _transformMatricesDirty(actor._transformMatricesDirty), _boundsToPropagate(false),
       _actorMatrixWritten(actor._actorMatrixWritten),
       _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame),
       _definitionObject(actor._definitionObject), _clipLibraryObject(actor._clipLibraryObject)
@@ -140,7 +124,8 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     buildSkeletonNodes();
     // Pose the new nodes at once, so a fresh actor has correct bounds and queries before its first frame.
     _pose.updateMatrices();
-    writeSceneGraph();
+    writeJointMatrices();
+    writeActorMatrix();
 }
 
 bool ActorNode::setDefinition(ActorDefinitionPtr definition, SkeletonNodePolicy policy)
@@ -215,7 +200,7 @@ void ActorNode::buildSkeletonNodes()
     _skeletonNodes.reserve(def->getNumJoints());
     for (unsigned j = 0; j < def->getNumJoints(); ++j)
     {
-        osg::ref_ptr<SkeletonNode> node = new SkeletonNode(j, def->getJointName(j));
+        osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def->getJointName(j));
         const int parent = def->getParent(j);
         if (parent == kNoParent) addChild(node.get());
         else _skeletonNodes[static_cast<unsigned>(parent)]->addChild(node.get());
@@ -228,7 +213,8 @@ void ActorNode::bindLocalMatricesToNodes()
 {
     std::vector<double*> targets;
     targets.reserve(_skeletonNodes.size());
-    for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) targets.push_back(node->getMatrixStorageForActor());
+    for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes)
+        targets.push_back(SkeletonNodeAccess::matrixStorage(*node));
     // Only fails on a count that does not match the definition, which both callers have ruled out.
     _pose.redirectLocalMatrices(targets);
     applyBoundMode();
@@ -354,60 +340,66 @@ void ActorNode::resetDofs() { _pose.resetDofs(); }
 // --- pre- and post-transforms ---
 
 template <class Value>
-bool ActorNode::storeTransform(const Value& value, Value& member, bool& dirty, const char* what)
+bool ActorNode::storeTransform(const Value& value, Value& member, bool (*valid)(const Value&), const char* what)
 {
-    if (!isAcceptable(value))
+    if (!valid(value))
     {
         OSG_WARN << "osgActor: actor '" << getName() << "' refused a zero, non-finite or out-of-range (beyond +-"
                  << kMaxDofMagnitude << ") " << what << std::endl;
         return false;
     }
     member = value;
-    dirty = true;
+    _transformMatricesDirty = true;
     _actorMatrixWritten = false;
     return true;
 }
 
 void ActorNode::setPreTranslation(const osg::Vec3d& translation)
 {
-    storeTransform(translation, _preTranslation, _preTransformDirty, "pre-translation");
+    storeTransform(toGlm(translation), _transforms.preTranslation, isValidTransformTranslation, "pre-translation");
 }
 
 void ActorNode::setPreRotation(const osg::Quat& rotation)
 {
-    storeTransform(rotation, _preRotation, _preTransformDirty, "pre-rotation");
+    storeTransform(toGlm(rotation), _transforms.preRotation, isValidTransformRotation, "pre-rotation");
 }
 
 void ActorNode::setPostTranslation(const osg::Vec3d& translation)
 {
-    storeTransform(translation, _postTranslation, _postTransformDirty, "post-translation");
+    storeTransform(toGlm(translation), _transforms.postTranslation, isValidTransformTranslation, "post-translation");
 }
 
 void ActorNode::setPostRotation(const osg::Quat& rotation)
 {
-    storeTransform(rotation, _postRotation, _postTransformDirty, "post-rotation");
+    storeTransform(toGlm(rotation), _transforms.postRotation, isValidTransformRotation, "post-rotation");
+}
+
+osg::Vec3d ActorNode::getPreTranslation() const { return toOsg(_transforms.preTranslation); }
+osg::Quat ActorNode::getPreRotation() const { return toOsg(_transforms.preRotation); }
+osg::Vec3d ActorNode::getPostTranslation() const { return toOsg(_transforms.postTranslation); }
+osg::Quat ActorNode::getPostRotation() const { return toOsg(_transforms.postRotation); }
+
+bool ActorNode::setTransforms(const ActorTransforms& transforms)
+{
+    // Each on its own, as the four setters would: a controller's NaN is refused like a user's.
+    bool stored = storeTransform(transforms.preTranslation, _transforms.preTranslation, isValidTransformTranslation,
+                                 "pre-translation");
+    stored = storeTransform(transforms.preRotation, _transforms.preRotation, isValidTransformRotation,
+                            "pre-rotation") && stored;
+    stored = storeTransform(transforms.postTranslation, _transforms.postTranslation, isValidTransformTranslation,
+                            "post-translation") && stored;
+    stored = storeTransform(transforms.postRotation, _transforms.postRotation, isValidTransformRotation,
+                            "post-rotation") && stored;
+    return stored;
 }
 
 void ActorNode::updateTransformMatrices() const
 {
-    if (!_preTransformDirty && !_postTransformDirty) return;
-    // Rotation then translation: a point of the frame is turned, then placed (column notation T * R). OSG's
-    // row-vector products read right to left from that.
-    if (_preTransformDirty)
-    {
-        osg::Quat rotation = _preRotation;
-        rotation /= std::sqrt(rotation.length2());
-        _preTransformMatrix = osg::Matrixd::rotate(rotation) * osg::Matrixd::translate(_preTranslation);
-    }
-    if (_postTransformDirty)
-    {
-        osg::Quat rotation = _postRotation;
-        rotation /= std::sqrt(rotation.length2());
-        _postTransformMatrix = osg::Matrixd::rotate(rotation) * osg::Matrixd::translate(_postTranslation);
-    }
-    _actorMatrix = _postTransformMatrix * _preTransformMatrix; // actor_m = pretr_m * posttr_m in column notation
-    _preTransformDirty = false;
-    _postTransformDirty = false;
+    if (!_transformMatricesDirty) return;
+    _preTransformMatrix = toOsg(computePreTransformMatrix(_transforms));
+    _postTransformMatrix = toOsg(computePostTransformMatrix(_transforms));
+    _actorMatrix = toOsg(computeActorMatrix(_transforms));
+    _transformMatricesDirty = false;
 }
 
 const osg::Matrixd& ActorNode::getPreTransformMatrix() const
@@ -459,22 +451,13 @@ void ActorNode::runControllers(double time)
     context.deltaTime = std::isnan(_lastControllerTime) ? 0.0 : time - _lastControllerTime;
     _lastControllerTime = time;
 
-    ActorTransforms transforms;
-    transforms.preTranslation = toGlm(_preTranslation);
-    transforms.preRotation = toGlm(_preRotation);
-    transforms.postTranslation = toGlm(_postTranslation);
-    transforms.postRotation = toGlm(_postRotation);
+    ActorTransforms transforms = _transforms;
     if (std::any_of(_controllers.begin(), _controllers.end(),
                     [](const ControllerPtr& c) { return c && c->getEnabled() && c->usesWorldSpace(); }))
         context.parentToWorld = toGlm(computeParentWorldMatrix());
     ControllerTarget target{_pose, transforms};
     osgActor::runControllers(_controllers, context, target);
-    if (!target.transformsChanged) return;
-    // Through the setters, so a controller's NaN is refused like a user's.
-    setPreTranslation(toOsg(transforms.preTranslation));
-    setPreRotation(toOsg(transforms.preRotation));
-    setPostTranslation(toOsg(transforms.postTranslation));
-    setPostRotation(toOsg(transforms.postRotation));
+    if (target.transformsChanged) setTransforms(transforms);
 }
 
 // --- queries ---
@@ -525,7 +508,8 @@ void ActorNode::update(const osg::NodeVisitor* nv)
     const osg::FrameStamp* stamp = nv ? nv->getFrameStamp() : nullptr;
     if (!claimFrame(stamp)) return;
     computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
-    writeSceneGraph();
+    writeJointMatrices();
+    writeActorMatrix();
 }
 
 unsigned char ActorNode::updateWithinGroup(const osg::FrameStamp* stamp)
@@ -562,26 +546,22 @@ bool ActorNode::claimFrame(const osg::FrameStamp* stamp)
 
 void ActorNode::computeFrame(double time)
 {
-    // The skeleton nodes are written after the controllers and FK have run: start fetching them now.
+    // The skeleton nodes are written after the controllers and the local-matrices job have run: start fetching
+    // them now, and the pointers to their matrices the job will write through.
     if (!_controllers.empty() || _pose.hasDirtyJoints())
     {
-        double* const* matrices = nodeMatricesOrNull();
-        const unsigned numNodes = static_cast<unsigned>(_skeletonNodes.size());
+        const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
+        const std::size_t numNodes = _skeletonNodes.size();
+        detail::prefetchForRead(_pose.getLocalMatrixTargets(), numNodes * sizeof(double*));
         // Two loops, so that neither tests the mode per node.
         if (_boundMode == BOUND_FOLLOWS_POSE)
-            for (unsigned j = 0; j < numNodes; ++j) nodeOf(matrices, j)->prefetchForMatrixWrite(true);
+            for (std::size_t j = 0; j < numNodes; ++j) SkeletonNodeAccess::prefetchForMatrixWrite(*nodes[j], true);
         else
-            for (unsigned j = 0; j < numNodes; ++j) nodeOf(matrices, j)->prefetchForMatrixWrite(false);
+            for (std::size_t j = 0; j < numNodes; ++j) SkeletonNodeAccess::prefetchForMatrixWrite(*nodes[j], false);
     }
     runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
     _pose.updateLocalMatrices();
-}
-
-void ActorNode::writeSceneGraph()
-{
-    writeJointMatrices();
-    writeActorMatrix();
 }
 
 void ActorNode::writeJointMatrices()
@@ -591,13 +571,13 @@ void ActorNode::writeJointMatrices()
         writeJointMatricesKeepingBalls();
         return;
     }
-    const int* parents = parentsOrNull();
-    double* const* matrices = nodeMatricesOrNull();
+    const int* parents = getDefinition() ? getDefinition()->getParents().data() : nullptr;
+    const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
     const std::size_t numNodes = _skeletonNodes.size();
     bool dirtied = false; // a local, not the member, inside the loop: it then stays in a register
     _pose.consumeChangedLocals([&](unsigned joint, double*) {
         if (joint >= numNodes) return;
-        writeDirtyingBounds(parents, matrices, joint);
+        writeDirtyingBounds(parents, nodes, joint);
         dirtied = true;
     });
     if (dirtied) _boundsToPropagate = true;
@@ -605,33 +585,21 @@ void ActorNode::writeJointMatrices()
 
 void ActorNode::writeJointMatricesKeepingBalls()
 {
-    const int* parents = parentsOrNull();
-    double* const* matrices = nodeMatricesOrNull();
+    const int* parents = getDefinition() ? getDefinition()->getParents().data() : nullptr;
+    const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
     const std::size_t numNodes = _skeletonNodes.size();
     bool dirtied = false;
-    _pose.consumeChangedLocals([&](unsigned joint, double* local) {
+    _pose.consumeChangedLocals([&](unsigned joint, double*) {
         if (joint >= numNodes) return;
         // A ball that holds every rotation of the joint does not change as it turns: no bound to dirty, here or
         // above. (The flag shares a cache line with the inverse's flag, which is written anyway.)
-        SkeletonNode* node = nodeOf(matrices, joint);
-        if (!node->getBoundCoversRotations()) writeDirtyingBounds(parents, matrices, joint);
-        else if (node->setMatrixKeepingBallWithinActor(local)) dirtyBoundsAbove(parents, matrices, joint);
+        SkeletonNode& node = *nodes[joint];
+        if (!node.getBoundCoversRotations()) writeDirtyingBounds(parents, nodes, joint);
+        else if (SkeletonNodeAccess::matrixWrittenKeepingBall(node)) dirtyBoundsAbove(parents, nodes, joint);
         else return;
         dirtied = true;
     });
     if (dirtied) _boundsToPropagate = true;
-}
-
-double* const* ActorNode::nodeMatricesOrNull() const
-{
-    // bindLocalMatricesToNodes() points the pose's local matrices at the nodes whenever there are nodes.
-    return _skeletonNodes.empty() ? nullptr : _pose.getLocalMatrixTargets();
-}
-
-const int* ActorNode::parentsOrNull() const
-{
-    const ActorDefinition* definition = getDefinition().get();
-    return definition ? definition->getParents().data() : nullptr;
 }
 
 void ActorNode::writeActorMatrix()

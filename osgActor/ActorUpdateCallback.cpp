@@ -8,7 +8,7 @@ namespace osgActor {
 namespace {
 
 /** dynamic_cast, with the common case first: comparing the exact type costs a few instructions, where a
-  * dynamic_cast walking the class hierarchy cost 86 per actor and frame, a quarter of an idle actor's update. */
+  * dynamic_cast walks the class hierarchy, a large share of an idle actor's update (docs/performance-history.md). */
 ActorNode* asActorNode(osg::Node* node) // not null
 {
     if (typeid(*node) == typeid(ActorNode)) return static_cast<ActorNode*>(node);

@@ -2,24 +2,39 @@
 # motion-capture parsers (mocap/). Paths are relative to this folder. Included by osgActor/CMakeLists.txt, which
 # compiles them into the object library osgActorCore (linked alone into the fuzzers of fuzz/).
 
+# core/: the concepts a user reads first and the per-frame jobs, installed as the API.
 set(OSGACTOR_CORE_HEADERS
     core/ActorDefinition
     core/ActorDefinitionBuilder
     core/ActorPose
-    core/AlignedAllocator
+    core/ActorTransforms
     core/Clip
     core/ClipBuilder
     core/ClipLibrary
     core/ClipPlayer
     core/Controller
     core/Dof
-    core/ForwardKinematicsJob
-    core/JointBatches
-    core/LocalMatrices
-    core/SinCos
+    core/LocalMatricesJob
+    core/LocalToModelJob
+    core/PlayHead
+    core/SamplingJob
     core/Span
-    core/Trajectory
-    core/WorkerPool)
+    core/Trajectory)
+# core/detail/: machinery of the per-frame path, not API. These few are installed only because public headers hold
+# them as members; the rest are not installed at all.
+set(OSGACTOR_CORE_DETAIL_HEADERS
+    core/detail/AlignedAllocator
+    core/detail/JointBatches
+    core/detail/LocalMatrices)
+set(OSGACTOR_CORE_PRIVATE_HEADERS
+    core/detail/AffineColumns.h
+    core/detail/ByteFlags.h
+    core/detail/Column.h
+    core/detail/HotPath.h
+    core/detail/JointMatrixKernel.h
+    core/detail/SinCos
+    core/detail/SinCosColumn.h
+    core/detail/WorkerPool)
 set(OSGACTOR_CORE_IK_HEADERS
     core/ik/Arctangent
     core/ik/CcdIkJob
@@ -51,18 +66,22 @@ set(OSGACTOR_CORE_SOURCES
     core/ActorDefinition.cpp
     core/ActorDefinitionBuilder.cpp
     core/ActorPose.cpp
+    core/ActorTransforms.cpp
     core/Clip.cpp
     core/ClipBuilder.cpp
     core/ClipLibrary.cpp
     core/ClipPlayer.cpp
     core/Controller.cpp
     core/Dof.cpp
-    core/ForwardKinematicsJob.cpp
-    core/JointBatches.cpp
-    core/LocalMatrices.cpp
-    core/SinCos.cpp
+    core/LocalMatricesJob.cpp
+    core/LocalToModelJob.cpp
+    core/PlayHead.cpp
+    core/SamplingJob.cpp
     core/Trajectory.cpp
-    core/WorkerPool.cpp
+    core/detail/JointBatches.cpp
+    core/detail/LocalMatrices.cpp
+    core/detail/SinCos.cpp
+    core/detail/WorkerPool.cpp
     core/ik/CcdIkJob.cpp
     core/ik/DlsIkJob.cpp
     core/ik/IkChain.cpp

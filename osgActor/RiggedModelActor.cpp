@@ -3,6 +3,7 @@
 #include <osgActor/GlmOsg>
 #include <osgActor/RiggedGeometry>
 #include <osgActor/StickFigure>
+#include <osgActor/core/SamplingJob>
 #include <osgActor/core/skin/SkinBinding>
 #include <osgActor/import/RiggedModelFile>
 
@@ -212,7 +213,7 @@ RiggedModelActor readRiggedModelActor(const std::string& path, const RiggedModel
         std::vector<double> values(clip->getNumChannels());
         ClipCursor cursor;
         clip->initCursor(cursor);
-        clip->sample(0.0, cursor, values.data());
+        sampleEveryChannel(*clip, 0.0, cursor, values);
         std::vector<double> dofs = rigged.definition->getDefaultDofs();
         for (unsigned c = 0; c < clip->getNumChannels(); ++c)
             dofs[rigged.definition->findDof(clip->getChannel(c).target)] = values[c];

@@ -4,38 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstddef>
-#include <cstdlib>
-#include <new>
 
 namespace osgActor {
-
-namespace {
-
-constexpr std::size_t kCacheLine = 64;
-
-} // namespace
-
-std::size_t SkeletonNode::placementPad()
-{
-    // The node's address sits this many bytes past a cache-line boundary, so that its matrix (a member of
-    // osg::MatrixTransform at a fixed offset) starts one.
-    return (kCacheLine - matrixOffset() % kCacheLine) % kCacheLine;
-}
-
-void* SkeletonNode::operator new(std::size_t size)
-{
-    const std::size_t pad = placementPad();
-    const std::size_t blockSize = (size + pad + kCacheLine - 1) / kCacheLine * kCacheLine;
-    void* block = std::aligned_alloc(kCacheLine, blockSize);
-    if (!block) throw std::bad_alloc();
-    return static_cast<char*>(block) + pad;
-}
-
-void SkeletonNode::operator delete(void* node)
-{
-    if (node) std::free(static_cast<char*>(node) - placementPad());
-}
 
 SkeletonNode::SkeletonNode() : _jointIndex(0), _hidden(false), _boundCoversRotations(false), _ballOffCentre(false)
 {

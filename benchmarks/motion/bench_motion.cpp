@@ -9,6 +9,7 @@
 #include <osgActor/core/ActorPose>
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/core/ClipPlayer>
+#include <osgActor/core/SamplingJob>
 #include <osgActor/mocap/BvhReader>
 
 #include <osgDB/ReadFile>
@@ -112,7 +113,7 @@ void BM_ClipSampleUniform(benchmark::State& state)
     const double step = 1.0 / 97.0; // not a multiple of the frame time: always interpolates
     for (auto _ : state)
     {
-        clip.sample(time, cursor, values.data());
+        sampleEveryChannel(clip, time, cursor, values);
         benchmark::DoNotOptimize(values.data());
         time += step;
         if (time > clip.getDuration()) time = 0.0;
@@ -140,7 +141,7 @@ void BM_ClipSampleKeyedCubic(benchmark::State& state)
     double time = 0.0;
     for (auto _ : state)
     {
-        clip->sample(time, cursor, values.data());
+        sampleEveryChannel(*clip, time, cursor, values);
         benchmark::DoNotOptimize(values.data());
         time += 1.0 / 97.0;
         if (time > clip->getDuration()) time = 0.0;

@@ -1,7 +1,8 @@
 #include <osgActor/core/ActorPose>
-#include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/LocalMatricesJob>
+#include <osgActor/core/LocalToModelJob>
 
-#include "HotPath.h"
+#include "detail/HotPath.h"
 
 #include <algorithm>
 #include <cmath>
@@ -76,7 +77,7 @@ ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(defi
     _dofJoints = _definition->getDofJoints().data();
     _dofMasks = _definition->getDofMasks().data();
     _numJoints = numJoints;
-    _jointFlags.assign(4 * std::size_t(numJoints), 0);
+    _jointFlags.assign(3 * std::size_t(numJoints), 0);
     std::fill_n(jointDirtyFlags(), numJoints, 1);
     _local = LocalMatrices(numJoints);
     _model.assign(numJoints, glm::dmat4(1.0));
@@ -140,34 +141,43 @@ void ActorPose::markAllJointsDirty()
     _anyDirty = _numJoints > 0;
 }
 
-unsigned ActorPose::updateMatrices() { return runForwardKinematics(true, true); }
-
-unsigned ActorPose::updateLocalMatrices() { return runForwardKinematics(true, false); }
-
-void ActorPose::updateModelMatrices() { runForwardKinematics(false, true); }
-
-unsigned ActorPose::runForwardKinematics(bool rebuildLocal, bool computeModel)
+unsigned ActorPose::updateMatrices()
 {
-    const bool localWork = rebuildLocal && _anyDirty;
-    const bool modelWork = computeModel && (_anyModelStale || localWork);
-    if (!localWork && !modelWork) return 0;
-    ForwardKinematicsJob job;
+    const unsigned numRebuilt = updateLocalMatrices();
+    updateModelMatrices();
+    return numRebuilt;
+}
+
+unsigned ActorPose::updateLocalMatrices()
+{
+    if (!_anyDirty) return 0;
+    unsigned numRebuilt = 0;
+    LocalMatricesJob job;
     job.definition = _definition.get();
-    job.dofs = _dofs.data();
-    job.jointDirty = jointDirtyFlags();
-    job.local = _local.targets();
-    job.model = _model.data();
-    job.localChanged = localChangedFlags();
-    job.modelStale = modelStaleFlags();
-    job.modelChanged = modelChangedFlags();
-    job.computeModel = computeModel;
-    job.rebuildLocal = rebuildLocal;
+    job.dofs = _dofs;
+    job.jointDirty = {jointDirtyFlags(), _numJoints};
+    job.local = {_local.targets(), _numJoints};
+    job.localChanged = {localChangedFlags(), _numJoints};
+    job.modelStale = {modelStaleFlags(), _numJoints};
+    job.numRebuilt = &numRebuilt;
     job.run();
-    if (rebuildLocal) _anyDirty = false;
-    _anyModelStale = !computeModel && (_anyModelStale || job.numRecomputed > 0);
-    _anyLocalChanged = _anyLocalChanged || job.numRecomputed > 0;
-    _totalRecomputed += job.numRecomputed;
-    return job.numRecomputed;
+    _anyDirty = false;
+    _anyModelStale = _anyModelStale || numRebuilt > 0;
+    _anyLocalChanged = _anyLocalChanged || numRebuilt > 0;
+    _totalRecomputed += numRebuilt;
+    return numRebuilt;
+}
+
+void ActorPose::updateModelMatrices()
+{
+    if (!_anyModelStale) return;
+    LocalToModelJob job;
+    job.parents = _definition->getParents();
+    job.local = {_local.targets(), _numJoints};
+    job.modelStale = {modelStaleFlags(), _numJoints};
+    job.model = _model;
+    job.run();
+    _anyModelStale = false;
 }
 
 } // namespace osgActor

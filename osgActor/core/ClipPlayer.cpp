@@ -1,5 +1,8 @@
 #include <osgActor/core/ClipPlayer>
-#include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/LocalMatricesJob>
+#include <osgActor/core/SamplingJob>
+
+#include "detail/EnumNames.h"
 
 #include <glm/ext/matrix_double3x3.hpp>
 #include <glm/ext/quaternion_trigonometric.hpp>
@@ -26,31 +29,14 @@ double* drivenValuesScratch(unsigned count)
 
 glm::dquat headingRotation(double heading) { return glm::angleAxis(heading, kUp); }
 
+
 } // namespace
 
 namespace {
 
-const char* const kPlayModeNames[] = {"once", "loop", "pingpong"};                    // in PlayMode's order
 const char* const kRootMotionNames[] = {"in_skeleton", "to_transforms", "in_place"}; // in RootMotion's order
 
-/** Finds text among three names of an enum's values, in the enum's order. */
-template <class Enum>
-bool parseEnumName(const char* const (&names)[3], const std::string& text, Enum& value)
-{
-    for (unsigned i = 0; i < 3; ++i)
-        if (text == names[i])
-        {
-            value = static_cast<Enum>(i);
-            return true;
-        }
-    return false;
-}
-
 } // namespace
-
-const char* playModeName(PlayMode mode) { return kPlayModeNames[static_cast<unsigned>(mode)]; }
-
-bool parsePlayMode(const std::string& text, PlayMode& mode) { return parseEnumName(kPlayModeNames, text, mode); }
 
 const char* rootMotionName(RootMotion mode) { return kRootMotionNames[static_cast<unsigned>(mode)]; }
 
@@ -64,24 +50,12 @@ void ClipPlayer::setClip(ClipPtr clip)
     _boundTo.reset(); // bind again on the next update
 }
 
-void ClipPlayer::setSpeed(double speed)
-{
-    if (std::isfinite(speed)) _speed = speed;
-}
-
 void ClipPlayer::seek(double playTime)
 {
-    if (!std::isfinite(playTime)) return;
-    _playTime = playTime;
+    if (!_playHead.seek(playTime)) return;
     // A jump is not travel: root motion carries on from here without adding the cycles skipped.
-    const double duration = _clip ? _clip->getDuration() : 0.0;
-    if (duration > 0.0) _cycle = std::floor(_playTime / duration);
-}
-
-bool ClipPlayer::isFinished() const
-{
-    if (_mode != PlayMode::Once || !_clip) return false;
-    return _speed >= 0.0 ? _playTime >= _clip->getDuration() : _playTime <= 0.0;
+    const double duration = clipDuration();
+    if (duration > 0.0) _cycle = std::floor(playTime / duration);
 }
 
 void ClipPlayer::setFadeWeight(double weight)
@@ -117,23 +91,6 @@ void ClipPlayer::setRootMotion(RootMotion mode, const std::string& rootJoint)
 void ClipPlayer::setSwayWindow(double seconds)
 {
     if (std::isfinite(seconds)) _swayWindow = std::max(0.0, seconds);
-}
-
-double ClipPlayer::clipTimeAt(double t) const
-{
-    const double duration = _clip ? _clip->getDuration() : 0.0;
-    if (!(duration > 0.0)) return 0.0;
-    switch (_mode)
-    {
-    case PlayMode::Once: return std::min(std::max(t, 0.0), duration);
-    case PlayMode::Loop: return t - duration * std::floor(t / duration);
-    case PlayMode::PingPong:
-    {
-        const double u = t - 2.0 * duration * std::floor(t / (2.0 * duration));
-        return u <= duration ? u : 2.0 * duration - u;
-    }
-    }
-    return 0.0;
 }
 
 bool ClipPlayer::bind(const ActorDefinition& definition)
@@ -225,7 +182,7 @@ void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
 
     // The heading is measured on the root-local axis that lies flattest at clip time 0 (so its ground projection
     // is well defined), relative to its direction then.
-    _clip->sample(0.0, _cursor, _sample.data());
+    sampleEveryChannel(*_clip, 0.0, _cursor, _sample);
     for (std::uint32_t c : _rootJointChannels)
         _scratchDofs[static_cast<unsigned>(_binding->channelDof[c])] = _sample[c];
     const glm::dmat3 rotation0(computeJointMatrix(definition.getKinematics(root), _scratchDofs.data()));
@@ -245,7 +202,7 @@ void ClipPlayer::bindRootMotion(const ActorDefinition& definition)
 
     // One loop cycle moves the reference point from the start's ground point to the end's, turning it by the
     // heading gained: delta = (g_end, Rz(h_end)) * (-g_0, identity).
-    _clip->sample(_clip->getDuration(), _cursor, _sample.data());
+    sampleEveryChannel(*_clip, _clip->getDuration(), _cursor, _sample);
     rootTravelFromSample(definition, end, heading);
     _cycleRotation = headingRotation(heading);
     _cycleTranslation = glm::dvec3(end.x, end.y, 0.0) - _cycleRotation * glm::dvec3(start.x, start.y, 0.0);
@@ -269,7 +226,7 @@ void ClipPlayer::rootTravelFromSample(const ActorDefinition& definition, glm::dv
 
 glm::dvec3 ClipPlayer::groundAt(const ActorDefinition& definition, double clipTime)
 {
-    _clip->sample(clipTime, _swayCursor, _swaySample.data());
+    sampleEveryChannel(*_clip, clipTime, _swayCursor, _swaySample);
     glm::dvec3 p(0.0);
     for (unsigned axis = 0; axis < 3; ++axis)
         if (_rootChannel[axis] >= 0) p[axis] = _swaySample[static_cast<unsigned>(_rootChannel[axis])];
@@ -299,7 +256,9 @@ void ClipPlayer::applyRootMotion(const ActorDefinition& definition, double clipT
     else
     {
         const double duration = _clip->getDuration();
-        const double cycle = _mode == PlayMode::Loop && duration > 0.0 ? std::floor(_playTime / duration) : 0.0;
+        const double cycle = getPlayMode() == PlayMode::Loop && duration > 0.0
+                                 ? std::floor(_playHead.getTime() / duration)
+                                 : 0.0;
         if (!_haveBase)
         {
             _baseTranslation = transforms.preTranslation;
@@ -348,7 +307,7 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
         _boundTo = definition;
     }
     if (_boundSelectionVersion != getSelectionVersion()) bindSelection(*definition, _binding->channelDof);
-    if (_playing) _playTime += context.deltaTime * _speed;
+    _playHead.advance(context.deltaTime);
     double fadeTime = std::max(0.0, context.deltaTime); // fades only go forward
     if (_fadeDelay > 0.0)
     {
@@ -366,7 +325,7 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
         }
     }
     if (_fade <= 0.0) return;
-    const double clipTime = clipTimeAt(_playTime);
+    const double clipTime = getClipTime();
     if (_rootJoint < 0 && !_binding->runs.empty() && writesAtFullWeight())
     {
         // The common case, one clip driving the skeleton it was made for: sample and write a run at a time, through
@@ -374,11 +333,17 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
         // call to find the thread-local storage of a shared library).
         constexpr unsigned kChunk = 128;
         double values[kChunk];
+        SamplingJob job;
+        job.clip = _clip.get();
+        job.time = clipTime;
+        job.cursor = &_cursor;
         for (const ClipBinding::Run& run : _binding->runs)
             for (unsigned done = 0; done < run.count; done += kChunk)
             {
                 const unsigned count = std::min(kChunk, run.count - done);
-                _clip->sampleRange(clipTime, _cursor, run.firstChannel + done, count, values);
+                job.firstChannel = run.firstChannel + done;
+                job.values = {values, count};
+                job.run();
                 target.pose.setDofRange(run.firstDof + done, values, count);
             }
         return;
@@ -389,11 +354,19 @@ void ClipPlayer::update(const ControllerContext& context, ControllerTarget& targ
     if (_rootJoint >= 0)
     {
         // Root motion reads the root's channels from a whole sample; the driven ones are picked from it.
-        _clip->sample(clipTime, _cursor, _sample.data());
+        sampleEveryChannel(*_clip, clipTime, _cursor, _sample);
         for (unsigned i = 0; i < numDriven; ++i) values[i] = _sample[driven[i]];
     }
     else
-        _clip->sample(clipTime, _cursor, driven.data(), numDriven, values);
+    {
+        SamplingJob job;
+        job.clip = _clip.get();
+        job.time = clipTime;
+        job.cursor = &_cursor;
+        job.channels = driven;
+        job.values = {values, numDriven};
+        job.run();
+    }
     writeDrivenDofs(target.pose, values);
     if (_rootJoint >= 0) applyRootMotion(*definition, clipTime, target);
 }

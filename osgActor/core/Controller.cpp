@@ -1,23 +1,11 @@
 #include <osgActor/core/Controller>
 
-#include <glm/ext/matrix_transform.hpp>
 #include <glm/ext/scalar_constants.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 #include <algorithm>
 #include <cmath>
 
 namespace osgActor {
-
-glm::dmat4 computeActorMatrix(const ActorTransforms& t)
-{
-    // Each transform turns a point, then places it: T * R.
-    const glm::dmat4 pre =
-        glm::translate(glm::dmat4(1.0), t.preTranslation) * glm::mat4_cast(glm::normalize(t.preRotation));
-    const glm::dmat4 post =
-        glm::translate(glm::dmat4(1.0), t.postTranslation) * glm::mat4_cast(glm::normalize(t.postRotation));
-    return pre * post;
-}
 
 DofSelection DofSelection::joints(const ActorDefinition& definition, const std::vector<std::string>& jointNames,
                                   bool withDescendants, std::string* error)

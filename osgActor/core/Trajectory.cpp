@@ -65,28 +65,16 @@ void TrajectoryPlayer::setTrajectory(TrajectoryPtr trajectory)
     _cursor = 0;
 }
 
-void TrajectoryPlayer::setSpeed(double speed)
-{
-    if (std::isfinite(speed)) _speed = speed;
-}
-
 void TrajectoryPlayer::seek(double time)
 {
-    if (!std::isfinite(time)) return;
-    _playTime = time;
-    _started = true;
+    if (_playHead.seek(time)) _started = true;
 }
 
 double TrajectoryPlayer::pathTimeAt(double playTime) const
 {
     if (!_trajectory) return playTime;
     const double start = _trajectory->getStartTime();
-    const double length = _trajectory->getEndTime() - start;
-    if (!(length > 0.0) || _mode == PlayMode::Once) return playTime;
-    const double u = playTime - start;
-    if (_mode == PlayMode::Loop) return start + u - length * std::floor(u / length);
-    const double v = u - 2.0 * length * std::floor(u / (2.0 * length));
-    return start + (v <= length ? v : 2.0 * length - v);
+    return _playHead.fold(playTime, start, _trajectory->getEndTime() - start);
 }
 
 void TrajectoryPlayer::update(const ControllerContext& context, ControllerTarget& target)
@@ -94,12 +82,12 @@ void TrajectoryPlayer::update(const ControllerContext& context, ControllerTarget
     if (!_trajectory) return;
     if (!_started)
     {
-        _playTime = _trajectory->getStartTime();
+        _playHead.seek(_trajectory->getStartTime());
         _started = true;
     }
-    else if (_playing)
-        _playTime += context.deltaTime * _speed;
-    const TrajectoryKey key = _trajectory->sample(pathTimeAt(_playTime), _cursor);
+    else
+        _playHead.advance(context.deltaTime);
+    const TrajectoryKey key = _trajectory->sample(pathTimeAt(_playHead.getTime()), _cursor);
     // The pre-transform is the reference point: written whole (a trajectory has no per-DOF weights).
     target.transforms.preTranslation = key.position;
     target.transforms.preRotation = glm::angleAxis(key.heading, glm::dvec3(0.0, 0.0, 1.0));

@@ -1,4 +1,5 @@
 #include <osgActor/import/UniformClip>
+#include <osgActor/core/SamplingJob>
 
 #include <algorithm>
 #include <cmath>
@@ -27,7 +28,7 @@ ClipBuildResult sampleClipUniformly(const Clip& clip, double first, double last,
     ClipCursor cursor;
     clip.initCursor(cursor);
     for (std::size_t k = 0; k < frames; ++k)
-        clip.sample(first + double(k) / frameRate, cursor, values.data() + k * channels);
+        sampleEveryChannel(clip, first + double(k) / frameRate, cursor, {values.data() + k * channels, channels});
     ClipBuilder builder(clip.getName());
     for (unsigned c = 0; c < channels; ++c) builder.addChannel(clip.getChannel(c).target, clip.getChannel(c).interpolation);
     builder.setFrames(frameRate, std::move(values));

@@ -1,8 +1,8 @@
-// Forward kinematics against matrices derived by hand (column-vector notation, as in docs/architecture.md).
+// Forward kinematics through the pose (LocalMatricesJob, then LocalToModelJob) against positions derived by hand
+// (column-vector notation, as in docs/architecture.md), and the batched sine and cosine it is built on.
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/core/ActorPose>
-#include <osgActor/core/ForwardKinematicsJob>
-#include <osgActor/core/SinCos>
+#include <osgActor/core/detail/SinCos>
 
 #include "TestMath"
 
@@ -16,147 +16,13 @@
 #include <vector>
 
 using namespace osgActor;
-using osgActor::test::fromRows;
-using osgActor::test::matricesNear;
 using osgActor::test::vectorsNear;
 
 namespace {
 
 const double kQuarter = glm::pi<double>() / 2.0;
 
-/** One joint's local matrix for the given DOF values (in DOF-vector order). */
-glm::dmat4 jointMatrix(ActorDefinitionBuilder& builder, const std::vector<double>& dofs, unsigned joint = 0)
-{
-    const BuildResult result = builder.build();
-    EXPECT_TRUE(result) << result.error;
-    if (!result) return glm::dmat4(0.0);
-    return computeJointMatrix(result.definition->getKinematics(joint), dofs.data());
-}
-
 } // namespace
-
-// --- the job refuses missing buffers first ---
-
-TEST(ForwardKinematicsJob, RefusesMissingBuffers)
-{
-    ActorDefinitionBuilder b;
-    b.addJoint("root").dofs(dofBit(Dof::RX));
-    const ActorDefinitionPtr def = b.build().definition;
-    std::vector<double> dofs(1, 0.0);
-    std::vector<std::uint8_t> dirty(1, 1), localChanged(1, 0), modelStale(1, 0), modelChanged(1, 0);
-    std::vector<glm::dmat4> local(1), model(1);
-    double* const localTargets[1] = {&local[0][0][0]};
-
-    ForwardKinematicsJob job;
-    EXPECT_FALSE(job.validate());
-    job.definition = def.get();
-    job.jointDirty = dirty.data();
-    job.local = localTargets;
-    job.model = model.data();
-    job.localChanged = localChanged.data();
-    job.modelChanged = modelChanged.data();
-    EXPECT_FALSE(job.validate()) << "no model-stale flags";
-    job.modelStale = modelStale.data();
-    EXPECT_FALSE(job.validate()) << "no DOF vector for an actor that has DOFs";
-    EXPECT_FALSE(job.run());
-    EXPECT_EQ(dirty[0], 1) << "a refused run touches nothing";
-    job.dofs = dofs.data();
-    job.model = nullptr;
-    EXPECT_FALSE(job.validate());
-    job.model = model.data();
-    EXPECT_TRUE(job.run());
-    EXPECT_EQ(job.numRecomputed, 1u);
-    EXPECT_EQ(dirty[0], 0);
-}
-
-// --- single joints ---
-
-TEST(JointMatrix, NoActiveDofIsTheOffset)
-{
-    ActorDefinitionBuilder b;
-    b.addJoint("fixed").offset(1, 2, 3);
-    EXPECT_TRUE(matricesNear(jointMatrix(b, {}), fromRows(1, 0, 0, 1, 0, 1, 0, 2, 0, 0, 1, 3)));
-}
-
-TEST(JointMatrix, RotationAboutXAfterTheOffset)
-{
-    // Rx(90): y -> z, z -> -y; the offset translation stays in column 3.
-    ActorDefinitionBuilder b;
-    b.addJoint("j").offset(1, 2, 3).dofs(dofBit(Dof::RX));
-    EXPECT_TRUE(matricesNear(jointMatrix(b, {kQuarter}), fromRows(1, 0, 0, 1, 0, 0, -1, 2, 0, 1, 0, 3), 1e-15));
-}
-
-TEST(JointMatrix, PaperOrderSlidesAlongTheRotatedX)
-{
-    // offset T(0,0,1) * Rz(90) * Tx(2): the joint origin goes (2,0,0) -> (0,2,0) -> (0,2,1).
-    ActorDefinitionBuilder b;
-    b.addJoint("j").offset(0, 0, 1).dofs(kPaperDofs);
-    const glm::dmat4 m = jointMatrix(b, {0.0, 0.0, kQuarter, 2.0});
-    EXPECT_TRUE(matricesNear(m, fromRows(0, -1, 0, 0, 1, 0, 0, 2, 0, 0, 1, 1), 1e-15));
-}
-
-TEST(JointMatrix, TranslationBeforeRotationStaysInTheOffsetFrame)
-{
-    // offset T(1,0,0) * T(2,0,0) * Rz(90): translation (3,0,0), rotation Rz(90).
-    ActorDefinitionBuilder b;
-    b.addJoint("j").offset(1, 0, 0).dofs(Dof::RZ | Dof::TX).translationMode(TranslationMode::BeforeRotation);
-    EXPECT_TRUE(matricesNear(jointMatrix(b, {kQuarter, 2.0}), fromRows(0, -1, 0, 3, 1, 0, 0, 0, 0, 0, 1, 0), 1e-15));
-}
-
-TEST(JointMatrix, EulerOrderXYZIsRxTimesRy)
-{
-    // Rx(90) * Ry(90) = [[0,0,1],[1,0,0],[0,1,0]] worked by hand row by row.
-    ActorDefinitionBuilder b;
-    b.addJoint("j").dofs(Dof::RX | Dof::RY);
-    EXPECT_TRUE(
-        matricesNear(jointMatrix(b, {kQuarter, kQuarter}), fromRows(0, 0, 1, 0, 1, 0, 0, 0, 0, 1, 0, 0), 1e-15));
-}
-
-TEST(JointMatrix, EulerOrderYXZIsRyTimesRx)
-{
-    // Ry(90) * Rx(90) = [[0,1,0],[0,0,-1],[-1,0,0]].
-    ActorDefinitionBuilder b;
-    b.addJoint("j").dofs(Dof::RX | Dof::RY).eulerOrder(EulerOrder::YXZ);
-    EXPECT_TRUE(
-        matricesNear(jointMatrix(b, {kQuarter, kQuarter}), fromRows(0, 1, 0, 0, 0, 0, -1, 0, -1, 0, 0, 0), 1e-15));
-}
-
-TEST(JointMatrix, ThreeRotationsInEveryOrderMatchTheProductOfAxisMatrices)
-{
-    // Against an independent product of elementary matrices written out in rows.
-    const double ax = 0.3, ay = -1.1, az = 2.0;
-    const glm::dmat4 rx = fromRows(1, 0, 0, 0, 0, std::cos(ax), -std::sin(ax), 0, 0, std::sin(ax), std::cos(ax), 0);
-    const glm::dmat4 ry = fromRows(std::cos(ay), 0, std::sin(ay), 0, 0, 1, 0, 0, -std::sin(ay), 0, std::cos(ay), 0);
-    const glm::dmat4 rz = fromRows(std::cos(az), -std::sin(az), 0, 0, std::sin(az), std::cos(az), 0, 0, 0, 0, 1, 0);
-    const glm::dmat4* byAxis[3] = {&rx, &ry, &rz};
-    for (unsigned o = 0; o < 6; ++o)
-    {
-        const EulerOrder order = static_cast<EulerOrder>(o);
-        unsigned axes[3];
-        eulerOrderAxes(order, axes);
-        ActorDefinitionBuilder b;
-        b.addJoint("j").dofs(kRotationDofs).eulerOrder(order);
-        const glm::dmat4 expected = *byAxis[axes[0]] * *byAxis[axes[1]] * *byAxis[axes[2]];
-        EXPECT_TRUE(matricesNear(jointMatrix(b, {ax, ay, az}), expected, 1e-14)) << eulerOrderName(order);
-    }
-}
-
-TEST(JointMatrix, OffsetRotationComesBeforeTheArticulation)
-{
-    // T(0,1,0) * Rz(90) * Rx(90) = rotation [[0,0,1],[1,0,0],[0,1,0]], translation (0,1,0).
-    ActorDefinitionBuilder b;
-    b.addJoint("j").offset(0, 1, 0).rotation(kQuarter, 0, 0, 1).dofs(dofBit(Dof::RX));
-    EXPECT_TRUE(matricesNear(jointMatrix(b, {kQuarter}), fromRows(0, 0, 1, 0, 1, 0, 0, 1, 0, 1, 0, 0), 1e-15));
-}
-
-TEST(JointMatrix, TranslationExtensionsTyTz)
-{
-    // offset T(1,1,1) * Rx(90) * T(0, 2, 3): (0,2,3) rotated by Rx(90) is (0,-3,2).
-    ActorDefinitionBuilder b;
-    b.addJoint("j").offset(1, 1, 1).dofs(Dof::RX | Dof::TY | Dof::TZ);
-    const glm::dmat4 m = jointMatrix(b, {kQuarter, 2.0, 3.0});
-    EXPECT_TRUE(vectorsNear(glm::dvec3(m[3]), glm::dvec3(1.0, -2.0, 3.0), 1e-15));
-}
 
 // --- chains through the pose ---
 
@@ -238,7 +104,7 @@ TEST(ForwardKinematics, OneCleanJointAnywhereKeepsTheRebuildToTheDirtyOnes)
     }
 }
 
-// --- the batched trigonometry and the affine product the job is built on ---
+// --- the batched trigonometry the local-matrices job is built on ---
 
 TEST(SinCos, MatchesTheScalarFunctionsToAFewUlp)
 {
@@ -282,13 +148,6 @@ TEST(SinCos, ATailOfOneToThreeAnglesMatchesTheFullColumns)
             EXPECT_EQ(cosines[i], i < count ? fullCosines[i] : -9.0) << "count " << count << ", angle " << i;
         }
     }
-}
-
-TEST(MultiplyAffine, EqualsTheFullProduct)
-{
-    const glm::dmat4 a = fromRows(0.2, -0.9, 0.1, 4, 0.7, 0.3, -0.5, -2, 0.1, 0.4, 0.8, 1);
-    const glm::dmat4 b = fromRows(1, 2, 3, 4, -1, 0.5, 2, 5, 0, 0.25, -3, 6);
-    EXPECT_TRUE(matricesNear(multiplyAffine(a, b), a * b, 1e-14));
 }
 
 TEST(ForwardKinematics, ModelMatricesCanCatchUpWithoutApplyingNewDofs)

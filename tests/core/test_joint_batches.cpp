@@ -2,7 +2,8 @@
 // the plan that groups them, and that the lanes give each joint the matrix it gets on its own.
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/core/ActorPose>
-#include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/LocalMatricesJob>
+#include <osgActor/core/LocalToModelJob>
 
 #include "TestMath"
 

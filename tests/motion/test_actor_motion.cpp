@@ -1,6 +1,7 @@
 #include "../nodes/NodeTestUtil"
 
 #include <osgActor/core/ClipBuilder>
+#include <osgActor/core/ClipPlayer>
 #include <osgActor/core/Trajectory>
 #include <osgActor/mocap/TrajectoryCsv>
 
@@ -53,7 +54,9 @@ TEST(ActorMotion, ATrajectoryMovesTheBodyWhileAClipMovesTheLegs)
     legs->setPlayMode(PlayMode::Once);
     const TrajectoryPtr path = readCockroachPath();
     ASSERT_TRUE(path);
-    actor->addController(std::make_shared<TrajectoryPlayer>(path));
+    auto body = std::make_shared<TrajectoryPlayer>(path);
+    body->setPlayMode(PlayMode::Once);
+    actor->addController(body);
     actor->addController(legs);
 
     osg::ref_ptr<osg::Group> root = new osg::Group;

@@ -91,6 +91,7 @@ TEST(TrajectoryPlayer, DrivesThePreTransformAlongThePath)
     const TrajectoryPtr path = readTrajectoryCsvFile(dataFile("cockroach.csv")).trajectory;
     ASSERT_TRUE(path);
     TrajectoryPlayer player(path);
+    player.setPlayMode(PlayMode::Once);
     ActorTransforms t = play(player, 0.0);
     EXPECT_TRUE(vectorsNear(t.preTranslation, glm::dvec3(0, 0, 0)));
     t = play(player, 0.5);
@@ -112,13 +113,15 @@ TEST(TrajectoryPlayer, PathTimeAtFollowsThePlayMode)
     const TrajectoryPtr path = readTrajectoryCsvFile(dataFile("cockroach.csv")).trajectory; // keys at 0, 1, 2 s
     ASSERT_TRUE(path);
     TrajectoryPlayer player(path);
-    EXPECT_DOUBLE_EQ(player.pathTimeAt(5.0), 5.0) << "Once: the path clamps the time itself";
-    player.setPlayMode(PlayMode::Loop);
+    EXPECT_EQ(player.getPlayMode(), PlayMode::Loop) << "loops unless told otherwise, as a clip player";
     EXPECT_DOUBLE_EQ(player.pathTimeAt(5.0), 1.0);
     EXPECT_DOUBLE_EQ(player.pathTimeAt(-0.5), 1.5) << "before the start: the end of the previous loop";
     player.setPlayMode(PlayMode::PingPong);
     EXPECT_DOUBLE_EQ(player.pathTimeAt(3.0), 1.0) << "on the way back";
     EXPECT_DOUBLE_EQ(player.pathTimeAt(4.5), 0.5) << "out again";
+    player.setPlayMode(PlayMode::Once);
+    EXPECT_DOUBLE_EQ(player.pathTimeAt(5.0), 2.0) << "Once: held at the last key";
+    EXPECT_DOUBLE_EQ(player.pathTimeAt(-1.0), 0.0) << "and before the first";
 
     // What update() writes is the path sampled at pathTimeAt(play time).
     player.seek(3.5);

@@ -1,7 +1,7 @@
 #include "NodeTestUtil"
 
 #include <osgActor/ActorGroup>
-#include <osgActor/core/WorkerPool>
+#include <osgActor/core/detail/WorkerPool>
 
 #include <atomic>
 #include <chrono>

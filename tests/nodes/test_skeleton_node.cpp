@@ -90,19 +90,3 @@ TEST(SkeletonNode, CopyKeepsJointIndexNameAndHideFlag)
     EXPECT_STREQ(copy->libraryName(), "osgActor");
     EXPECT_STREQ(copy->className(), "SkeletonNode");
 }
-
-TEST(SkeletonNode, FromMatrixStorageGivesBackTheNodeOfEveryJoint)
-{
-    // The actor's per-frame loops reach each node from the pose's pointer to its matrix.
-    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
-    ASSERT_EQ(actor->getNumSkeletonNodes(), 4u);
-    for (unsigned j = 0; j < actor->getNumSkeletonNodes(); ++j)
-    {
-        SkeletonNode* node = actor->getSkeletonNode(j);
-        EXPECT_EQ(SkeletonNode::fromMatrixStorageForActor(node->getMatrixStorageForActor()), node) << j;
-        EXPECT_EQ(node->getMatrixStorageForActor(), node->getMatrix().ptr()) << j;
-    }
-    // A node made on its own too (the actor's nodes come from the same operator new).
-    osg::ref_ptr<SkeletonNode> single = new SkeletonNode(0, "single");
-    EXPECT_EQ(SkeletonNode::fromMatrixStorageForActor(single->getMatrixStorageForActor()), single.get());
-}

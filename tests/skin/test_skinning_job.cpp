@@ -1,6 +1,6 @@
 #include "SkinTestData"
 
-#include <osgActor/core/WorkerPool>
+#include <osgActor/core/detail/WorkerPool>
 #include <osgActor/core/skin/SkinBinding>
 #include <osgActor/core/skin/SkinningJob>
 

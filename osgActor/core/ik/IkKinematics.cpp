@@ -1,6 +1,7 @@
 #include <osgActor/core/ik/IkKinematics>
 #include <osgActor/core/ik/Arctangent>
-#include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/LocalMatricesJob>
+#include <osgActor/core/LocalToModelJob>
 
 #include <glm/ext/scalar_constants.hpp>
 #include <glm/geometric.hpp>

@@ -1,4 +1,5 @@
 #include <osgActor/core/retarget/ClipFrames>
+#include <osgActor/core/SamplingJob>
 
 #include <algorithm>
 #include <cmath>
@@ -38,7 +39,7 @@ std::string sampleClipFrames(const ActorDefinition& definition, const Clip& clip
     for (unsigned f = 0; f < out.numFrames; ++f)
     {
         const double* channels = clip.isUniform() ? clip.getFrame(f) : sampled.data();
-        if (!clip.isUniform()) clip.sample(f / out.frameRate, cursor, sampled.data());
+        if (!clip.isUniform()) sampleEveryChannel(clip, f / out.frameRate, cursor, sampled);
         double* dofs = out.values.data() + std::size_t(f) * out.numDofs;
         std::copy(definition.getDefaultDofs().begin(), definition.getDefaultDofs().end(), dofs);
         for (unsigned c = 0; c < clip.getNumChannels(); ++c)

@@ -1,7 +1,8 @@
 #include <osgActor/core/retarget/JointMapGuess>
 #include <osgActor/core/retarget/BuiltInJointMaps>
 #include <osgActor/core/retarget/HAnimHumanoid>
-#include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/LocalMatricesJob>
+#include <osgActor/core/LocalToModelJob>
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>

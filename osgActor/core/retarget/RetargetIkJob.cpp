@@ -1,6 +1,7 @@
 #include <osgActor/core/retarget/RetargetIkJob>
 #include <osgActor/core/retarget/JointRotationFit>
-#include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/LocalMatricesJob>
+#include <osgActor/core/LocalToModelJob>
 #include <osgActor/core/ik/IkSolve>
 
 #include <glm/geometric.hpp>

@@ -1,9 +1,9 @@
 #include <osgActor/core/retarget/RetargetJob>
 #include <osgActor/core/retarget/JointRotationFit>
-#include <osgActor/core/SinCos>
+#include <osgActor/core/detail/SinCos>
 #include <osgActor/core/ik/IkKinematics>
 
-#include "../HotPath.h"
+#include "../detail/HotPath.h"
 
 #include <glm/gtc/quaternion.hpp>
 

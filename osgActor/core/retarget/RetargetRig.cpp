@@ -13,7 +13,8 @@
 #include <osgActor/core/retarget/HAnimHumanoid>
 #include <osgActor/core/retarget/JointMapGuess>
 #include <osgActor/core/retarget/JointRotationFit>
-#include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/LocalMatricesJob>
+#include <osgActor/core/LocalToModelJob>
 #include <osgActor/core/ik/IkKinematics>
 
 #include <glm/geometric.hpp>

@@ -1,6 +1,6 @@
 #include <osgActor/core/skin/SkinBoundsJob>
 
-#include "../HotPath.h"
+#include "../detail/HotPath.h"
 #include "Float4.h"
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 #include <osgActor/core/skin/SkinningMatricesJob>
 
-#include <osgActor/core/ForwardKinematicsJob>
+#include <osgActor/core/LocalToModelJob>
 
 #include <glm/ext/matrix_double3x3.hpp>
 #include <glm/gtc/matrix_inverse.hpp>

@@ -1,4 +1,4 @@
-#include <osgActor/core/WorkerPool>
+#include <osgActor/core/detail/WorkerPool>
 
 #include <algorithm>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include <osgActor/core/LocalMatrices>
+#include <osgActor/core/detail/LocalMatrices>
 
 #include <algorithm>
 #include <cstring>

@@ -1,8 +1,8 @@
 // Internal to the library (not installed): a matrix column of four doubles as one value, for the per-frame math
 // (forward kinematics, sines and cosines). GCC's vector extension, so the same code is 4 wide in the AVX2 clone of
 // a hot path (see HotPath.h) and two SSE2 halves in the baseline one.
-#ifndef OSGACTOR_CORE_COLUMN_H
-#define OSGACTOR_CORE_COLUMN_H 1
+#ifndef OSGACTOR_CORE_DETAIL_COLUMN_H
+#define OSGACTOR_CORE_DETAIL_COLUMN_H 1
 
 #define OSGACTOR_INLINE inline __attribute__((always_inline))
 // The same for a lambda, which takes the attribute without the keyword.

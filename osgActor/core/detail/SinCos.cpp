@@ -1,6 +1,6 @@
 // Sine and cosine of a batch of angles, four at a time (sinCosColumn): one range reduction serves both, with no
 // branch. Built with -fno-trapping-math but never -ffast-math: the reduction depends on the order of its operations.
-#include <osgActor/core/SinCos>
+#include <osgActor/core/detail/SinCos>
 
 #include "HotPath.h"
 #include "SinCosColumn.h"

@@ -1,7 +1,7 @@
 // Internal to the library (not installed): the sine and cosine of four angles at once, the kernel of sinCos() and of
 // forward kinematics. Branch-free but for angles beyond 1e6 radians, which take the library's functions.
-#ifndef OSGACTOR_CORE_SINCOSCOLUMN_H
-#define OSGACTOR_CORE_SINCOSCOLUMN_H 1
+#ifndef OSGACTOR_CORE_DETAIL_SINCOSCOLUMN_H
+#define OSGACTOR_CORE_DETAIL_SINCOSCOLUMN_H 1
 
 #include "Column.h"
 

@@ -1,5 +1,5 @@
 #include <osgActor/core/ActorDefinition>
-#include <osgActor/core/JointBatches>
+#include <osgActor/core/detail/JointBatches>
 
 namespace osgActor {
 

@@ -1,0 +1,32 @@
+// Internal to the library (not installed, NOT API): the skeleton nodes an ActorNode builds for itself, placed in
+// memory so that their matrix starts a cache line. A 16-double matrix then spans two lines rather than three (as it
+// does for three nodes in four otherwise), so an actor's per-frame write of its joints' matrices touches fewer lines
+// when many actors no longer fit in cache (docs/performance.md). A SkeletonNode in every other respect: it adds no
+// member and no behaviour, keeps SkeletonNode's class name for osgDB, and clones as a plain SkeletonNode.
+#ifndef OSGACTOR_DETAIL_PLACEDSKELETONNODE_H
+#define OSGACTOR_DETAIL_PLACEDSKELETONNODE_H 1
+
+#include <osgActor/SkeletonNode>
+
+#include <cstddef>
+
+namespace osgActor {
+namespace detail {
+
+class PlacedSkeletonNode : public SkeletonNode
+{
+public:
+    PlacedSkeletonNode(unsigned jointIndex, const std::string& jointName) : SkeletonNode(jointIndex, jointName) {}
+    PlacedSkeletonNode(const SkeletonNode& node, const osg::CopyOp& copyop) : SkeletonNode(node, copyop) {}
+
+    static void* operator new(std::size_t size);
+    static void operator delete(void* node);
+
+protected:
+    ~PlacedSkeletonNode() override = default;
+};
+
+} // namespace detail
+} // namespace osgActor
+
+#endif
