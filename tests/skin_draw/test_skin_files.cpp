@@ -5,6 +5,7 @@
 #include "SkinDrawTestUtil"
 
 #include <osgActor/ActorSceneIO>
+#include <osgActor/core/SamplingJob>
 #include <osgActor/io/ActorReader>
 #include <osgActor/io/ActorWriter>
 
@@ -137,7 +138,7 @@ TEST(SkinFiles, AnActorOfARiggedModelIsWrittenWithItsSkinsByReferenceAndReadsBac
         std::vector<double> values(clip->getNumChannels());
         ClipCursor cursor;
         clip->initCursor(cursor);
-        clip->sample(t, cursor, values.data());
+        ASSERT_TRUE(sampleEveryChannel(*clip, t, cursor, values));
         std::vector<double> dofs = definition.getDefaultDofs();
         for (unsigned c = 0; c < clip->getNumChannels(); ++c)
             dofs[definition.findDof(clip->getChannel(c).target)] = values[c];
