@@ -2,6 +2,7 @@
 #include <osgActor/ActorSceneIO>
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/GlmOsg>
+#include <osgActor/RiggedModelActor>
 #include <osgActor/io/ActorSyntax>
 #include <osgActor/io/ClipRetarget>
 #include <osgActor/mocap/MotionFile>
@@ -54,6 +55,50 @@ osg::ref_ptr<osg::Node> loadModel(const GeometryDescription& model, const std::s
     osg::ref_ptr<osg::Node> node = osgDB::readRefNodeFile(path, options);
     if (!node) error = where(fileName, model.line) + "cannot read the model file '" + path + "'";
     return node;
+}
+
+/** Puts the skins of the document's rigged model files below the actor, in its model space; false and an error
+  * (naming fileName and the skin statement's line) when a file cannot be found or read or a skin does not fit. */
+bool attachSkins(ActorNode& actor, const ActorDocument& document, const std::string& fileName,
+                 const osgDB::Options* options, std::string& error)
+{
+    for (const SkinFileDocument& skin : document.skinFiles)
+    {
+        const std::string path = findNamedFile(skin.file, "skin file", options, where(fileName, skin.line), error);
+        if (path.empty()) return false;
+        std::string why;
+        const osg::ref_ptr<osg::Geode> skins = readRiggedModelSkins(path, skin.file, *actor.getDefinition(), why);
+        if (!skins)
+        {
+            error = where(fileName, skin.line) + why;
+            return false;
+        }
+        actor.addChild(skins.get());
+    }
+    return true;
+}
+
+/** Adds the rigged model files whose skins hang below the actor (readRiggedModelSkins(), readRiggedModelActor()) to
+  * a document; skinned meshes of another origin cannot be described by the format: left out with a warning. */
+void addSkinFiles(const ActorNode& actor, ActorDocument& document)
+{
+    for (unsigned c = 0; c < actor.getNumChildren(); ++c)
+    {
+        const osg::Node* child = actor.getChild(c);
+        if (dynamic_cast<const SkeletonNode*>(child)) continue;
+        const std::string file = getSkinsNodeFile(*child);
+        if (!file.empty())
+        {
+            if (std::none_of(document.skinFiles.begin(), document.skinFiles.end(),
+                             [&](const SkinFileDocument& skin) { return skin.file == file; }))
+                document.skinFiles.push_back(SkinFileDocument{file, 0});
+            continue;
+        }
+        if (!findSkinnedMeshes(*const_cast<osg::Node*>(child)).empty())
+            OSG_WARN << "osgActor: writing actor '" << document.name << "': its " << child->className() << " '"
+                     << child->getName() << "' holds skinned meshes that no rigged model file describes; they are "
+                        "left out (write .osgt to keep them)" << std::endl;
+    }
 }
 
 /** The instance state a joint of the document carries: its current DOF values and hide flag. */
@@ -387,6 +432,7 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         applyJointState(*actor, static_cast<unsigned>(index), joint);
         if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
+    if (!attachSkins(*actor, document, fileName, local.get(), result.error)) return result;
     ActorDocument withFilesRead = document;
     if (!readClipFiles(withFilesRead.clips, definition, document.sections, fileName, local.get(), result.error))
         return result;
@@ -448,6 +494,7 @@ ActorDocument extractActorDocument(const ActorNode& actor)
         }
     }
 
+    addSkinFiles(actor, document);
     addClips(actor, document);
     addTrajectories(actor, document);
     addPlayers(actor, document);

@@ -5,6 +5,7 @@
 #include <osg/Image>
 #include <osg/Material>
 #include <osg/Texture2D>
+#include <osg/Uniform>
 
 namespace osgActor {
 
@@ -60,9 +61,14 @@ osg::ref_ptr<osg::StateSet> createMaterialStateSet(const RiggedModel& model, int
     colour->setDiffuse(osg::Material::FRONT_AND_BACK, base);
     colour->setAmbient(osg::Material::FRONT_AND_BACK, base);
     state->setAttributeAndModes(colour.get());
+    // The same material for osgActor's programs (SkinningShaders), which in the core profile have no built-in one.
+    state->addUniform(new osg::Uniform("osgActor_baseColor", base));
     const int image = material.baseColorTexture.image;
-    if (image >= 0 && !model.images[image].rgba.empty())
+    const bool textured = image >= 0 && !model.images[image].rgba.empty();
+    if (textured)
         state->setTextureAttributeAndModes(0, createTexture(model.images[image], material.baseColorTexture).get());
+    state->addUniform(new osg::Uniform("osgActor_hasBaseColorTexture", textured));
+    state->addUniform(new osg::Uniform("osgActor_baseColorTexture", 0));
     if (material.alphaMode == AlphaMode::Blend)
     {
         state->setAttributeAndModes(new osg::BlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA));
@@ -72,19 +78,10 @@ osg::ref_ptr<osg::StateSet> createMaterialStateSet(const RiggedModel& model, int
     return state;
 }
 
-osg::ref_ptr<osg::Geometry> createPrimitiveGeometry(const RiggedModel& model, const RiggedPrimitive& primitive)
+osg::ref_ptr<osg::Geometry> createPrimitiveSurface(const RiggedModel& model, const RiggedPrimitive& primitive)
 {
     osg::ref_ptr<osg::Geometry> geometry = new osg::Geometry;
     geometry->setName(primitive.place);
-    osg::ref_ptr<osg::Vec3Array> positions = new osg::Vec3Array;
-    for (const glm::vec3& p : primitive.positions) positions->push_back(osg::Vec3(p.x, p.y, p.z));
-    geometry->setVertexArray(positions.get());
-    if (!primitive.normals.empty())
-    {
-        osg::ref_ptr<osg::Vec3Array> normals = new osg::Vec3Array;
-        for (const glm::vec3& n : primitive.normals) normals->push_back(osg::Vec3(n.x, n.y, n.z));
-        geometry->setNormalArray(normals.get(), osg::Array::BIND_PER_VERTEX);
-    }
     const unsigned set = primitive.material >= 0 ? model.materials[primitive.material].baseColorTexture.texCoord : 0;
     const std::vector<glm::vec2>& uv = set == 1 ? primitive.texCoords1 : primitive.texCoords0;
     if (!uv.empty())
@@ -96,8 +93,31 @@ osg::ref_ptr<osg::Geometry> createPrimitiveGeometry(const RiggedModel& model, co
     osg::ref_ptr<osg::DrawElementsUInt> triangles =
         new osg::DrawElementsUInt(GL_TRIANGLES, primitive.indices.begin(), primitive.indices.end());
     geometry->addPrimitiveSet(triangles.get());
+    return geometry;
+}
+
+osg::ref_ptr<osg::Geometry> createPrimitiveGeometry(const RiggedModel& model, const RiggedPrimitive& primitive)
+{
+    osg::ref_ptr<osg::Geometry> geometry = createPrimitiveSurface(model, primitive);
+    osg::ref_ptr<osg::Vec3Array> positions = new osg::Vec3Array;
+    for (const glm::vec3& p : primitive.positions) positions->push_back(osg::Vec3(p.x, p.y, p.z));
+    geometry->setVertexArray(positions.get());
+    if (!primitive.normals.empty())
+    {
+        osg::ref_ptr<osg::Vec3Array> normals = new osg::Vec3Array;
+        for (const glm::vec3& n : primitive.normals) normals->push_back(osg::Vec3(n.x, n.y, n.z));
+        geometry->setNormalArray(normals.get(), osg::Array::BIND_PER_VERTEX);
+    }
     geometry->setUseVertexBufferObjects(true);
     return geometry;
+}
+
+osg::ref_ptr<SkinnedMesh> createSkinnedMesh(const RiggedModel& model, const SkinnedPrimitive& skinned)
+{
+    const RiggedPrimitive& primitive = model.meshes[skinned.mesh].primitives[skinned.primitive];
+    osg::ref_ptr<SkinnedMesh> mesh = new SkinnedMesh(skinned.skin, createPrimitiveSurface(model, primitive).get());
+    mesh->setName(primitive.place);
+    return mesh;
 }
 
 } // namespace osgActor

@@ -4,6 +4,7 @@
 #include <osgActor/RiggedGeometry>
 #include <osgActor/StickFigure>
 #include <osgActor/core/SamplingJob>
+#include <osgActor/core/skin/SkinBinding>
 #include <osgActor/import/RiggedModelFile>
 
 #include <osg/Geode>
@@ -17,17 +18,31 @@ namespace osgActor {
 
 namespace {
 
-/** Hangs every rigid primitive under the skeleton node of its joint, placed by the binding's matrix. */
-void addRigidMeshes(ActorNode& actor, const RiggedActor& rigged)
+/** One state set per material, made as the meshes ask for them. */
+class MaterialStates
 {
-    std::map<int, osg::ref_ptr<osg::StateSet>> states; // one per material
+public:
+    explicit MaterialStates(const RiggedModel& model) : _model(model) {}
+    osg::StateSet* of(int material)
+    {
+        osg::ref_ptr<osg::StateSet>& state = _states[material];
+        if (!state) state = createMaterialStateSet(_model, material);
+        return state.get();
+    }
+
+private:
+    const RiggedModel& _model;
+    std::map<int, osg::ref_ptr<osg::StateSet>> _states;
+};
+
+/** Hangs every rigid primitive under the skeleton node of its joint, placed by the binding's matrix. */
+void addRigidMeshes(ActorNode& actor, const RiggedActor& rigged, MaterialStates& states)
+{
     for (const RigidBinding& binding : rigged.rigidMeshes)
     {
         const RiggedPrimitive& primitive = rigged.model->meshes[binding.mesh].primitives[binding.primitive];
         osg::ref_ptr<osg::Geometry> geometry = createPrimitiveGeometry(*rigged.model, primitive);
-        osg::ref_ptr<osg::StateSet>& state = states[primitive.material];
-        if (!state) state = createMaterialStateSet(*rigged.model, primitive.material);
-        geometry->setStateSet(state.get());
+        geometry->setStateSet(states.of(primitive.material));
         osg::ref_ptr<osg::Geode> geode = new osg::Geode;
         geode->setName(primitive.place);
         geode->addDrawable(geometry.get());
@@ -37,6 +52,24 @@ void addRigidMeshes(ActorNode& actor, const RiggedActor& rigged)
             placement->getOrCreateStateSet()->setMode(GL_NORMALIZE, osg::StateAttribute::ON);
         actor.getSkeletonNode(binding.joint)->addChild(placement.get());
     }
+}
+
+/** A Geode named "skins" holding a SkinnedMesh per skinned primitive, skinned where path says; null when the model
+  * has no skin. Its drawables go below an actor, in its model space. */
+osg::ref_ptr<osg::Geode> createSkinsGeode(const RiggedActor& rigged, MaterialStates& states,
+                                          SkinnedMesh::SkinningPath path)
+{
+    if (rigged.skins.empty()) return nullptr;
+    osg::ref_ptr<osg::Geode> geode = new osg::Geode;
+    geode->setName("skins");
+    for (const SkinnedPrimitive& skinned : rigged.skins)
+    {
+        osg::ref_ptr<SkinnedMesh> mesh = createSkinnedMesh(*rigged.model, skinned);
+        mesh->setSkinningPath(path);
+        mesh->setStateSet(states.of(rigged.model->meshes[skinned.mesh].primitives[skinned.primitive].material));
+        geode->addDrawable(mesh.get());
+    }
+    return geode;
 }
 
 /** The clip of that name, or the first; null when there is none of that name. */
@@ -49,6 +82,55 @@ ClipPtr chooseClip(const RiggedActor& rigged, const std::string& name)
 }
 
 } // namespace
+
+const char* const kSkinsNodeDescriptionPrefix = "osgActor:skins ";
+
+std::string getSkinsNodeFile(const osg::Node& node)
+{
+    const std::string prefix = kSkinsNodeDescriptionPrefix;
+    for (const std::string& text : node.getDescriptions())
+        if (text.compare(0, prefix.size(), prefix) == 0) return text.substr(prefix.size());
+    return std::string();
+}
+
+osg::ref_ptr<osg::Geode> readRiggedModelSkins(const std::string& path, const std::string& fileName,
+                                              const ActorDefinition& definition, std::string& error)
+{
+    const RiggedModelRead read = readRiggedModelFile(path);
+    if (!read)
+    {
+        error = read.error;
+        return nullptr;
+    }
+    // The options readRiggedModelActor() builds with by default: the skins' inverse bind matrices depend on where
+    // the root scale goes (not on the up axis, which turns the definition's roots only).
+    const RiggedActor rigged = buildRiggedActor(read.model, RiggedActorOptions());
+    if (!rigged)
+    {
+        error = rigged.error;
+        return nullptr;
+    }
+    if (rigged.skins.empty())
+    {
+        error = path + ": the file has no skinned mesh";
+        return nullptr;
+    }
+    for (const SkinnedPrimitive& skinned : rigged.skins)
+    {
+        const SkinBinding binding = bindSkinToDefinition(*skinned.skin, definition);
+        if (!binding)
+        {
+            error = path + ": " + binding.error;
+            return nullptr;
+        }
+    }
+    for (const std::string& warning : read.warnings) OSG_WARN << "osgActor: " << warning << std::endl;
+    for (const std::string& warning : rigged.warnings) OSG_WARN << "osgActor: " << warning << std::endl;
+    MaterialStates states(*rigged.model);
+    osg::ref_ptr<osg::Geode> geode = createSkinsGeode(rigged, states, SkinnedMesh::GPU_SKINNING);
+    geode->addDescription(kSkinsNodeDescriptionPrefix + fileName);
+    return geode;
+}
 
 bool parseRiggedModelOptionString(const std::string& text, RiggedModelActorOptions& options, std::string& error)
 {
@@ -74,6 +156,13 @@ bool parseRiggedModelOptionString(const std::string& text, RiggedModelActorOptio
             else if (value == "lengths") options.rootScale = RootScale::InLengths;
             else return bad("above or lengths");
         }
+        else if (key == "skinning" && equals != std::string::npos)
+        {
+            if (value == "gpu") options.skinning = SkinnedMesh::GPU_SKINNING;
+            else if (value == "cpu") options.skinning = SkinnedMesh::CPU_SKINNING;
+            else return bad("gpu or cpu");
+        }
+        else if (word == "figure") options.addFigure = true;
         else if (word == "noFigure") options.addFigure = false;
         else if (word == "yUp") options.zUp = false;
         // anything else belongs to another plugin
@@ -131,7 +220,16 @@ RiggedModelActor readRiggedModelActor(const std::string& path, const RiggedModel
         actor->setDofs(dofs);
         actor->updatePose();
     }
-    addRigidMeshes(*actor, rigged);
+    MaterialStates states(*rigged.model);
+    addRigidMeshes(*actor, rigged, states);
+    const osg::ref_ptr<osg::Geode> skins = createSkinsGeode(rigged, states, options.skinning);
+    if (skins.valid())
+    {
+        if (options.rootScale == RootScale::AboveActor) skins->addDescription(kSkinsNodeDescriptionPrefix + path);
+        for (unsigned i = 0; i < skins->getNumDrawables(); ++i)
+            result.skinnedMeshes.push_back(static_cast<SkinnedMesh*>(skins->getDrawable(i)));
+        actor->addChild(skins.get());
+    }
     if (options.addFigure) addStickFigure(*actor);
 
     result.actor = actor;

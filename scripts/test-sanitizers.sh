@@ -5,7 +5,8 @@
 #         UndefinedBehaviorSanitizer (clang, -O0, the core at -O1); any report fails the test that made it. The
 #         same build holds the libFuzzer targets, which scripts/fuzz.sh then runs without building anything more.
 #   tsan  ThreadSanitizer (GCC) on the parallel actor update (WorkerPool and ActorGroup tests, a short soak run: many
-#         actors playing clips under IK on several threads) and on osgViewer's threaded models under xvfb-run.
+#         actors playing clips under IK on several threads) and on osgViewer's threaded models under xvfb-run, with
+#         plain and with skinned actors.
 # Usage: scripts/test-sanitizers.sh [asan|tsan]... (both by default). OSGACTOR_JOBS as for build.sh;
 # OSGACTOR_ASAN_BUILD_DIR, OSGACTOR_TSAN_BUILD_DIR (build-asan, build-tsan).
 # OSG itself is not built with sanitizers: scripts/sanitizers/*.supp hold the few suppressions its (and Mesa's)
@@ -44,7 +45,8 @@ asan() {
 tsan() {
     local build="${OSGACTOR_TSAN_BUILD_DIR:-$root/build-tsan}"
     sanitizer_configure tsan "$build"
-    cmake --build "$build" -j "$jobs" --target osgactor_node_tests osgactor_soak_test osgactor_threaded_viewer
+    cmake --build "$build" -j "$jobs" --target osgactor_node_tests osgactor_soak_test osgactor_threaded_viewer \
+        osgactor_skinned_threaded_viewer
     # Any report makes the program exit with 66 at the end (TSan's exitcode), which fails this script.
     export TSAN_OPTIONS="suppressions=$supp/tsan.supp:second_deadlock_stack=1:history_size=4"
     export OSG_NOTIFY_LEVEL=WARN
@@ -53,6 +55,10 @@ tsan() {
     local model
     for model in DrawThreadPerContext CullDrawThreadPerContext; do
         xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_threaded_viewer" "$model" 60
+    done
+    # Skinned meshes: per-frame buffers filled in cull by two cameras' cull threads while the draw reads the others.
+    for model in DrawThreadPerContext CullThreadPerCameraDrawThreadPerContext; do
+        xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" "$model" 40
     done
 }
 

@@ -250,6 +250,7 @@ private:
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
             else if (k == "bounds") ok = once(seen, s) && readBounds(s, document.boundsCoverRotations);
+            else if (k == "skin") ok = readSkinFile(s, document);
             else if (isMotionSection(k)) ok = readMotionSection(s, document);
             else if (isReservedSection(k))
             {
@@ -259,6 +260,18 @@ private:
             else return unknownKeyword(s, "in an actor");
             if (!ok) return false;
         }
+        return true;
+    }
+
+    /** "skin "file"": a rigged model file whose skins the actor wears (read when the actor is made). */
+    bool readSkinFile(const SyntaxStatement& s, ActorDocument& document)
+    {
+        if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
+        const std::string& file = s.arguments.front().text;
+        if (file.empty()) return fail(s.line, "'skin' needs a file name");
+        for (const SkinFileDocument& other : document.skinFiles)
+            if (other.file == file) return fail(s.line, "skin file '" + file + "' is given twice");
+        document.skinFiles.push_back(SkinFileDocument{file, s.line});
         return true;
     }
 

@@ -317,6 +317,8 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     if (!document.boundsCoverRotations)
         actor.children.push_back(statement("bounds", {word(boundsName(document.boundsCoverRotations))}));
     JointTreeWriter(document).write(actor.children);
+    for (const SkinFileDocument& skin : document.skinFiles)
+        actor.children.push_back(statement("skin", {SyntaxArgument{skin.file, true, 0}}));
     for (const ClipDocument& clip : document.clips)
         if (clip.clip || !clip.file.empty()) actor.children.push_back(clipStatement(clip));
     for (const TrajectoryDocument& trajectory : document.trajectories)

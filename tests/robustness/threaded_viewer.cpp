@@ -4,6 +4,7 @@
  * hides joints between frames. Run under xvfb-run by ctest, and under ThreadSanitizer by
  * scripts/test-sanitizers.sh. Exit status 0 after the frames, 1 if the viewer could not start. */
 #include "RobustnessUtil"
+#include "ViewerThreadingModel"
 
 #include <osgActor/ActorGroup>
 
@@ -16,23 +17,10 @@ using namespace osgActor;
 
 int main(int argc, char** argv)
 {
-    if (argc < 2)
-    {
-        std::cerr << "usage: " << argv[0] << " <threading model> [frames]\n";
-        return 1;
-    }
-    const std::string modelName = argv[1];
     osgViewer::ViewerBase::ThreadingModel model;
-    if (modelName == "DrawThreadPerContext") model = osgViewer::ViewerBase::DrawThreadPerContext;
-    else if (modelName == "CullDrawThreadPerContext") model = osgViewer::ViewerBase::CullDrawThreadPerContext;
-    else if (modelName == "CullThreadPerCameraDrawThreadPerContext")
-        model = osgViewer::ViewerBase::CullThreadPerCameraDrawThreadPerContext;
-    else
-    {
-        std::cerr << "unknown threading model " << modelName << "\n";
-        return 1;
-    }
-    const int frames = argc > 2 ? std::atoi(argv[2]) : 120;
+    int frames = 0;
+    if (!test::parseThreadedViewerArguments(argc, argv, 120, model, frames)) return 1;
+    const std::string modelName = argv[1];
 
     std::mt19937 random(8);
     osg::ref_ptr<ActorNode> prototype = test::readHumanoid();
@@ -47,15 +35,7 @@ int main(int argc, char** argv)
     }
 
     osgViewer::Viewer viewer;
-    viewer.setThreadingModel(model);
-    viewer.setUpViewInWindow(0, 0, 320, 240);
-    viewer.setSceneData(actors.get());
-    viewer.realize();
-    if (!viewer.isRealized())
-    {
-        std::cerr << "the viewer did not start (no display?)\n";
-        return 1;
-    }
+    if (!test::startViewer(viewer, model, actors.get())) return 1;
     for (int frame = 0; frame < frames && !viewer.done(); ++frame)
     {
         // Between frames, on the main thread (OSG's update thread): what an application does to its actors.

@@ -280,8 +280,13 @@ SkinBuildResult SkinBuilder::build() const
         for (const Weighted& w : scratch) sum += w.weight;
         if (scratch.empty() || !(sum > 0.0)) return refuse.vertex(v, "its weights sum to zero (it follows no joint)");
         counts[v] = static_cast<std::uint8_t>(scratch.size());
+        // Weights that already sum to 1 as closely as floats can (a skin's own, written out and read back: each was
+        // rounded to a float, by at most half an ulp, 2^-25 below 1) are kept as they are: dividing them again would
+        // move some by an ulp, and a skin read back would not be the one written.
+        const double roundingOfFloats = static_cast<double>(scratch.size()) * std::ldexp(1.0, -25);
+        const double divisor = std::abs(sum - 1.0) <= roundingOfFloats ? 1.0 : sum;
         for (std::size_t k = 0; k < scratch.size(); ++k)
-            kept[v * kMaxSkinInfluences + k] = {scratch[k].joint, scratch[k].weight / sum};
+            kept[v * kMaxSkinInfluences + k] = {scratch[k].joint, scratch[k].weight / divisor};
     }
 
     // --- the skin, vertices grouped by influence count (file order within a group) ---

@@ -11,6 +11,7 @@
  *   Definition <n> { <n lines of one whole .actor text> }                                         still read
  * An old file's count is never 0 (its text has a header), which tells the two apart in the binary format too. */
 #include "SerializedLines"
+#include "SerializedNumbers"
 
 #include <osgActor/ActorNode>
 #include <osgActor/ActorPartsText>

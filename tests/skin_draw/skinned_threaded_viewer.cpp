@@ -1,0 +1,80 @@
+/* osgViewer with a multi-threaded threading model (argv[1]: DrawThreadPerContext, CullDrawThreadPerContext or
+ * CullThreadPerCameraDrawThreadPerContext) drawing skinned Cesium Men through two cameras (a slave beside the master,
+ * so that two cull threads meet the same meshes in one frame): every actor a shallow copy of one (they share one
+ * SkinnedMesh), half of them skinned on the CPU, all updated by an ActorGroup on worker threads while the previous
+ * frame is drawn; the main thread turns actors' paths between frames. Run under xvfb-run by ctest and under
+ * ThreadSanitizer by scripts/test-sanitizers.sh. Exit status 0 after the frames (and every actor's mesh skinned or
+ * uploaded once per frame it was seen), 1 otherwise. */
+#include "ViewerThreadingModel"
+
+#include <osgActor/ActorGroup>
+#include <osgActor/RiggedModelActor>
+
+#include <osgViewer/Viewer>
+
+#include <cstdlib>
+#include <iostream>
+
+using namespace osgActor;
+
+int main(int argc, char** argv)
+{
+    osgViewer::ViewerBase::ThreadingModel model;
+    int frames = 0;
+    if (!test::parseThreadedViewerArguments(argc, argv, 60, model, frames)) return 1;
+    const std::string modelName = argv[1];
+
+    std::string error;
+    const RiggedModelActor read = readRiggedModelActor(std::string(OSGACTOR_TEST_DATA_DIR) +
+                                                           "/models/CesiumMan/CesiumMan.gltf",
+                                                       RiggedModelActorOptions(), error);
+    if (!read.actor)
+    {
+        std::cerr << error << "\n";
+        return 1;
+    }
+    osg::ref_ptr<ActorGroup> actors = new ActorGroup;
+    actors->setNumThreads(2);
+    for (int a = 0; a < 12; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(read.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(osg::Vec3d(0.8 * (a % 4), 0.8 * (a / 4), 0.0));
+        if (a % 2) setSkinningPath(*actor, SkinnedMesh::CPU_SKINNING);
+        actors->addChild(actor.get());
+    }
+
+    osgViewer::Viewer viewer;
+    if (!test::startViewer(viewer, model, actors.get())) return 1;
+    // A second camera on the same window: its own cull (on its own thread with CullThreadPerCamera...).
+    osg::ref_ptr<osg::Camera> slave = new osg::Camera;
+    slave->setGraphicsContext(viewer.getCamera()->getGraphicsContext());
+    slave->setViewport(new osg::Viewport(0, 0, 160, 120));
+    slave->setClearMask(GL_DEPTH_BUFFER_BIT);
+    viewer.addSlave(slave.get(), osg::Matrixd::scale(0.5, 0.5, 1.0), osg::Matrixd());
+    viewer.getCamera()->setViewMatrixAsLookAt(osg::Vec3d(1.2, -5.0, 1.5), osg::Vec3d(1.2, 0.8, 0.6),
+                                              osg::Vec3d(0, 0, 1));
+    for (int frame = 0; frame < frames && !viewer.done(); ++frame)
+    {
+        // Between frames, on the main thread (OSG's update thread): an actor changes path.
+        ActorNode* actor = static_cast<ActorNode*>(actors->getChild(frame % actors->getNumChildren()));
+        setSkinningPath(*actor, frame % 3 ? SkinnedMesh::CPU_SKINNING : SkinnedMesh::GPU_SKINNING);
+        viewer.frame();
+    }
+    viewer.stopThreading();
+    const SkinnedMesh& mesh = *read.skinnedMeshes[0];
+    unsigned long long work = 0, updates = 0;
+    for (unsigned a = 0; a < actors->getNumChildren(); ++a)
+    {
+        const SkinnedMesh::Statistics statistics = mesh.getStatistics(*static_cast<ActorNode*>(actors->getChild(a)));
+        work += statistics.cpuSkinnings + statistics.paletteUploads;
+        updates += statistics.matrixUpdates;
+        if (statistics.cpuSkinnings + statistics.paletteUploads > statistics.matrixUpdates)
+        {
+            std::cerr << "actor " << a << " was skinned more often than it was updated\n";
+            return 1;
+        }
+    }
+    std::cout << "skinned_threaded_viewer: " << modelName << ", " << viewer.getFrameStamp()->getFrameNumber()
+              << " frames, " << updates << " matrix updates, " << work << " skinnings or uploads\n";
+    return work > 0 ? 0 : 1;
+}
