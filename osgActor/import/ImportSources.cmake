@@ -9,6 +9,7 @@ set(OSGACTOR_IMPORT_HEADERS
     import/RiggedActorBuilder
     import/RiggedModel
     import/RiggedModelFile
+    import/RiggedMotionFile
     import/UniformClip)
 set(OSGACTOR_IMPORT_SOURCES
     import/ChannelSampling.cpp
@@ -19,4 +20,5 @@ set(OSGACTOR_IMPORT_SOURCES
     import/RiggedActorBuilder.cpp
     import/RiggedModel.cpp
     import/RiggedModelFile.cpp
+    import/RiggedMotionFile.cpp
     import/UniformClip.cpp)
