@@ -15,7 +15,8 @@ function(osgactor_add_plugin name)
     add_library(${target} MODULE ${ARGN})
     set_target_properties(${target} PROPERTIES
         PREFIX ""
-        LIBRARY_OUTPUT_DIRECTORY "${OSGACTOR_PLUGIN_OUTPUT_DIRECTORY}")
+        LIBRARY_OUTPUT_DIRECTORY "${OSGACTOR_PLUGIN_OUTPUT_DIRECTORY}"
+        INSTALL_RPATH "${OSGACTOR_PLUGIN_INSTALL_RPATH}")
     target_link_libraries(${target} PRIVATE osgActor)
     osgactor_set_warnings(${target})
     install(TARGETS ${target} LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}/${OSGACTOR_PLUGIN_DIR_NAME}")

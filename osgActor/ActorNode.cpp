@@ -4,6 +4,7 @@
 
 #include <osg/FrameStamp>
 #include <osg/Notify>
+#include <osgUtil/Optimizer>
 
 #include <algorithm>
 #include <cmath>
@@ -115,6 +116,15 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
         if (controller) _controllers.push_back(controller->cloneController());
     _ikChains = actor._ikChains; // immutable: shared
     rebindSkeletonNodes();
+}
+
+void ActorNode::traverse(osg::NodeVisitor& nv)
+{
+    // The optimizer's visitors are plain node visitors: the update and cull traversals pay one comparison here.
+    if (nv.getVisitorType() == osg::NodeVisitor::NODE_VISITOR &&
+        dynamic_cast<osgUtil::Optimizer::RemoveEmptyNodesVisitor*>(&nv))
+        return;
+    osg::MatrixTransform::traverse(nv);
 }
 
 void ActorNode::setDefinition(ActorDefinitionPtr definition)

@@ -18,6 +18,7 @@ packages=(
     clang libclang-rt-14-dev               # fuzzers (libFuzzer) and sanitizer builds
     gnuplot-nox                            # the benchmark's plot
     doxygen                                # the API reference (scripts/docs.sh)
+    dpkg-dev file                          # cpack -G DEB (dpkg-shlibdeps, file) and its test (dpkg-checkbuilddeps)
 )
 
 missing=()

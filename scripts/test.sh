@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The README's test command: installs what is missing, builds, and runs the whole test suite; then the robustness
-# steps (docs/robustness.md): the long soak test, the ThreadSanitizer runs, the whole suite under AddressSanitizer +
+# The README's test command: installs what is missing, builds, and runs the whole test suite; then the check that the
+# committed tree works alone (scripts/check-clean-clone.sh) and the robustness steps (docs/robustness.md): the long
+# soak test, the ThreadSanitizer runs, the whole suite under AddressSanitizer +
 # UBSan, and the bounded fuzz runs (OSGACTOR_FUZZ_SECONDS per parser; the fuzzers come from the ASan build). Each
 # step says how long it took. OSGACTOR_QUICK=1 stops after the quick suite. Extra arguments go to the quick suite's
 # ctest.
@@ -30,6 +31,11 @@ step tests bash -c 'cd "$1" && shift && ctest --output-on-failure -j "$@"' _ "$b
 if [ "${OSGACTOR_QUICK:-0}" = 1 ]; then
     echo "== test.sh: OSGACTOR_QUICK=1: no soak, sanitizer or fuzz runs"
     exit 0
+fi
+# The repository alone: the committed tree copied where nothing is beside it, built, the demo rendered and the quick
+# suite run there (scripts/check-clean-clone.sh; OSGACTOR_CLEAN_CLONE=0 leaves it out).
+if [ "${OSGACTOR_CLEAN_CLONE:-1}" = 1 ]; then
+    step clean-clone "$root/scripts/check-clean-clone.sh"
 fi
 step soak bash -c 'cd "$1" && ctest --output-on-failure -L long' _ "$build"
 # ThreadSanitizer, then the whole suite under AddressSanitizer + UBSan: a second build of the library and tests,

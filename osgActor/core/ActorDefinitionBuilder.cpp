@@ -237,6 +237,18 @@ BuildResult ActorDefinitionBuilder::build() const
                     static_cast<int>(stray));
     }
 
+    // Depth of each joint, the root's being 1: its parent's plus one, the parent coming first in the order.
+    std::vector<unsigned> depths(_joints.size(), 1);
+    for (unsigned j : order)
+    {
+        if (parents[j] >= 0) depths[j] = depths[static_cast<unsigned>(parents[j])] + 1;
+        if (depths[j] > kMaxJointDepth)
+            return fail("joint " + quoted(_joints[j].name) + " is " + std::to_string(depths[j]) +
+                            " joints deep (its root included); a skeleton may be at most " +
+                            std::to_string(kMaxJointDepth) + " deep",
+                        static_cast<int>(j));
+    }
+
     std::shared_ptr<ActorDefinition> def(new ActorDefinition());
     def->_name = _name;
     std::vector<int> newIndex(_joints.size(), -1);

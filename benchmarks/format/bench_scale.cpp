@@ -1,0 +1,232 @@
+/* Large inputs (issue 25, item 4): actors of 10^3, 10^4 and 10^5 joints, wide (one root, every other joint its child)
+ * and deep (chains as deep as a skeleton may be), through each step of their life: reading the .actor text, building
+ * the ActorNode, loading the file through osgDB's plugin (both), osgUtil::Optimizer as osgviewer and osgconv run it on
+ * what they load, writing the .actor text through the plugin, and the first frame (update and cull); and BVH and AMC
+ * motion of 10^3 to 10^5 frames read. The summary gives, for each, the growth of the time per tenfold size (linear
+ * work: 10) and the peak resident memory per joint or frame (ScaleReport). The inputs are made at run time
+ * (LargeInputs); run with OSG_LIBRARY_PATH=build/lib so that osgDB finds the plugins:
+ *
+ *     OSG_LIBRARY_PATH=build/lib build/bin/osgactor_scale_bench
+ *     OSG_LIBRARY_PATH=build/lib OSGACTOR_SCALE_SIZES=30000,100000,300000 build/bin/osgactor_scale_bench
+ */
+#include "FrameLoop"
+#include "LargeInputs"
+#include "ResidentPeak"
+#include "ScaleReport"
+
+#include <osgActor/ActorNode>
+#include <osgActor/ActorSceneIO>
+#include <osgActor/io/ActorReader>
+#include <osgActor/mocap/AmcReader>
+#include <osgActor/mocap/AsfReader>
+#include <osgActor/mocap/BvhReader>
+
+#include <osg/Group>
+#include <osgDB/FileUtils>
+#include <osgDB/ReadFile>
+#include <osgDB/Registry>
+#include <osgUtil/Optimizer>
+
+#include <benchmark/benchmark.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+
+using namespace bench;
+using namespace osgActor;
+
+namespace {
+
+/** The sizes: 10^3, 10^4 and 10^5, or those OSGACTOR_SCALE_SIZES lists ("1000,100000,300000"), whose growth the
+  * summary gives where a size and ten times it are both there. */
+const std::vector<int64_t>& sizes()
+{
+    static const std::vector<int64_t> list = [] {
+        std::vector<int64_t> values;
+        std::istringstream in(std::getenv("OSGACTOR_SCALE_SIZES") ? std::getenv("OSGACTOR_SCALE_SIZES") : "");
+        for (std::string item; std::getline(in, item, ',');)
+            if (std::atol(item.c_str()) >= 2) values.push_back(std::atol(item.c_str()));
+        return values.empty() ? std::vector<int64_t>{1000, 10000, 100000} : values;
+    }();
+    return list;
+}
+
+/** The .actor text of a shape and size, made once. */
+const std::string& actorText(SkeletonShape shape, unsigned joints)
+{
+    static std::map<std::pair<SkeletonShape, unsigned>, std::string> texts;
+    std::string& text = texts[{shape, joints}];
+    if (text.empty()) text = largeActorText(shape, joints);
+    return text;
+}
+
+/** A file holding actorText(), written once into the temporary folder. */
+std::string actorFile(SkeletonShape shape, unsigned joints)
+{
+    const char* folder = std::getenv("TMPDIR");
+    const std::string path = std::string(folder ? folder : "/tmp") + "/osgactor_scale_" + shapeName(shape) + "_" +
+                             std::to_string(joints) + ".actor";
+    static std::map<std::string, bool> written;
+    if (!written[path]) std::ofstream(path) << actorText(shape, joints);
+    written[path] = true;
+    return path;
+}
+
+ActorReadResult readText(const std::string& text)
+{
+    std::istringstream in(text);
+    return readActor(in, "large.actor");
+}
+
+osg::ref_ptr<ActorNode> loadActor(const std::string& path)
+{
+    return dynamic_cast<ActorNode*>(osgDB::readRefNodeFile(path).get());
+}
+
+/** Times work(setup()) with setup() outside the timing, after one run outside it too that measures the peak resident
+  * memory per item (state.range(0) items) and what the result still holds. work returns what it made, or null (or
+  * false) on failure. */
+template <class Setup, class Work>
+void measure(benchmark::State& state, Setup setup, Work work)
+{
+    const double items = static_cast<double>(state.range(0));
+    {
+        auto input = setup();
+        ResidentPeak peak;
+        auto output = work(input);
+        if (!output)
+        {
+            state.SkipWithError("the operation failed");
+            return;
+        }
+        state.counters[kPeakBytesPerItem] = static_cast<double>(peak.peakBytes()) / items;
+        state.counters[kHeldBytesPerItem] = static_cast<double>(peak.heldBytes()) / items;
+    }
+    for (auto _ : state)
+    {
+        state.PauseTiming();
+        auto input = setup();
+        state.ResumeTiming();
+        auto output = work(input);
+        benchmark::DoNotOptimize(output);
+        state.PauseTiming(); // freeing what it made is not part of the operation
+        output = decltype(output)();
+        input = decltype(input)();
+        state.ResumeTiming();
+    }
+    state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * state.range(0));
+}
+
+void registerActorBenchmarks(SkeletonShape shape)
+{
+    const std::string kind = std::string("/") + shapeName(shape);
+    auto add = [&](const std::string& operation, auto function) {
+        benchmark::RegisterBenchmark((operation + kind).c_str(), function)
+            ->ArgsProduct({sizes()})
+            ->Unit(benchmark::kMillisecond);
+    };
+    auto joints = [](const benchmark::State& state) { return static_cast<unsigned>(state.range(0)); };
+
+    add("read", [=](benchmark::State& state) {
+        const std::string& text = actorText(shape, joints(state));
+        measure(state, [&] { return &text; }, [](const std::string* t) {
+            auto result = std::make_unique<ActorReadResult>(readText(*t));
+            if (!*result) result.reset();
+            return result;
+        });
+    });
+    add("build", [=](benchmark::State& state) {
+        const ActorReadResult read = readText(actorText(shape, joints(state)));
+        measure(state, [&] { return &read; }, [](const ActorReadResult* r) {
+            return createActorNode(r->document, r->definition, "large.actor", nullptr).actor;
+        });
+    });
+    add("load_osgDB", [=](benchmark::State& state) {
+        const std::string path = actorFile(shape, joints(state));
+        measure(state, [&] { return &path; }, [](const std::string* p) { return loadActor(*p); });
+    });
+    add("optimize_osgUtil", [=](benchmark::State& state) {
+        const std::string path = actorFile(shape, joints(state));
+        measure(state,
+                [&] {
+                    osg::ref_ptr<osg::Group> scene = new osg::Group;
+                    scene->addChild(loadActor(path).get());
+                    return scene;
+                },
+                [](const osg::ref_ptr<osg::Group>& scene) {
+                    osgUtil::Optimizer().optimize(scene.get());
+                    return scene;
+                });
+    });
+    add("write_osgDB", [=](benchmark::State& state) {
+        const std::string path = actorFile(shape, joints(state));
+        osgDB::ReaderWriter* writer = osgDB::Registry::instance()->getReaderWriterForExtension("actor");
+        measure(state, [&] { return loadActor(path); },
+                [writer](const osg::ref_ptr<ActorNode>& actor) {
+                    auto out = std::make_unique<std::ostringstream>();
+                    if (!actor || !writer->writeNode(*actor, *out).success()) out.reset();
+                    return out;
+                });
+    });
+    add("first_frame", [=](benchmark::State& state) {
+        const std::string path = actorFile(shape, joints(state));
+        measure(state, [&] { return loadActor(path); }, [](const osg::ref_ptr<ActorNode>& actor) {
+            auto loop = std::make_unique<FrameLoop>(actor.get(), true);
+            loop->frame();
+            return loop;
+        });
+    });
+}
+
+void registerMocapBenchmarks()
+{
+    auto frames = [](const benchmark::State& state) { return static_cast<unsigned>(state.range(0)); };
+    benchmark::RegisterBenchmark("read_bvh/frames", [=](benchmark::State& state) {
+        const std::string text = longBvhText(frames(state));
+        measure(state, [&] { return &text; }, [](const std::string* t) {
+            std::istringstream in(*t);
+            auto result = std::make_unique<MocapImport>(readBvh(in, "long.bvh"));
+            if (!*result) result.reset();
+            return result;
+        });
+    })->ArgsProduct({sizes()})->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("read_amc/frames", [=](benchmark::State& state) {
+        std::istringstream asf(amcSkeletonText());
+        const AsfImport skeleton = readAsf(asf, "11.asf");
+        const std::string text = longAmcText(frames(state));
+        measure(state, [&] { return &text; }, [&](const std::string* t) {
+            std::istringstream in(*t);
+            auto result = std::make_unique<MocapImport>(readAmc(in, "long.amc", skeleton));
+            if (!*result) result.reset();
+            return result;
+        });
+    })->ArgsProduct({sizes()})->Unit(benchmark::kMillisecond);
+}
+
+} // namespace
+
+int main(int argc, char** argv)
+{
+    benchmark::Initialize(&argc, argv);
+    if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+    osgDB::Registry* registry = osgDB::Registry::instance();
+    if (osgDB::findLibraryFile(registry->createLibraryNameForExtension("actor")).empty())
+    {
+        std::fprintf(stderr, "osgactor_scale_bench: osgDB finds no osgdb_actor plugin: run with "
+                             "OSG_LIBRARY_PATH=build/lib\n");
+        return 1;
+    }
+    registerActorBenchmarks(SkeletonShape::Wide);
+    registerActorBenchmarks(SkeletonShape::Deep);
+    registerMocapBenchmarks();
+    ScaleReport report;
+    benchmark::RunSpecifiedBenchmarks(&report);
+    report.printSummary();
+    benchmark::Shutdown();
+    return 0;
+}
