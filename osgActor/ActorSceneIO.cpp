@@ -5,7 +5,7 @@
 #include <osgActor/RiggedModelActor>
 #include <osgActor/io/ActorSyntax>
 #include <osgActor/io/ClipRetarget>
-#include <osgActor/mocap/MotionFile>
+#include <osgActor/import/RiggedMotionFile>
 #include <osgActor/mocap/TrajectoryCsv>
 
 #include <osg/Notify>
@@ -183,7 +183,7 @@ bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinitionPtr& a
                 findNamedFile(clip.fileOptions.skeletonFile, "skeleton file", options, prefix, error);
             if (motionOptions.skeletonFile.empty()) return false;
         }
-        const MocapImport imported = readMotionFile(path, motionOptions);
+        const MocapImport imported = readAnyMotionFile(path, motionOptions);
         if (!imported)
         {
             error = prefix + imported.error;

@@ -5,6 +5,7 @@
 #include "RiggedModelDump"
 
 #include <osgActor/import/RiggedModelFile>
+#include <osgActor/import/RiggedMotionFile>
 #include <osgActor/io/ActorDocument>
 #include <osgActor/io/ActorWriter>
 #include <osgActor/mocap/AmcReader>
@@ -33,6 +34,7 @@ const char* const kUsage =
     "usage: osgactorconv [options] INPUT.bvh\n"
     "       osgactorconv [options] INPUT.asf [MOTION.amc]\n"
     "       osgactorconv --dump-positions|--dump-skinned FILE [--clip NAME] [--fps N] RIGGED\n"
+    "       osgactorconv --retarget TARGET.actor [--clip NAME] [-o OUT.actor] RIGGED\n"
     "         RIGGED: .gltf, .glb; .dae, .fbx, .x (Assimp); .osgt, .osgb (osgAnimation scenes)\n"
     "\n"
     "Reads motion capture into an osgActor actor and clip, then writes it out or dumps joint positions.\n"
@@ -48,7 +50,7 @@ const char* const kUsage =
     "  --amc FILE         the AMC motion of an ASF skeleton (or give it after the ASF)\n"
     "  --fps N            frame rate of AMC motion (default 120, CMU's); RIGGED: rows at times k / N from the\n"
     "                     clip's first key to its last inclusive (default 30), joints named by node (or node<i>)\n"
-    "  --clip NAME        RIGGED: the animation to dump (default the first)\n"
+    "  --clip NAME        RIGGED: the animation to dump or retarget (default the first)\n"
     "  --dump-skinned FILE RIGGED: write CSV 'frame,mesh,vertex,x,y,z' of the CPU-skinned primitives (mesh: index\n"
     "                     among them in the file's order: glTF's meshes[] then primitives[], Assimp's meshes)\n"
     "                     at the same times, in the file's axes and units\n"
@@ -187,7 +189,6 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
     {
         if (args.dumpPositions || args.linkMotion || !args.dumpSkinned.empty())
             return "--retarget writes a .actor file: no --dump-positions, --dump-skinned or --link-motion";
-        if (isRiggedModelFile(args.inputs[0])) return "--retarget reads motion capture (.bvh, .asf with .amc)";
         if (!args.output.empty() && !endsWith(args.output, ".actor")) return "--retarget writes a .actor file";
         args.retarget.outputFile = args.output;
         return std::string();
@@ -239,6 +240,15 @@ MocapImport readInput(const Arguments& args, bool dump, bool toActor)
             return failed;
         }
         return readAmcFile(args.amc, skeleton);
+    }
+    if (isRiggedModelFile(input))
+    {
+        // A glTF character's animation as the motion (its own units, Z up), for --retarget.
+        MotionFileOptions options;
+        options.animation = args.clip;
+        options.fileUpAxis = args.up;
+        options.scale = args.scale;
+        return readRiggedMotionFile(input, options);
     }
     MocapImport failed;
     failed.error = input + ": unknown input format (expected .bvh or .asf)";
@@ -311,7 +321,8 @@ int main(int argc, char** argv)
         return 2;
     }
 
-    if (isRiggedModelFile(args.inputs[0]))
+    const bool retargeting = !args.retarget.targetFile.empty();
+    if (isRiggedModelFile(args.inputs[0]) && !retargeting)
     {
         if (!args.dumpPositions && !args.output.empty())
         {
@@ -334,7 +345,6 @@ int main(int argc, char** argv)
         return runRiggedModelDump(request, std::cerr);
     }
 
-    const bool retargeting = !args.retarget.targetFile.empty();
     const bool toActor = !args.dumpPositions && (retargeting || endsWith(args.output, ".actor"));
     const MocapImport imported = readInput(args, args.dumpPositions, toActor);
     if (!imported)

@@ -11,6 +11,7 @@ set(OSGACTOR_IMPORT_HEADERS
     import/RiggedActorBuilder
     import/RiggedModel
     import/RiggedModelFile
+    import/RiggedMotionFile
     import/UniformClip)
 set(OSGACTOR_IMPORT_SOURCES
     import/AssimpAnimations.cpp
@@ -28,4 +29,5 @@ set(OSGACTOR_IMPORT_SOURCES
     import/RiggedActorBuilder.cpp
     import/RiggedModel.cpp
     import/RiggedModelFile.cpp
+    import/RiggedMotionFile.cpp
     import/UniformClip.cpp)

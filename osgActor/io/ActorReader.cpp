@@ -711,7 +711,8 @@ private:
         return true;
     }
 
-    /** "file "walk.bvh" [{ options }]" or "file "walk.amc" { skeleton "walk.asf" [options] }": where a clip's
+    /** "file "walk.bvh" [{ options }]", "file "walk.amc" { skeleton "walk.asf" [options] }" or
+      * "file "hero.gltf" [{ animation "walk"; up y|z }]" (a rigged model's animation, .gltf or .glb): where a clip's
       * motion is, and how to read it (MotionFileOptions). An option that does nothing for the file's format is an
       * error, so that a file never seems to say more than it does. */
     bool readClipFile(const SyntaxStatement& s, ClipDocument& clip)
@@ -720,8 +721,10 @@ private:
         clip.file = s.arguments.front().text;
         const std::string extension = lowerExtensionOf(clip.file);
         const bool amc = extension == ".amc";
-        if (!amc && extension != ".bvh")
-            return fail(s.line, "'" + clip.file + "': a clip's file must be motion capture, BVH (.bvh) or AMC (.amc)");
+        const bool rigged = extension == ".gltf" || extension == ".glb";
+        if (!amc && !rigged && extension != ".bvh")
+            return fail(s.line, "'" + clip.file + "': a clip's file must be motion capture, BVH (.bvh) or AMC (.amc), "
+                                "or a rigged model's animation (.gltf, .glb)");
         MotionFileOptions& options = clip.fileOptions;
         std::set<std::string> seen;
         for (const SyntaxStatement& o : s.children)
@@ -729,7 +732,13 @@ private:
             const std::string& k = o.keyword;
             const bool bvhOnly = k == "drop_first_frame" || k == "absolute_root_position";
             const bool amcOnly = k == "skeleton" || k == "frame_rate";
-            if ((bvhOnly && amc) || (amcOnly && !amc))
+            const bool riggedOnly = k == "animation";
+            if (rigged && !riggedOnly && k != "up")
+                return fail(o.line, "'" + k + "' is not for a rigged model's animation, and '" + clip.file + "' is one");
+            if (riggedOnly && !rigged)
+                return fail(o.line, "'" + k + "' is for rigged model files (.gltf, .glb), and '" + clip.file + "' is " +
+                                        (amc ? "AMC" : "BVH"));
+            if ((bvhOnly && amc) || (amcOnly && !amc && !rigged))
                 return fail(o.line, "'" + k + "' is for " + (amc ? "BVH" : "AMC") + " files, and '" + clip.file +
                                         "' is " + (amc ? "AMC" : "BVH"));
             bool ok = true;
@@ -738,6 +747,11 @@ private:
             else if (k == "drop_first_frame") ok = flag(seen, o, options.dropFirstFrame);
             else if (k == "absolute_root_position") ok = flag(seen, o, options.absoluteRootPosition);
             else if (k == "frame_rate") ok = once(seen, o) && positive(o, options.amcFrameRate);
+            else if (k == "animation")
+            {
+                ok = once(seen, o) && expectNoBlock(o) && expectArguments(o, 1);
+                if (ok) options.animation = o.arguments.front().text;
+            }
             else if (k == "skeleton")
             {
                 ok = once(seen, o) && expectNoBlock(o) && expectArguments(o, 1);

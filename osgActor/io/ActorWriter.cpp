@@ -105,6 +105,8 @@ SyntaxStatement clipFileStatement(const std::string& file, const MotionFileOptio
     SyntaxStatement s = statement("file", {SyntaxArgument{file, true, 0}});
     if (!options.skeletonFile.empty())
         s.children.push_back(statement("skeleton", {SyntaxArgument{options.skeletonFile, true, 0}}));
+    if (!options.animation.empty())
+        s.children.push_back(statement("animation", {SyntaxArgument{options.animation, true, 0}}));
     if (options.scale != defaults.scale) s.children.push_back(statement("scale", {numberArgument(options.scale)}));
     if (options.fileUpAxis != defaults.fileUpAxis)
         s.children.push_back(statement("up", {word(upAxisName(options.fileUpAxis))}));

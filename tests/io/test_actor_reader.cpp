@@ -234,7 +234,8 @@ TEST(ActorReader, RefusesBadClips)
     EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"walk.bvh\"\n  channel b.rz { key 0 1 }\n }\n}\n"),
               "t.actor:7: clip 'w' reads its motion from a file, so it has no channels or frames of its own");
     EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"walk.fbx\"\n }\n}\n"),
-              "t.actor:8: 'walk.fbx': a clip's file must be motion capture, BVH (.bvh) or AMC (.amc)");
+              "t.actor:8: 'walk.fbx': a clip's file must be motion capture, BVH (.bvh) or AMC (.amc), or a rigged "
+              "model's animation (.gltf, .glb)");
     EXPECT_EQ(readError(kClipActor + " clip w {\n  file \"walk.amc\"\n }\n}\n"),
               "t.actor:8: 'walk.amc': an AMC motion needs its ASF skeleton: 'skeleton \"x.asf\"' in a block after the "
               "file name");
@@ -286,6 +287,35 @@ TEST(ActorReader, RefusesClipFileOptionsThatDoNotApplyOrAreBroken)
     EXPECT_EQ(fileBlock("walk.bvh", "up x"), "t.actor:9: 'x' is not an up axis (y, z)");
     EXPECT_EQ(fileBlock("walk.bvh", "loop"), "t.actor:9: unknown keyword 'loop' in a clip's file block");
     EXPECT_EQ(fileBlock("walk.bvh", "drop_first_frame 1"), "t.actor:9: 'drop_first_frame' takes 0 values, not 1");
+    EXPECT_EQ(fileBlock("walk.bvh", "animation \"run\""),
+              "t.actor:9: 'animation' is for rigged model files (.gltf, .glb), and 'walk.bvh' is BVH");
+    EXPECT_EQ(fileBlock("hero.gltf", "scale 2"),
+              "t.actor:9: 'scale' is not for a rigged model's animation, and 'hero.gltf' is one");
+    EXPECT_EQ(fileBlock("hero.glb", "skeleton \"walk.asf\""),
+              "t.actor:9: 'skeleton' is not for a rigged model's animation, and 'hero.glb' is one");
+    EXPECT_EQ(fileBlock("hero.gltf", "animation"), "t.actor:9: 'animation' takes 1 value, not 0");
+}
+
+TEST(ActorReader, ReadsARiggedModelsAnimationAsAClipFileAndWritesItBack)
+{
+    const ActorReadResult result =
+        read(kClipActor + " clip walk {\n  file \"hero.gltf\" {\n   animation \"Walk Cycle\"\n   up z\n  }\n }\n}\n");
+    ASSERT_TRUE(result) << result.error;
+    const MotionFileOptions& options = result.document.clips.at(0).fileOptions;
+    EXPECT_EQ(options.name, "walk");
+    EXPECT_EQ(options.animation, "Walk Cycle");
+    EXPECT_EQ(options.fileUpAxis, UpAxis::Z);
+
+    std::ostringstream written;
+    writeActor(written, result.document);
+    EXPECT_NE(written.str().find("    clip walk {\n        file \"hero.gltf\" {\n            animation \"Walk Cycle\"\n"
+                                 "            up z\n        }\n    }"),
+              std::string::npos)
+        << written.str();
+    const ActorReadResult again = read(written.str());
+    ASSERT_TRUE(again) << again.error;
+    EXPECT_EQ(again.document.clips.at(0).fileOptions.animation, "Walk Cycle");
+    EXPECT_EQ(again.document.clips.at(0).fileOptions.fileUpAxis, UpAxis::Z);
 }
 
 TEST(ActorReader, ReadsClipFileOptionsAndWritesBackThoseThatAreNotDefaults)

@@ -192,6 +192,43 @@ TEST(ClipRetargetStatement, RetargetsTheCharlestonOntoTheHumanoidWhenTheActorIsM
                                 ": clip 'dance': retargeting: no jointmap section named 'studio'");
 }
 
+TEST(ClipRetargetStatement, RetargetsAGltfCharactersWalkOntoTheHumanoidWhenTheActorIsMade)
+{
+    // A rigged model's animation as the motion: Cesium Man's walk (glTF), his skeleton mapped by the topology guess.
+    const std::string gltf = std::string(OSGACTOR_TEST_DATA_DIR) + "/models/CesiumMan/CesiumMan.gltf";
+    const std::string text =
+        humanoidWith("    clip walk {\n        play loop\n        file \"" + gltf + "\"\n        retarget auto\n    }");
+    const ActorReadResult read = readText(text);
+    ASSERT_TRUE(read) << read.error;
+    const ActorNodeResult made = createActorNode(read.document, read.definition, "h.actor", nullptr);
+    ASSERT_TRUE(made.actor) << made.error;
+    const ClipPtr walk = made.actor->getClipLibrary()->getClip("walk");
+    ASSERT_TRUE(walk);
+    EXPECT_TRUE(walk->isUniform());
+    EXPECT_EQ(walk->getNumFrames(), 61u); // his 2 s keyed clip at 30 frames per second
+    EXPECT_EQ(walk->getNumChannels(), read.definition->getNumDofs());
+    // He swings his legs: the humanoid's hips do too, forwards and back.
+    const unsigned hip = static_cast<unsigned>(walk->findChannel("l_hip.rx"));
+    double least = 0.0, most = 0.0;
+    for (unsigned f = 0; f < walk->getNumFrames(); ++f)
+    {
+        least = std::min(least, walk->getFrame(f)[hip]);
+        most = std::max(most, walk->getFrame(f)[hip]);
+    }
+    EXPECT_GT(most - least, degrees(30));
+
+    // Without the retarget statement, his skeleton is not the humanoid's: an error naming the clip's line.
+    const std::string unretargeted = humanoidWith("    clip walk {\n        file \"" + gltf + "\"\n    }");
+    const ActorReadResult plain = readText(unretargeted);
+    ASSERT_TRUE(plain) << plain.error;
+    const ActorNodeResult refused = createActorNode(plain.document, plain.definition, "h.actor", nullptr);
+    EXPECT_FALSE(refused.actor);
+    EXPECT_NE(refused.error.find("h.actor:" + std::to_string(lineOf(unretargeted, "clip walk")) + ": clip 'walk': '"),
+              std::string::npos)
+        << refused.error;
+    EXPECT_NE(refused.error.find("does not fit the actor"), std::string::npos) << refused.error;
+}
+
 TEST(ActorRetarget, AddsARetargetedClipToAnActorWithItsOwnMap)
 {
     // An actor whose joint names no built-in map knows, with a jointmap section: the map goes with the actor.

@@ -1,11 +1,13 @@
 // An imported glTF character as the target: Cesium Man (data/models/CesiumMan), whose joint names no built-in map
-// knows, mapped by the topology guess, with CMU's 01_01.bvh retargeted onto it.
+// knows, mapped by the topology guess, with CMU's 01_01.bvh retargeted onto it; and as the source: its walk, read as
+// motion (readRiggedMotionFile), retargeted onto CMU's skeleton.
 #include "RetargetTestUtil"
 
 #include <osgActor/core/retarget/JointMapGuess>
 #include <osgActor/core/retarget/RetargetMeasures>
 #include <osgActor/import/RiggedActorBuilder>
 #include <osgActor/import/RiggedModelFile>
+#include <osgActor/import/RiggedMotionFile>
 
 #include <map>
 
@@ -13,6 +15,8 @@ using namespace osgActor;
 using namespace osgActor::test;
 
 namespace {
+
+std::string cesiumManFile() { return std::string(OSGACTOR_TEST_DATA_DIR) + "/models/CesiumMan/CesiumMan.gltf"; }
 
 /** Cesium Man as an actor standing Z up, in metres (its root scale in the lengths). */
 ActorDefinitionPtr cesiumMan()
@@ -72,4 +76,79 @@ TEST(RetargetOntoGltf, CmuWalksOntoCesiumManKeepFeetPlantedAndEndsInPlace)
         EXPECT_LE(end.largestError, 0.01 * measures.targetHeight) << end.limb;
     // Every joint of Cesium Man slides (tx, ty, tz): only the root's move, so its bones keep their lengths.
     EXPECT_LE(measures.largestLengthChange, 1e-9);
+}
+
+TEST(RetargetFromGltf, ReadingAModelAsMotionRefusesWhatItCannotRead)
+{
+    MotionFileOptions options;
+    const MocapImport notAModel = readRiggedMotionFile(repositoryMocap("bvh/12_03.bvh"), options);
+    EXPECT_FALSE(notAModel);
+    EXPECT_NE(notAModel.error.find("12_03.bvh: not a rigged model file"), std::string::npos) << notAModel.error;
+
+    options.animation = "run";
+    const MocapImport unknown = readRiggedMotionFile(cesiumManFile(), options);
+    EXPECT_FALSE(unknown);
+    EXPECT_FALSE(unknown.clip);
+    EXPECT_EQ(unknown.error, cesiumManFile() + ": no animation 'run' (the file has 'animation0')");
+
+    options.animation.clear();
+    options.scale = 0.01;
+    const MocapImport scaled = readRiggedMotionFile(cesiumManFile(), options);
+    EXPECT_FALSE(scaled);
+    EXPECT_NE(scaled.error.find("scale 1"), std::string::npos) << scaled.error;
+}
+
+TEST(RetargetFromGltf, CesiumMansWalkReadAsMotionIsTheImportedActorsFirstClipNamedAsAsked)
+{
+    MotionFileOptions named;
+    named.name = "walk";
+    named.animation = "animation0";
+    const MocapImport renamed = readAnyMotionFile(cesiumManFile(), named);
+    ASSERT_TRUE(renamed) << renamed.error;
+    EXPECT_EQ(renamed.clip->getName(), "walk");
+
+    const MocapImport walk = readAnyMotionFile(cesiumManFile(), MotionFileOptions());
+    ASSERT_TRUE(walk) << walk.error;
+    ASSERT_TRUE(walk.clip);
+    const ActorDefinitionPtr cesium = cesiumMan();
+    ASSERT_TRUE(cesium);
+    EXPECT_EQ(walk.clip->getName(), "animation0");
+    EXPECT_EQ(walk.definition->getNumJoints(), cesium->getNumJoints());
+    EXPECT_EQ(walk.clip->getNumChannels(), cesium->getNumDofs());
+    // Standing Z up in metres: the head well above the feet, about Cesium Man's 1.2 m of joints.
+    const std::vector<glm::dmat4> models = modelsAt(walk.definition, *walk.clip, 0);
+    const unsigned head = static_cast<unsigned>(walk.definition->findJoint("Skeleton_neck_joint_2"));
+    const unsigned ankle = static_cast<unsigned>(walk.definition->findJoint("leg_joint_L_3"));
+    EXPECT_GT(models[head][3].z - models[ankle][3].z, 0.8);
+    EXPECT_LT(models[head][3].z - models[ankle][3].z, 1.3);
+}
+
+TEST(RetargetFromGltf, CesiumMansWalkOntoCmusSkeletonKeepsBonesAndPutsFeetAndHandsWhereHisAre)
+{
+    const MocapImport walk = readRiggedMotionFile(cesiumManFile(), MotionFileOptions());
+    ASSERT_TRUE(walk) << walk.error;
+    const MocapImport cmu = readBvhScaled(repositoryMocap("bvh/12_03.bvh"), 0.056444);
+    ASSERT_TRUE(cmu) << cmu.error;
+    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(cmu.definition));
+    ASSERT_TRUE(rig);
+    RetargetClipOptions options;
+    options.ik = true;
+    const RetargetClipResult followed = retargetClip(*rig, *walk.clip, options);
+    ASSERT_TRUE(followed) << followed.error;
+    EXPECT_EQ(followed.numFrames, 61u); // 2 s at 30 frames per second, both ends
+    const RetargetMeasures measures = measureRetargetedClip(*rig, *walk.clip, followed);
+    EXPECT_LE(measures.largestLengthChange, 1e-9);
+    ASSERT_EQ(measures.ends.size(), 4u);
+    for (const RetargetMeasures::End& end : measures.ends)
+        EXPECT_LE(end.largestError, 0.01 * measures.targetHeight) << end.limb;
+    // He walks on the spot, so his feet slide back under him while down: no contact at the default speed. Found by
+    // height alone (any speed), his steps are planted on the target, each still to within 1 cm on a 1.75 m body.
+    EXPECT_TRUE(measures.contacts.empty());
+    options.contacts.speed = 1e9;
+    const RetargetClipResult planted = retargetClip(*rig, *walk.clip, options);
+    ASSERT_TRUE(planted) << planted.error;
+    const RetargetMeasures plantedMeasures = measureRetargetedClip(*rig, *walk.clip, planted);
+    ASSERT_GE(plantedMeasures.contacts.size(), 2u);
+    EXPECT_LE(plantedMeasures.largestSlip * 1.75 / plantedMeasures.targetHeight, 0.01);
+    EXPECT_LE(plantedMeasures.largestLengthChange, 1e-9);
 }

@@ -70,58 +70,46 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kTwoPi = 2.0 * kPi;
 
-/** The cosine and sine of the angle of the rotation about axis nearest m in the least-squares sense (the angle that
-  * maximises the trace of R_axis(angle)^T m): from the 2x2 block of m the axis rotation mixes, sin from its skew part
-  * and cos from its diagonal (m[column][row]). False where the block has no rotation in it. */
-bool nearestCosSinAbout(const glm::dmat3& m, unsigned axis, double& c, double& s)
-{
-    const unsigned i = (axis + 1u) % 3u, j = (axis + 2u) % 3u;
-    s = m[i][j] - m[j][i];
-    c = m[i][i] + m[j][j];
-    const double r = std::sqrt(c * c + s * s);
-    if (!(r > 1e-300)) return false;
-    const double inverse = 1.0 / r;
-    c *= inverse;
-    s *= inverse;
-    return true;
-}
-
 double nearestAngleAbout(const glm::dmat3& m, unsigned axis)
 {
     const unsigned i = (axis + 1u) % 3u, j = (axis + 2u) % 3u;
     return arctangent2(m[i][j] - m[j][i], m[i][i] + m[j][j]);
 }
 
-/** R_axis(angle)^T * m from the angle's cosine and sine: the transpose mixes two rows. */
-glm::dmat3 preRotateTransposed(const glm::dmat3& m, unsigned axis, double c, double s)
-{
-    const unsigned i = (axis + 1u) % 3u, j = (axis + 2u) % 3u;
-    glm::dmat3 r = m;
-    for (unsigned col = 0; col < 3; ++col)
-    {
-        r[col][i] = c * m[col][i] + s * m[col][j];
-        r[col][j] = -s * m[col][i] + c * m[col][j];
-    }
-    return r;
-}
-
-/** The two angles (product order a0, a1) whose rotation R_a0 * R_a1 is nearest target: rounds of coordinate descent,
-  * each half a closed-form step on cosines and sines (no trigonometric call), from the angle of a0 alone. */
+/** The two angles (product order a0, a1, distinct axes) whose rotation R_a0 * R_a1 is nearest target (a rotation) in
+  * least squares, in closed form. With q = q_a0(angle0) q_a1(angle1) and m target's quaternion (w, x, y, z),
+  * trace(R^T target) = 4 (q . m)^2 - 1, and q . m = u^T B v with u = (cos, sin) of angle0 / 2, v the same of
+  * angle1 / 2 and B = [[w, m_a1], [m_a0, sign m_a2]] (sign: e_a0 e_a1 = sign e_a2): the best u and v are B's first
+  * singular vectors. Every quantity used is a product of two of m's components, each linear in target's elements,
+  * so neither the quaternion nor a trigonometric function is needed before the final arctangents. */
 void nearestTwoAxes(const glm::dmat3& target, unsigned a0, unsigned a1, double angles[2])
 {
-    double c0 = 1.0, s0 = 0.0, c1 = 1.0, s1 = 0.0;
-    nearestCosSinAbout(target, a0, c0, s0);
-    for (unsigned round = 0; round < 6; ++round)
-    {
-        // a1's best under a0, then a0's best under a1, until a0 stops moving.
-        if (!nearestCosSinAbout(preRotateTransposed(target, a0, c0, s0), a1, c1, s1)) break;
-        glm::dmat3 m = target;
-        postRotateAxis(m, a1, c1, -s1); // target * R_a1^T
-        const double previousC = c0, previousS = s0;
-        if (!nearestCosSinAbout(m, a0, c0, s0)) break;
-        if (std::abs(c0 - previousC) + std::abs(s0 - previousS) < 1e-10) break;
-    }
-    angles[0] = arctangent2(s0, c0);
+    const unsigned a2 = 3u - a0 - a1;
+    const double sign = a1 == (a0 + 1u) % 3u ? 1.0 : -1.0;
+    const auto at = [&](unsigned row, unsigned column) { return target[column][row]; };
+    const double trace = at(0, 0) + at(1, 1) + at(2, 2);
+    const auto squared = [&](unsigned i) { return 0.25 * (1.0 + 2.0 * at(i, i) - trace); }; // m_i^2
+    const auto timesW = [&](unsigned i) {                                                    // w m_i
+        const unsigned j = (i + 1u) % 3u, k = (i + 2u) % 3u;
+        return 0.25 * (at(k, j) - at(j, k));
+    };
+    const auto product = [&](unsigned i, unsigned j) { return 0.25 * (at(i, j) + at(j, i)); }; // m_i m_j
+    // B's elements a = w, b = m_a1, c = m_a0, d = sign m_a2, multiplied in pairs.
+    const double aa = 0.25 * (1.0 + trace), bb = squared(a1), cc = squared(a0), dd = squared(a2);
+    const double ab = timesW(a1), ac = timesW(a0), ad = sign * timesW(a2);
+    const double bc = product(a0, a1), bd = sign * product(a1, a2), cd = sign * product(a0, a2);
+    // v is the first eigenvector of B^T B = [[aa + cc, ab + cd], [ab + cd, bb + dd]], at half of angle1; where both
+    // eigenvalues are equal every v does, and angle1 = 0 is taken (angle0 is then a0's alone).
+    const double half = 0.5 * ((aa + cc) - (bb + dd)), offDiagonal = ab + cd;
+    const double radius = std::sqrt(half * half + offDiagonal * offDiagonal);
+    const double c1 = radius > 1e-15 ? half / radius : 1.0, s1 = radius > 1e-15 ? offDiagonal / radius : 0.0;
+    // u = B v, at half of angle0: its cosine and sine go as u0^2 - u1^2 and 2 u0 u1, from v's squares
+    // (cos^2 = (1 + c1) / 2, sin^2 = (1 - c1) / 2, 2 cos sin = s1).
+    const double cosSquared = 0.5 * (1.0 + c1), sinSquared = 0.5 * (1.0 - c1);
+    const double u0u0 = aa * cosSquared + ab * s1 + bb * sinSquared;
+    const double u1u1 = cc * cosSquared + cd * s1 + dd * sinSquared;
+    const double u0u1 = ac * cosSquared + 0.5 * (ad + bc) * s1 + bd * sinSquared;
+    angles[0] = arctangent2(2.0 * u0u1, u0u0 - u1u1);
     angles[1] = arctangent2(s1, c1);
 }
 

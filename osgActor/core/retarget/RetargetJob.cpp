@@ -1,37 +1,71 @@
+// One frame of retargeting, in four passes over flat arrays (docs/retargeting.md, "How it works"):
+// 1. the source's forward kinematics (the core's LocalMatricesJob and LocalToModelJob, batched as for any actor);
+// 2. per target joint, parents first, the model rotation its plan asks for (desired), as if every parent took its own
+//    exactly: a product or two from the rig's constants;
+// 3. the Euler fits of the joints with three rotations, four joints to a vector (EulerLanes.h), each from its local
+//    rotation under its parent's desired rotation; a lane that needs more (a limit, gimbal lock, the second solution)
+//    is left to the scalar fit;
+// 4. parents first, each joint's DOFs and actual model matrix: the lanes' angles where its parent took its desired
+//    rotation, else the scalar fit under the parent's actual rotation, so an inexact parent's error does not spread.
+// Rotations are handled as columns of four doubles (RotationColumns.h); the run is built for x86-64-v3 and the
+// baseline (HotPath.h).
 #include <osgActor/core/retarget/RetargetJob>
 #include <osgActor/core/retarget/JointRotationFit>
-#include <osgActor/core/detail/SinCos>
+#include <osgActor/core/LocalMatricesJob>
+#include <osgActor/core/LocalToModelJob>
 #include <osgActor/core/ik/IkKinematics>
 
 #include "../detail/HotPath.h"
+#include "../detail/SinCosColumn.h"
+#include "EulerLanes.h"
+#include "RotationColumns.h"
 
 #include <glm/gtc/quaternion.hpp>
 
 #include <cmath>
+#include <cstring>
 
 namespace osgActor {
 
+using namespace retarget_detail;
+
 void RetargetWorkspace::resize(const RetargetRig& rig)
 {
-    const ActorDefinition& source = *rig.getSourceDefinition();
-    const ActorDefinition& target = *rig.getTargetDefinition();
-    sines.assign(source.getNumDofs(), 0.0);
-    cosines.assign(source.getNumDofs(), 1.0);
-    sourceRotations.assign(source.getNumJoints(), glm::dmat3(1.0));
-    sourcePositions.assign(source.getNumJoints(), glm::dvec3(0.0));
-    targetRotations.assign(target.getNumJoints(), glm::dmat3(1.0));
-    targetPositions.assign(target.getNumJoints(), glm::dvec3(0.0));
-    targetExact.assign(target.getNumJoints(), 0);
+    const unsigned numSource = rig.getSourceDefinition()->getNumJoints();
+    const unsigned numTarget = rig.getTargetDefinition()->getNumJoints();
+    sourceModels.assign(numSource, glm::dmat4(1.0));
+    sourceLocals.assign(numSource, glm::dmat4(1.0));
+    targetModels.assign(numTarget, glm::dmat4(1.0));
+    sourceRotations.assign(numSource, glm::dmat3(1.0));
+    sourcePositions.assign(numSource, glm::dvec3(0.0));
+    targetRotations.assign(numTarget, glm::dmat3(1.0));
+    targetPositions.assign(numTarget, glm::dvec3(0.0));
+    targetExact.assign(numTarget, 0);
+    scratch.sourceLocalPointers.assign(numSource, nullptr);
+    scratch.sourceDirty.assign(numSource, 1);
+    scratch.sourceLocalChanged.assign(numSource, 0);
+    scratch.sourceModelStale.assign(numSource, 1);
+    scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
+    scratch.local.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
+    scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
+    scratch.laneFitted.assign(numTarget, 0);
+    scratch.asDesired.assign(numTarget, 0);
 }
 
 bool RetargetWorkspace::fits(const RetargetRig& rig) const
 {
-    const ActorDefinition& source = *rig.getSourceDefinition();
-    const ActorDefinition& target = *rig.getTargetDefinition();
-    return sines.size() == source.getNumDofs() && cosines.size() == source.getNumDofs() &&
-           sourceRotations.size() == source.getNumJoints() && sourcePositions.size() == source.getNumJoints() &&
-           targetRotations.size() == target.getNumJoints() && targetPositions.size() == target.getNumJoints() &&
-           targetExact.size() == target.getNumJoints();
+    const std::size_t numSource = rig.getSourceDefinition()->getNumJoints();
+    const std::size_t numTarget = rig.getTargetDefinition()->getNumJoints();
+    const Scratch& s = scratch;
+    return sourceModels.size() == numSource && sourceLocals.size() == numSource &&
+           sourceRotations.size() == numSource && sourcePositions.size() == numSource &&
+           targetRotations.size() == numTarget && targetPositions.size() == numTarget &&
+           s.sourceLocalPointers.size() == numSource && s.sourceDirty.size() == numSource &&
+           s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
+           targetModels.size() == numTarget &&
+           targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
+           s.local.size() == numTarget * kRotationDoubles && s.laneAngles.size() == numTarget * 3 &&
+           s.laneFitted.size() == numTarget && s.asDesired.size() == numTarget;
 }
 
 bool RetargetJob::validate() const
@@ -39,24 +73,44 @@ bool RetargetJob::validate() const
     if (!rig || !workspace || !workspace->fits(*rig)) return false;
     if (sourceDofs.size() != rig->getSourceDefinition()->getNumDofs()) return false;
     if (targetDofs.size() != rig->getTargetDefinition()->getNumDofs()) return false;
-    for (double value : sourceDofs)
-        if (!(std::abs(value) <= kMaxDofMagnitude)) return false; // also refuses NaN
-    for (double value : targetDofs)
-        if (!std::isfinite(value)) return false;
-    return true;
+    // Without a branch per value, so the loops vectorize.
+    bool valid = true;
+    for (double value : sourceDofs) valid &= std::abs(value) <= kMaxDofMagnitude; // also refuses NaN
+    for (double value : targetDofs) valid &= std::abs(value) <= std::numeric_limits<double>::max();
+    return valid;
 }
 
 namespace {
 
-/** The point a joint's origin is at in its parent's frame (local space): its offset, moved by its translation DOFs
-  * before or after its rotation (localRotation: offset rotation times the DOFs' rotation). */
-glm::dvec3 jointOrigin(const JointKinematics& k, const glm::dmat3& offsetRotation, const glm::dmat3& localRotation,
-                       const double* dofs)
+/** Pass 1: the source's model matrices, every joint rebuilt. */
+OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const double* dofs, RetargetWorkspace& w)
 {
-    const glm::dvec3 offset(k.offset[3]);
-    if (!k.hasTranslation) return offset;
-    const glm::dvec3 slide = jointSlide(k, dofs);
-    return offset + (k.translationMode == TranslationMode::BeforeRotation ? offsetRotation : localRotation) * slide;
+    RetargetWorkspace::Scratch& s = w.scratch;
+    const unsigned numJoints = source.getNumJoints();
+    if (numJoints == 0) return;
+    // Pointers into sourceLocals, set again whenever the workspace has moved (a copy, a vector of workspaces grown).
+    if (s.sourceLocalPointers[0] != &w.sourceLocals[0][0][0])
+        for (unsigned j = 0; j < numJoints; ++j) s.sourceLocalPointers[j] = &w.sourceLocals[j][0][0];
+    std::memset(s.sourceDirty.data(), 1, numJoints);
+    LocalMatricesJob local;
+    local.definition = &source;
+    local.dofs = Span<const double>(dofs, source.getNumDofs());
+    local.jointDirty = s.sourceDirty;
+    local.local = s.sourceLocalPointers;
+    local.localChanged = s.sourceLocalChanged;
+    local.modelStale = s.sourceModelStale;
+    local.run();
+    LocalToModelJob toModel;
+    toModel.parents = source.getParents();
+    toModel.local = Span<const double* const>(s.sourceLocalPointers.data(), numJoints);
+    toModel.modelStale = s.sourceModelStale;
+    toModel.model = w.sourceModels;
+    toModel.run();
+    for (unsigned j = 0; j < numJoints; ++j)
+    {
+        w.sourceRotations[j] = glm::dmat3(w.sourceModels[j]);
+        w.sourcePositions[j] = glm::dvec3(w.sourceModels[j][3]);
+    }
 }
 
 /** The model-space rotation change of a source joint since the rest pose, as a quaternion; identity for -1. */
@@ -64,78 +118,166 @@ glm::dquat changeSinceRest(const RetargetRig& rig, const RetargetWorkspace& w, i
 {
     if (joint < 0) return glm::dquat(1.0, 0.0, 0.0, 0.0);
     const unsigned j = static_cast<unsigned>(joint);
-    return glm::quat_cast(w.sourceRotations[j] * glm::transpose(glm::dmat3(rig.getSourceRestModels()[j])));
+    return glm::quat_cast(glm::dmat3(w.sourceModels[j]) * glm::transpose(glm::dmat3(rig.getSourceRestModels()[j])));
 }
 
-} // namespace
-
-OSGACTOR_HOT_PATH bool RetargetJob::run()
+/** Pass 2: every target joint's desired model rotation (see RetargetJointPlan), parents first; a joint at rest under
+  * its parent's desired rotation. */
+OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& w)
 {
-    if (!validate()) return false;
-    const ActorDefinition& source = *rig->getSourceDefinition();
-    const ActorDefinition& target = *rig->getTargetDefinition();
-    RetargetWorkspace& w = *workspace;
-    const double* sourceValues = sourceDofs.data();
-    double* targetValues = targetDofs.data();
-
-    // The source's forward kinematics, rotations and positions (model space).
-    sinCos(sourceValues, w.sines.data(), w.cosines.data(), source.getNumDofs());
-    const std::vector<glm::dmat3>& sourceOffsets = rig->getSourceOffsetRotations();
-    for (unsigned j = 0; j < source.getNumJoints(); ++j)
+    const ActorDefinition& target = *rig.getTargetDefinition();
+    const RetargetJobTables& tables = rig.getJobTables();
+    const std::vector<RetargetJointPlan>& plans = rig.getPlans();
+    const bool aligned = rig.isAlignmentIdentity();
+    const RotationColumns alignment = loadRotation(tables.alignment);
+    double* const desired = w.scratch.desired.data();
+    for (unsigned t = 0; t < target.getNumJoints(); ++t)
     {
-        const JointKinematics& k = source.getKinematics(j);
-        const glm::dmat3 local = jointRotation(sourceOffsets[j], k, w.cosines.data(), w.sines.data());
-        const glm::dvec3 origin = jointOrigin(k, sourceOffsets[j], local, sourceValues);
-        const int parent = source.getParent(j);
-        if (parent < 0)
+        const RetargetJointPlan& plan = plans[t];
+        const int parent = target.getParent(t);
+        RotationColumns d;
+        if (plan.kind == RetargetJointKind::Rest)
         {
-            w.sourceRotations[j] = local;
-            w.sourcePositions[j] = origin;
+            d = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
+            if (parent >= 0) d = multiply(loadRotation(desired + parent * kRotationDoubles), d);
+        }
+        else if (plan.weight == 1.0)
+        {
+            // A * R_s(b) * postRotation, skipping the products with an identity.
+            d = plan.sourceB >= 0 ? loadRotation(w.sourceModels[static_cast<unsigned>(plan.sourceB)])
+                                  : identityColumns();
+            if (!aligned) d = multiply(alignment, d);
+            if (!plan.postIsIdentity) d = multiply(d, loadRotation(&tables.postRotations[t * kRotationDoubles]));
         }
         else
         {
-            const glm::dmat3& parentRotation = w.sourceRotations[static_cast<unsigned>(parent)];
-            w.sourceRotations[j] = multiply(parentRotation, local);
-            w.sourcePositions[j] = w.sourcePositions[static_cast<unsigned>(parent)] + parentRotation * origin;
+            const glm::dmat3 blended = rig.getAlignment() *
+                                       glm::mat3_cast(glm::slerp(changeSinceRest(rig, w, plan.sourceA),
+                                                                 changeSinceRest(rig, w, plan.sourceB), plan.weight)) *
+                                       plan.postRotation;
+            double columns[kRotationDoubles];
+            storeRotation(columns, blended);
+            d = loadRotation(columns);
+        }
+        storeRotation(desired + t * kRotationDoubles, d);
+    }
+}
+
+/** The frame a joint's rotation DOFs turn in: its parent's model rotation times its offset rotation. */
+OSGACTOR_INLINE RotationColumns jointFrame(const RetargetJobTables& tables, unsigned joint, bool hasParent,
+                                           const RotationColumns& parentRotation)
+{
+    if (tables.offsetIsIdentity[joint]) return parentRotation;
+    const RotationColumns offset = loadRotation(&tables.offsetRotations[joint * kRotationDoubles]);
+    return hasParent ? multiply(parentRotation, offset) : offset;
+}
+
+/** Pass 3: the Euler fits of the batches' joints, four at a time, each under its parent's desired rotation. */
+OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs, RetargetWorkspace& w)
+{
+    const ActorDefinition& target = *rig.getTargetDefinition();
+    const RetargetJobTables& tables = rig.getJobTables();
+    RetargetWorkspace::Scratch& s = w.scratch;
+    for (const RetargetEulerBatch& batch : tables.eulerBatches)
+    {
+        const double* local[RetargetEulerBatch::kWidth];
+        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+        {
+            const unsigned t = batch.joints[lane];
+            const int parent = target.getParent(t);
+            const RotationColumns parentDesired =
+                parent >= 0 ? loadRotation(&s.desired[static_cast<unsigned>(parent) * kRotationDoubles])
+                            : identityColumns();
+            const RotationColumns frame = jointFrame(tables, t, parent >= 0, parentDesired);
+            double* const out = &s.local[t * kRotationDoubles];
+            storeRotation(out, multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
+            local[lane] = out;
+        }
+        for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
+            local[lane] = local[batch.numJoints - 1];
+        const EulerLanesFit fit = fitEulerLanes(batch, local, dofs);
+        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+        {
+            const unsigned t = batch.joints[lane];
+            s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+            for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = fit.angles[r][lane];
         }
     }
+}
 
-    // The target, parents first.
-    const std::vector<RetargetJointPlan>& plans = rig->getPlans();
-    const std::vector<glm::dmat3>& targetOffsets = rig->getTargetOffsetRotations();
-    const std::vector<glm::dmat3>& restLocals = rig->getTargetRestLocalRotations();
-    const std::vector<double>& rest = rig->getTargetRestDofs();
-    const bool aligned = rig->isAlignmentIdentity();
-    const glm::dmat3& alignment = rig->getAlignment();
-    const int targetRoot = rig->getTargetRoot(), sourceRoot = rig->getSourceRoot();
-    // A * R_s(b) * postRotation, skipping the products with an identity.
-    auto followed = [&](const RetargetJointPlan& plan) {
-        glm::dmat3 m = plan.sourceB >= 0 ? w.sourceRotations[static_cast<unsigned>(plan.sourceB)] : glm::dmat3(1.0);
-        if (!aligned) m = multiply(alignment, m);
-        return plan.postIsIdentity ? m : multiply(m, plan.postRotation);
-    };
-    const glm::dmat3 identity(1.0);
-    numInexact = 0;
+/** frame * R_a1 * R_a2 * R_a3 for a joint's rotation DOFs (product order): its model rotation from its frame. */
+OSGACTOR_INLINE RotationColumns rotateByDofs(RotationColumns frame, const JointKinematics& k, const double* dofs)
+{
+    if (k.numRotations == 0) return frame;
+    double angles[4] = {0.0, 0.0, 0.0, 0.0};
+    for (unsigned r = 0; r < k.numRotations; ++r) angles[r] = dofs[k.rotationDof[r]];
+    Column sines, cosines;
+    sinCosColumn(loadColumn(angles), sines, cosines);
+    for (unsigned r = 0; r < k.numRotations; ++r) postRotate(frame, k.rotationAxis[r], cosines[r], sines[r]);
+    return frame;
+}
+
+/** The root's translation DOFs, from where the source's root goes (RetargetRig::mapPosition) less its offset, turned
+  * back through whatever of its rotations acts on them; what they cannot reach is dropped. Returns its origin in its
+  * parent's frame. */
+glm::dvec3 placeRoot(const RetargetRig& rig, const RetargetWorkspace& w, unsigned t, const glm::dmat3& parentRotation,
+                     const glm::dvec3& parentPosition, const glm::dmat3& localRotation, double* dofs)
+{
+    const ActorDefinition& target = *rig.getTargetDefinition();
+    const JointKinematics& k = target.getKinematics(t);
+    const glm::dmat3& offsetRotation = rig.getTargetOffsetRotations()[t];
+    const glm::dvec3 offset(k.offset[3]);
+    const glm::dvec3 goal =
+        rig.mapPosition(glm::dvec3(w.sourceModels[static_cast<unsigned>(rig.getSourceRoot())][3]));
+    const glm::dvec3 inParent = glm::transpose(parentRotation) * (goal - parentPosition) - offset;
+    const bool beforeRotation = k.translationMode == TranslationMode::BeforeRotation;
+    const glm::dvec3 slide = glm::transpose(beforeRotation ? offsetRotation : localRotation) * inParent;
+    for (unsigned axis = 0; axis < 3; ++axis)
+        if (k.translationDof[axis] >= 0)
+        {
+            const unsigned dof = static_cast<unsigned>(k.translationDof[axis]);
+            dofs[dof] = target.clampToLimits(dof, slide[axis]);
+        }
+    return offset + (beforeRotation ? offsetRotation : localRotation) * jointSlide(k, dofs);
+}
+
+/** Pass 4: parents first, each target joint's DOFs and model matrix. Returns how many joints the source drives came
+  * out inexact. */
+OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourceValues, double* targetValues,
+                                     RetargetWorkspace& w)
+{
+    const ActorDefinition& source = *rig.getSourceDefinition();
+    const ActorDefinition& target = *rig.getTargetDefinition();
+    const RetargetJobTables& tables = rig.getJobTables();
+    const std::vector<RetargetJointPlan>& plans = rig.getPlans();
+    const std::vector<double>& rest = rig.getTargetRestDofs();
+    const int targetRoot = rig.getTargetRoot();
+    RetargetWorkspace::Scratch& s = w.scratch;
+    unsigned numInexact = 0;
     for (unsigned t = 0; t < target.getNumJoints(); ++t)
     {
         const JointKinematics& k = target.getKinematics(t);
         const RetargetJointPlan& plan = plans[t];
         const int parent = target.getParent(t);
-        const glm::dmat3& parentRotation = parent < 0 ? identity : w.targetRotations[static_cast<unsigned>(parent)];
-        const bool parentExact = parent < 0 || w.targetExact[static_cast<unsigned>(parent)] != 0;
+        const bool hasParent = parent >= 0;
+        const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
+        const RotationColumns parentRotation = hasParent ? loadRotation(w.targetModels[p]) : identityColumns();
+        const Column parentPosition = hasParent ? loadColumn(&w.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
+        const bool parentExact = !hasParent || w.targetExact[p] != 0;
+        const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
+        const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
         if (k.hasTranslation)
             for (unsigned axis = 0; axis < 3; ++axis)
                 if (k.translationDof[axis] >= 0)
                     targetValues[k.translationDof[axis]] = rest[static_cast<unsigned>(k.translationDof[axis])];
 
-        glm::dmat3& rotation = w.targetRotations[t];
+        RotationColumns rotation;
         bool exact = false;
-        bool fitted = false;
         if (plan.kind == RetargetJointKind::Rest)
         {
             for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
-            rotation = multiply(parentRotation, restLocals[t]);
-            fitted = true;
+            const RotationColumns restLocal = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
+            rotation = hasParent ? multiply(parentRotation, restLocal) : restLocal;
         }
         else if (plan.kind == RetargetJointKind::Copy && parentExact)
         {
@@ -154,53 +296,62 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
                 }
             }
             exact = !clamped;
-            rotation = exact ? followed(plan) : parentRotation * targetOffsets[t] * jointRotation(k, targetValues);
-            fitted = true;
+            rotation =
+                exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
         }
-        if (!fitted)
+        else if (tables.inEulerBatch[t] && s.laneFitted[t] && parentAsDesired)
         {
-            glm::dmat3 desired;
-            if (plan.weight == 1.0)
-                desired = followed(plan);
-            else
-                desired = alignment *
-                          glm::mat3_cast(glm::slerp(changeSinceRest(*rig, w, plan.sourceA),
-                                                    changeSinceRest(*rig, w, plan.sourceB), plan.weight)) *
-                          plan.postRotation;
-            const glm::dmat3 frame = multiply(parentRotation, targetOffsets[t]);
-            exact = fitJointRotationDofs(target, t, multiplyTransposed(frame, desired), targetValues);
-            rotation = exact ? desired : multiply(frame, jointRotation(k, targetValues));
+            for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+            exact = true;
+            rotation = desired;
+        }
+        else
+        {
+            const RotationColumns frame = jointFrame(tables, t, hasParent, parentRotation);
+            // A batch's joint under a parent that took its desired rotation has its local rotation worked out.
+            const RotationColumns local = tables.inEulerBatch[t] && parentAsDesired
+                                              ? loadRotation(&s.local[t * kRotationDoubles])
+                                              : multiply(transpose(frame), desired);
+            exact = fitJointRotationDofs(target, t, toMat3(local), targetValues);
+            rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
         }
         if (!exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0) ++numInexact;
+        s.asDesired[t] = exact || (plan.kind == RetargetJointKind::Rest && parentAsDesired) ? 1 : 0;
 
-        // The root goes where the source's root goes, scaled: its translation DOFs from the point in its parent's
-        // frame, less its offset, turned back through whatever of its rotations acts on them.
-        const glm::dvec3 parentPosition =
-            parent < 0 ? glm::dvec3(0.0) : w.targetPositions[static_cast<unsigned>(parent)];
-        glm::dvec3 origin(k.offset[3]);
-        if (k.hasTranslation)
+        Column origin = loadColumn(&tables.origins[4 * t]);
+        if (tables.originMoves[t])
         {
-            const glm::dmat3 localRotation = multiplyTransposed(parentRotation, rotation);
-            if (static_cast<int>(t) == targetRoot && sourceRoot >= 0)
-            {
-                const glm::dvec3 goal = rig->mapPosition(w.sourcePositions[static_cast<unsigned>(sourceRoot)]);
-                const glm::dvec3 inParent = glm::transpose(parentRotation) * (goal - parentPosition) - origin;
-                const glm::dvec3 slide =
-                    glm::transpose(k.translationMode == TranslationMode::BeforeRotation ? targetOffsets[t]
-                                                                                        : localRotation) *
-                    inParent;
-                for (unsigned axis = 0; axis < 3; ++axis)
-                    if (k.translationDof[axis] >= 0)
-                    {
-                        const unsigned dof = static_cast<unsigned>(k.translationDof[axis]);
-                        targetValues[dof] = target.clampToLimits(dof, slide[axis]);
-                    }
-            }
-            origin = jointOrigin(k, targetOffsets[t], localRotation, targetValues);
+            const glm::dmat3 parentMatrix = toMat3(parentRotation);
+            const glm::dmat3 localRotation = glm::transpose(parentMatrix) * toMat3(rotation);
+            glm::dvec3 moved;
+            if (static_cast<int>(t) == targetRoot && rig.getSourceRoot() >= 0)
+                moved = placeRoot(rig, w, t, parentMatrix, glm::dvec3(parentPosition[0], parentPosition[1],
+                                                                      parentPosition[2]),
+                                  localRotation, targetValues);
+            else
+                moved = glm::dvec3(k.offset[3]) + localRotation * jointSlide(k, targetValues);
+            origin = Column{moved.x, moved.y, moved.z, 0.0};
         }
-        w.targetPositions[t] = parentPosition + parentRotation * origin;
+        glm::dmat4& model = w.targetModels[t];
+        storeRotation(&model[0][0], rotation);
+        storeColumn(&model[3][0], parentPosition + combine(parentRotation, origin));
+        w.targetRotations[t] = glm::dmat3(model);
+        w.targetPositions[t] = glm::dvec3(model[3]);
         w.targetExact[t] = exact ? 1 : 0;
     }
+    return numInexact;
+}
+
+} // namespace
+
+OSGACTOR_HOT_PATH bool RetargetJob::run()
+{
+    if (!validate()) return false;
+    RetargetWorkspace& w = *workspace;
+    poseSource(*rig->getSourceDefinition(), sourceDofs.data(), w);
+    desireRotations(*rig, w);
+    fitEulerBatches(*rig, targetDofs.data(), w);
+    numInexact = placeJoints(*rig, sourceDofs.data(), targetDofs.data(), w);
     return true;
 }
 

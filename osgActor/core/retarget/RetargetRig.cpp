@@ -17,6 +17,8 @@
 #include <osgActor/core/LocalToModelJob>
 #include <osgActor/core/ik/IkKinematics>
 
+#include "RotationColumns.h"
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -570,6 +572,79 @@ struct RetargetRigBuilder
                 target.definition->getNumJointDofs(t) > 0)
                 rest += (rest.empty() ? "" : ", ") + target.definition->getJointName(t);
         if (!rest.empty()) rig->_notes.push_back("target joints no source joint drives (kept at rest): " + rest);
+        buildJobTables();
+    }
+
+    /** RetargetJobTables: the rig's rotations as columns of four, the constant origins, the Euler batches. */
+    void buildJobTables()
+    {
+        using retarget_detail::kRotationDoubles;
+        using retarget_detail::storeRotation;
+        const ActorDefinition& t = *target.definition;
+        const unsigned numTarget = t.getNumJoints();
+        RetargetJobTables& tables = rig->_jobTables;
+        storeRotation(tables.alignment, rig->_alignment);
+        tables.postRotations.resize(std::size_t(numTarget) * kRotationDoubles);
+        tables.offsetRotations.resize(std::size_t(numTarget) * kRotationDoubles);
+        tables.restLocalRotations.resize(std::size_t(numTarget) * kRotationDoubles);
+        tables.offsetIsIdentity.assign(numTarget, 0);
+        tables.origins.assign(std::size_t(numTarget) * 4, 0.0);
+        tables.originMoves.assign(numTarget, 0);
+        tables.inEulerBatch.assign(numTarget, 0);
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            storeRotation(&tables.postRotations[j * kRotationDoubles], rig->_plans[j].postRotation);
+            storeRotation(&tables.offsetRotations[j * kRotationDoubles], rig->_targetOffsets[j]);
+            storeRotation(&tables.restLocalRotations[j * kRotationDoubles], rig->_targetRestLocals[j]);
+            tables.offsetIsIdentity[j] = rig->_targetOffsets[j] == glm::dmat3(1.0) ? 1 : 0;
+            const JointKinematics& k = t.getKinematics(j);
+            const bool carriesTravel = static_cast<int>(j) == rig->_targetRoot && rig->_sourceRoot >= 0;
+            tables.originMoves[j] =
+                k.hasTranslation && (carriesTravel || k.translationMode == TranslationMode::AfterRotation) ? 1 : 0;
+            glm::dvec3 origin(k.offset[3]);
+            if (k.hasTranslation && !tables.originMoves[j])
+                origin += rig->_targetOffsets[j] * jointSlide(k, target.rest.data());
+            for (unsigned axis = 0; axis < 3; ++axis) tables.origins[4 * j + axis] = origin[axis];
+        }
+
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const JointKinematics& k = t.getKinematics(j);
+            if (rig->_plans[j].kind != RetargetJointKind::Follow || k.numRotations != 3) continue;
+            if (tables.eulerBatches.empty() ||
+                tables.eulerBatches.back().numJoints == RetargetEulerBatch::kWidth)
+                tables.eulerBatches.emplace_back();
+            RetargetEulerBatch& batch = tables.eulerBatches.back();
+            tables.inEulerBatch[j] = 1;
+            // Lanes past the last joint repeat it until another joint takes them.
+            for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
+                setEulerLane(batch, lane, j);
+            ++batch.numJoints;
+        }
+    }
+
+    /** A lane of a batch for target joint j (three rotations, distinct axes i, j, k in product order). */
+    void setEulerLane(RetargetEulerBatch& batch, unsigned lane, unsigned joint) const
+    {
+        const ActorDefinition& t = *target.definition;
+        const JointKinematics& k = t.getKinematics(joint);
+        const unsigned i = k.rotationAxis[0], j = k.rotationAxis[1], l = k.rotationAxis[2];
+        // m(row, column) is element 4 column + row of a rotation stored as columns of four.
+        const auto at = [](unsigned row, unsigned column) { return static_cast<std::uint8_t>(4 * column + row); };
+        batch.joints[lane] = joint;
+        batch.element[RetargetEulerBatch::kII][lane] = at(i, i);
+        batch.element[RetargetEulerBatch::kIJ][lane] = at(i, j);
+        batch.element[RetargetEulerBatch::kIK][lane] = at(i, l);
+        batch.element[RetargetEulerBatch::kJK][lane] = at(j, l);
+        batch.element[RetargetEulerBatch::kKK][lane] = at(l, l);
+        batch.parity[lane] = j == (i + 1) % 3 ? 1.0 : -1.0;
+        for (unsigned r = 0; r < 3; ++r)
+        {
+            const unsigned dof = k.rotationDof[r];
+            batch.dof[r][lane] = dof;
+            batch.min[r][lane] = t.getDofRangeMin(dof);
+            batch.max[r][lane] = t.getDofRangeMax(dof);
+        }
     }
 };
 

@@ -1,0 +1,118 @@
+// Internal to the library (not installed): the Euler fit of fitJointRotationDofs (JointRotationFit) for four joints
+// at once, one per vector lane (../Column.h), for RetargetJob: the decomposition's three arctangents and square root,
+// and the turn of each angle to the whole turn nearest the previous frame's value, within the limits. A lane whose
+// joint needs more than that (gimbal lock, a limit, the second solution) is reported, and left to the scalar fit.
+#ifndef OSGACTOR_CORE_RETARGET_EULERLANES_H
+#define OSGACTOR_CORE_RETARGET_EULERLANES_H 1
+
+#include <osgActor/core/retarget/RetargetRig>
+
+#include "../detail/Column.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace osgActor {
+namespace retarget_detail {
+
+/** A lane mask: all bits set in the lanes where a comparison holds. */
+typedef ColumnSignedBits LaneMask;
+
+OSGACTOR_INLINE Column broadcast(double x) { return Column{x, x, x, x}; }
+
+OSGACTOR_INLINE Column select(LaneMask mask, Column yes, Column no) { return mask ? yes : no; }
+
+/** Whether each lane's sign bit is set (-0.0 included, as std::signbit). */
+OSGACTOR_INLINE LaneMask signBits(Column x) { return reinterpret_cast<ColumnSignedBits>(x) < 0; }
+
+/** atan2(y, x), lane by lane, by arctangent2's method (core/ik/Arctangent: Cephes' reduction of |y| / |x| to
+  * [0, tan(pi / 8)] and its rational approximation there), with two vector divisions for four arctangents. Lanes
+  * where both are 0, or either is infinite or NaN, are set in invalid (their result is meaningless). */
+OSGACTOR_INLINE Column arctangent2Lanes(Column y, Column x, LaneMask& invalid)
+{
+    constexpr double kPi = 3.14159265358979323846;
+    constexpr double kPiOver2Low = 6.123233995736765886130e-17; // pi / 2 less its nearest double
+    // Cephes' atan.c coefficients: atan(r) = r + r z P(z) / Q(z), z = r^2, Q monic.
+    constexpr double kP[5] = {-8.750608600031904122785e-1, -1.615753718733365076637e1, -7.500855792314704667340e1,
+                              -1.228866684490136173410e2, -6.485021904942025371773e1};
+    constexpr double kQ[5] = {2.485846490142306297962e1, 1.650270098316988542046e2, 4.328810604912902668951e2,
+                              4.853903996359136964868e2, 1.945506571482613964425e2};
+    const Column b = absColumn(x), a = absColumn(y);
+    const Column sum = a + b;
+    invalid |= !(sum > 0.0 && sum < std::numeric_limits<double>::infinity());
+    const LaneMask beyond = a > 2.41421356237309504880 * b; // beyond tan(3 pi / 8): pi / 2 - atan(b / a)
+    const LaneMask middle = a > 0.66 * b;                   // from there: pi / 4 + atan((a - b) / (a + b))
+    const Column zero = broadcast(0.0);
+    const Column numerator = select(beyond, -b, select(middle, a - b, a));
+    const Column denominator = select(beyond, a, select(middle, a + b, b));
+    const Column base = select(beyond, broadcast(kPi / 2), select(middle, broadcast(kPi / 4), zero));
+    const Column low = select(beyond, broadcast(kPiOver2Low), select(middle, broadcast(0.5 * kPiOver2Low), zero));
+    const Column r = numerator / denominator;
+    const Column z = r * r;
+    Column p = broadcast(kP[0]), q = z + kQ[0];
+    for (unsigned i = 1; i < 5; ++i)
+    {
+        p = p * z + kP[i];
+        q = q * z + kQ[i];
+    }
+    Column angle = base + ((r * (z * p / q) + r) + low); // atan(a / b), in [0, pi / 2]
+    angle = select(signBits(x), (kPi - angle) + 2.0 * kPiOver2Low, angle);
+    return select(signBits(y), -angle, angle);
+}
+
+/** What fitEulerLanes gives back: per lane, the three angles in product order, and whether the lane's joint is
+  * fitted exactly. */
+struct EulerLanesFit
+{
+    Column angles[3];
+    LaneMask fitted;
+};
+
+/** The Euler fit of a batch's joints (see RetargetEulerBatch), each joint's local rotation given as columns of four
+  * (12 doubles, local[lane]): the decomposition's first solution (the middle angle within [-pi/2, pi/2]), each angle
+  * turned by the whole turns that bring it nearest the reference (dofs, the previous frame's values). A lane is
+  * fitted when that solution is what fitJointRotationDofs takes: no gimbal lock, every angle within its limits, and
+  * the three within a quarter turn of the reference in all (so the second solution is farther). */
+OSGACTOR_INLINE EulerLanesFit fitEulerLanes(const RetargetEulerBatch& batch, const double* const local[4],
+                                            const double* dofs)
+{
+    constexpr double kTwoPi = 6.28318530717958647692;
+    constexpr double kRoundingShift = 0x1.8p52; // adding and subtracting it rounds to an integer, ties to even
+    using E = RetargetEulerBatch;
+    const auto element = [&](E::Element e) OSGACTOR_INLINE_LAMBDA {
+        const std::uint8_t* at = batch.element[e];
+        return Column{local[0][at[0]], local[1][at[1]], local[2][at[2]], local[3][at[3]]};
+    };
+    const Column parity = loadColumn(batch.parity);
+    const Column mii = element(E::kII), mij = element(E::kIJ);
+    const Column squared = mii * mii + mij * mij;
+    const Column cosMiddle = {std::sqrt(squared[0]), std::sqrt(squared[1]), std::sqrt(squared[2]),
+                              std::sqrt(squared[3])};
+    LaneMask invalid = !(cosMiddle > 1e-12); // gimbal lock: the scalar fit puts the free sum in the last angle
+    EulerLanesFit fit;
+    fit.angles[0] = arctangent2Lanes(-parity * element(E::kJK), element(E::kKK), invalid);
+    fit.angles[1] = arctangent2Lanes(parity * element(E::kIK), cosMiddle, invalid);
+    fit.angles[2] = arctangent2Lanes(-parity * mij, mii, invalid);
+
+    LaneMask within = ~invalid;
+    Column distance = broadcast(0.0);
+    for (unsigned r = 0; r < 3; ++r)
+    {
+        const std::uint32_t* dof = batch.dof[r];
+        const Column reference = {dofs[dof[0]], dofs[dof[1]], dofs[dof[2]], dofs[dof[3]]};
+        const Column turns = (reference - fit.angles[r]) * (1.0 / kTwoPi);
+        const Column rounded = (turns + kRoundingShift) - kRoundingShift;
+        const Column turned = fit.angles[r] + kTwoPi * rounded;
+        within &= absColumn(turns) < 0x1p50 && turned >= loadColumn(batch.min[r]) && turned <= loadColumn(batch.max[r]);
+        distance += absColumn(turned - reference);
+        fit.angles[r] = turned;
+    }
+    fit.fitted = within & (distance < 0.5 * 3.14159265358979323846);
+    return fit;
+}
+
+} // namespace retarget_detail
+} // namespace osgActor
+
+#endif
