@@ -44,7 +44,8 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv)
     : _cv(cv),
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
-      _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0)
+      _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
+      _open(), _numOpen(0)
 {
 }
 
@@ -140,15 +141,59 @@ void ActorCull::addDrawable(osg::Drawable& drawable, JointFrame& frame)
     }
     const float depth = box.valid() ? eyeDepth(box.center(), frame.modelView) : 0.0f;
     if (osg::isNaN(depth)) return; // the visitor drops it too (with a notice)
-    if (!frame.leafMatrix) frame.leafMatrix = MatrixPool::createOrReuse(_cv, frame.modelView);
     osg::StateSet* state = drawable.getStateSet();
     if (state) _cv.pushStateSet(state);
-    _cv.addDrawableAndDepth(&drawable, frame.leafMatrix, depth);
+    osgUtil::StateGraph* graph = _cv.getCurrentStateGraph();
+    // Batched where the bin draws its state graphs' leaves in the order they came: a bin sorted by state. Dynamic
+    // drawables keep a leaf of their own, which tells a viewer drawing on another thread to wait for them.
+    const bool batchable = _cv.getCurrentRenderBin()->getSortMode() == osgUtil::RenderBin::SORT_BY_STATE &&
+                           drawable.getDataVariance() != osg::Object::DYNAMIC &&
+                           !(state && state->getDataVariance() == osg::Object::DYNAMIC);
+    JointDrawBatch* batch = batchable ? openBatch(graph) : nullptr;
+    if (batch)
+        batch->add(drawable, frame.modelView, depth);
+    else
+    {
+        if (!frame.leafMatrix) frame.leafMatrix = MatrixPool::createOrReuse(_cv, frame.modelView);
+        if (batchable)
+        {
+            // The batch's leaf carries the first drawable's matrix, so the state graph's state is applied under the
+            // matrix it would be applied under without the batch.
+            batch = JointDrawBatch::acquire();
+            batch->add(drawable, frame.modelView, depth);
+            _cv.addDrawableAndDepth(batch, frame.leafMatrix, depth);
+            if (_numOpen == kMaxOpenBatches) closeBatch(_open[0].graph);
+            _open[_numOpen++] = {graph, batch};
+        }
+        else
+        {
+            closeBatch(graph);
+            _cv.addDrawableAndDepth(&drawable, frame.leafMatrix, depth);
+        }
+    }
     if (state) _cv.popStateSet();
+}
+
+JointDrawBatch* ActorCull::openBatch(osgUtil::StateGraph* graph) const
+{
+    for (unsigned i = 0; i < _numOpen; ++i)
+        if (_open[i].graph == graph) return _open[i].batch;
+    return nullptr;
+}
+
+void ActorCull::closeBatch(osgUtil::StateGraph* graph)
+{
+    for (unsigned i = 0; i < _numOpen; ++i)
+        if (_open[i].graph == graph)
+        {
+            _open[i] = _open[--_numOpen];
+            return;
+        }
 }
 
 void ActorCull::traverseOrdinarily(osg::Node& node, JointFrame& frame)
 {
+    _numOpen = 0; // the traversal may add leaves to any state graph: no batch may take drawables after them
     if (!frame.pushed)
     {
         if (!frame.leafMatrix) frame.leafMatrix = MatrixPool::createOrReuse(_cv, frame.modelView);

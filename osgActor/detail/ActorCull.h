@@ -25,6 +25,7 @@
 #define OSGACTOR_DETAIL_ACTORCULL_H 1
 
 #include <osgActor/SkeletonNode>
+#include <osgActor/detail/JointDrawBatch.h>
 
 #include <osg/Geode>
 #include <osgUtil/CullVisitor>
@@ -69,10 +70,25 @@ private:
     /** No cull callback: the visitor would do nothing else at the node than push its state set. */
     static bool isPlain(const osg::Node& node) { return !node.getCullCallback(); }
 
+    /** The batch open for the current state graph, or null. */
+    JointDrawBatch* openBatch(osgUtil::StateGraph* graph) const;
+    void closeBatch(osgUtil::StateGraph* graph);
+
     osgUtil::CullVisitor& _cv;
     bool _smallFeatureCulling;
     bool _computeNearFar;
     bool _frustumCulling;
+    /** The batches this actor is filling, by state graph: a drawable goes into its graph's open batch, which is
+      * closed when anything else may land in that graph (a drawable that is not batched, an ordinary traversal),
+      * so the graph's leaves keep the order the ordinary traversal gives them. */
+    struct OpenBatch
+    {
+        osgUtil::StateGraph* graph;
+        JointDrawBatch* batch;
+    };
+    static constexpr unsigned kMaxOpenBatches = 8;
+    OpenBatch _open[kMaxOpenBatches];
+    unsigned _numOpen;
 };
 
 } // namespace detail
