@@ -613,7 +613,13 @@ void ActorNode::traverse(osg::NodeVisitor& nv)
     if (_updatePolicy.onlyWhenSeen) noteSeen(nv);
     osgUtil::CullVisitor* cv = nv.asCullVisitor();
     if (_cullMode == CULL_AS_ONE && cv && detail::ActorCull::canCullAsOne(*cv))
+    {
+        // The walk reads every skeleton node (its mask, children, state, matrix): with many actors they have left
+        // the caches since the update, so fetch them all at once and let the fetches overlap.
+        for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes)
+            detail::prefetchForRead(node.get(), sizeof(detail::PlacedSkeletonNode));
         detail::ActorCull(*cv).cullChildren(*this);
+    }
     else
         osg::MatrixTransform::traverse(nv);
 }
