@@ -3,6 +3,7 @@
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/GlmOsg>
 #include <osgActor/io/ActorSyntax>
+#include <osgActor/io/ClipRetarget>
 #include <osgActor/mocap/MotionFile>
 #include <osgActor/mocap/TrajectoryCsv>
 
@@ -120,7 +121,8 @@ std::string mismatchWithActor(const MocapImport& imported, const ActorDefinition
 /** Reads the clips of the document whose motion is in a file (ClipDocument::file), found like model files (next
   * to the .actor file first); false and an error naming the .actor file and the clip's line when one cannot be read
   * or would not drive the actor. */
-bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& actor, const std::string& fileName,
+bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinitionPtr& actor,
+                   const std::vector<SyntaxStatement>& sections, const std::string& fileName,
                    const osgDB::Options* options, std::string& error)
 {
     for (ClipDocument& clip : clips)
@@ -148,7 +150,14 @@ bool readClipFiles(std::vector<ClipDocument>& clips, const ActorDefinition& acto
             error = prefix + "'" + path + "' holds no motion";
             return false;
         }
-        const std::string mismatch = mismatchWithActor(imported, actor);
+        if (clip.retarget.enabled)
+        {
+            clip.clip = retargetClipForActor(imported, actor, clip.retarget, sections, fileName, error);
+            if (!clip.clip) error = where(fileName, clip.retarget.line) + "clip '" + clip.name() + "': " + error;
+            if (!clip.clip) return false;
+            continue;
+        }
+        const std::string mismatch = mismatchWithActor(imported, *actor);
         if (!mismatch.empty())
         {
             error = prefix + "'" + path + "' does not fit the actor: " + mismatch;
@@ -379,7 +388,8 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
     ActorDocument withFilesRead = document;
-    if (!readClipFiles(withFilesRead.clips, *definition, fileName, local.get(), result.error)) return result;
+    if (!readClipFiles(withFilesRead.clips, definition, document.sections, fileName, local.get(), result.error))
+        return result;
     if (!readTrajectoryFiles(withFilesRead.trajectories, fileName, local.get(), result.error)) return result;
     applyClips(*actor, withFilesRead);
     applyTrajectories(*actor, withFilesRead);

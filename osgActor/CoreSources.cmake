@@ -48,6 +48,20 @@ set(OSGACTOR_CORE_IK_HEADERS
     core/ik/SweepAcceleration
     core/ik/TwoBoneClosedForm
     core/ik/TwoBoneIkJob)
+set(OSGACTOR_CORE_RETARGET_HEADERS
+    core/retarget/BuiltInJointMaps
+    core/retarget/ClipFrames
+    core/retarget/FootContacts
+    core/retarget/HAnimHumanoid
+    core/retarget/JointMap
+    core/retarget/JointMapGuess
+    core/retarget/JointRotationFit
+    core/retarget/RetargetClip
+    core/retarget/RetargetIkJob
+    core/retarget/RetargetJob
+    core/retarget/RetargetLimbs
+    core/retarget/RetargetMeasures
+    core/retarget/RetargetRig)
 set(OSGACTOR_CORE_SOURCES
     core/ActorDefinition.cpp
     core/ActorDefinitionBuilder.cpp
@@ -77,7 +91,20 @@ set(OSGACTOR_CORE_SOURCES
     core/ik/IkSolve.cpp
     core/ik/SweepAcceleration.cpp
     core/ik/TwoBoneClosedForm.cpp
-    core/ik/TwoBoneIkJob.cpp)
+    core/ik/TwoBoneIkJob.cpp
+    core/retarget/BuiltInJointMaps.cpp
+    core/retarget/ClipFrames.cpp
+    core/retarget/FootContacts.cpp
+    core/retarget/HAnimHumanoid.cpp
+    core/retarget/JointMap.cpp
+    core/retarget/JointMapGuess.cpp
+    core/retarget/JointRotationFit.cpp
+    core/retarget/RetargetClip.cpp
+    core/retarget/RetargetIkJob.cpp
+    core/retarget/RetargetJob.cpp
+    core/retarget/RetargetLimbs.cpp
+    core/retarget/RetargetMeasures.cpp
+    core/retarget/RetargetRig.cpp)
 
 # Skinned meshes (core/skin): the skin data, its builder and binding, and the per-frame jobs (skinning matrices,
 # CPU skinning, bounds).
@@ -106,7 +133,9 @@ set(OSGACTOR_IO_HEADERS
     io/ActorNumbers
     io/ActorReader
     io/ActorSyntax
-    io/ActorWriter)
+    io/ActorWriter
+    io/ClipRetarget
+    io/JointMapSection)
 set(OSGACTOR_IO_SOURCES
     io/ActorDocument.cpp
     io/ActorLexer.cpp
@@ -114,6 +143,8 @@ set(OSGACTOR_IO_SOURCES
     io/ActorReader.cpp
     io/ActorSyntax.cpp
     io/ActorWriter.cpp
+    io/ClipRetarget.cpp
+    io/JointMapSection.cpp
     io/PlayerDocument.cpp)
 
 # Motion-capture parsers: plain C++ on std::istream, GLM only like the core (built into the same object library).

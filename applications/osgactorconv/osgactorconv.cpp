@@ -1,5 +1,7 @@
-/* osgactorconv: converts motion capture (BVH, ASF+AMC) and dumps joint positions so other tools can check the
- * import. Exit status 0 on success, 1 on bad input (with file:line on stderr), 2 on bad usage. */
+/* osgactorconv: converts motion capture (BVH, ASF+AMC), retargets it onto an actor, and dumps joint positions so
+ * other tools can check the import. Exit status 0 on success, 1 on bad input (with file:line on stderr), 2 on bad
+ * usage. */
+#include "RetargetConversion.h"
 #include "RiggedModelDump"
 
 #include <osgActor/import/RiggedModelFile>
@@ -54,6 +56,11 @@ const char* const kUsage =
     "  --link-motion      .actor output: the clip names the motion file (and an AMC's skeleton), by paths\n"
     "                     relative to the output's folder, with the options above, instead of holding\n"
     "                     its frames; the actor reads the motion when it is loaded\n"
+    "  --retarget TARGET.actor\n"
+    "                     retarget the motion onto that actor (its joint names, rest pose and proportions)\n"
+    "                     and write its .actor file with the motion as a clip: to -o, or TARGET.actor itself\n"
+    "  --map FILE         with --retarget: the joint map of the input's skeleton (default: guessed)\n"
+    "  --no-ik            with --retarget: no IK pass (feet not planted, hands and feet not placed)\n"
     "  -h, --help         this text\n";
 
 struct Arguments
@@ -73,6 +80,7 @@ struct Arguments
     bool fpsGiven = false;
     std::string clip;
     std::string dumpSkinned;
+    RetargetConversion retarget;
 };
 
 bool endsWith(std::string text, const std::string& suffix)
@@ -113,6 +121,12 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
         else if (arg == "--drop-first-frame") args.dropFirstFrame = true;
         else if (arg == "--absolute-root") args.absoluteRoot = true;
         else if (arg == "--link-motion") args.linkMotion = true;
+        else if (arg == "--no-ik") args.retarget.ik = false;
+        else if (arg == "--retarget" || arg == "--map")
+        {
+            if (!value(arg == "--map" ? args.retarget.mapFile : args.retarget.targetFile))
+                return arg + " needs a file name";
+        }
         else if (arg == "-o" || arg == "--output")
         {
             if (!value(args.output)) return arg + " needs a file name";
@@ -157,6 +171,16 @@ std::string parseArguments(int argc, char** argv, Arguments& args, bool& help)
     if (help) return std::string();
     if (args.inputs.empty() || args.inputs.size() > 2) return "give one input file (and an AMC after an ASF)";
     if (args.inputs.size() == 2) args.amc = args.inputs[1];
+    if (!args.retarget.targetFile.empty())
+    {
+        if (args.dumpPositions || args.linkMotion || !args.dumpSkinned.empty())
+            return "--retarget writes a .actor file: no --dump-positions, --dump-skinned or --link-motion";
+        if (isRiggedModelFile(args.inputs[0])) return "--retarget reads motion capture (.bvh, .asf with .amc)";
+        if (!args.output.empty() && !endsWith(args.output, ".actor")) return "--retarget writes a .actor file";
+        args.retarget.outputFile = args.output;
+        return std::string();
+    }
+    if (!args.retarget.mapFile.empty()) return "--map is for --retarget";
     if (!args.dumpSkinned.empty() && !isRiggedModelFile(args.inputs[0])) return "--dump-skinned is for .gltf/.glb input";
     if (!args.dumpPositions && args.output.empty() && args.dumpSkinned.empty())
         return "nothing to do: give --dump-positions or -o FILE";
@@ -297,7 +321,8 @@ int main(int argc, char** argv)
         return runRiggedModelDump(request, std::cerr);
     }
 
-    const bool toActor = !args.dumpPositions && endsWith(args.output, ".actor");
+    const bool retargeting = !args.retarget.targetFile.empty();
+    const bool toActor = !args.dumpPositions && (retargeting || endsWith(args.output, ".actor"));
     const MocapImport imported = readInput(args, args.dumpPositions, toActor);
     if (!imported)
     {
@@ -305,6 +330,7 @@ int main(int argc, char** argv)
         return 1;
     }
     for (const std::string& warning : imported.warnings) std::cerr << "osgactorconv: warning: " << warning << "\n";
+    if (retargeting) return retargetIntoActorFile(args.retarget, imported);
 
     std::ofstream file;
     if (!args.output.empty())

@@ -2,6 +2,7 @@
 
 #include "ImageFile.h"
 #include "OutputPattern.h"
+#include "RetargetPreview.h"
 
 #include <cstdlib>
 #include <vector>
@@ -17,6 +18,15 @@ std::vector<double> frameTimes(const RenderOptions& options, unsigned first, uns
     return times;
 }
 
+/** The scene of the options' files, with the retargeting preview when one is asked for (--retarget-preview). */
+osg::ref_ptr<osg::Node> readRenderScene(const RenderOptions& options, std::string& error)
+{
+    osg::ref_ptr<osg::Node> scene = osgActor::readScene(options.files, error);
+    if (scene && !options.retargetPreview.empty())
+        scene = osgActorApps::makeRetargetPreview(*scene, options.retargetPreview, error);
+    return scene;
+}
+
 } // namespace
 
 bool renderPart(const RenderOptions& options, unsigned first, unsigned last, const std::string& scratchPattern,
@@ -28,7 +38,7 @@ bool renderPart(const RenderOptions& options, unsigned first, unsigned last, con
     const OutputPattern scratch = OutputPattern::fromChecked(scratchPattern);
 
     std::srand(options.settings.seed);
-    const osg::ref_ptr<osg::Node> scene = osgActor::readScene(options.files, error);
+    const osg::ref_ptr<osg::Node> scene = readRenderScene(options, error);
     if (!scene) return false;
 
     bool failed = false;
@@ -55,7 +65,7 @@ bool checkPartDeterminism(const RenderOptions& options, unsigned first, unsigned
                           const std::function<void()>& onFrame, int& firstDifferingFrame, std::string& error)
 {
     const osgActor::DeterminismCheck check = osgActor::checkDeterminism(
-        [&options](std::string& loadError) { return osgActor::readScene(options.files, loadError); },
+        [&options](std::string& loadError) { return readRenderScene(options, loadError); },
         frameTimes(options, first, last), options.settings, onFrame);
     if (!check.completed)
     {

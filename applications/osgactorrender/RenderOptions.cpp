@@ -63,6 +63,9 @@ void describeRenderOptions(osg::ArgumentParser& arguments)
                                               "draw from std::rand() (default 1).");
     usage->addCommandLineOption("--play-animations", "Play every osgAnimation animation in the scene from time 0.");
     usage->addCommandLineOption("--progress", "Show the progress bar even when stderr is not a terminal.");
+    usage->addCommandLineOption("--retarget-preview <motion>", "Retarget a motion file (BVH, or ASF with its AMC beside "
+                                                              "it) onto the first actor and show its own skeleton "
+                                                              "playing it beside (docs/retargeting.md).");
 }
 
 namespace {
@@ -143,6 +146,7 @@ bool parseRenderOptions(osg::ArgumentParser& arguments, RenderOptions& options, 
     while (arguments.read("--seed", seed)) {}
     while (arguments.read("--play-animations")) settings.playAnimations = true;
     while (arguments.read("--progress")) options.forceProgress = true;
+    while (arguments.read("--retarget-preview", options.retargetPreview)) {}
     while (arguments.read("--job-report-fd", options.jobReportFd)) {}
     while (arguments.read("--job-scratch", options.jobScratchPattern)) {}
     while (arguments.read("--job-scratch-all")) options.jobScratchAll = true;

@@ -35,6 +35,7 @@ struct RenderOptions
     bool writeFrames = true;
 
     std::string contactSheet; // empty: none
+    std::string retargetPreview; // a motion file to show retargeted onto the scene's first actor; empty: none
     unsigned sheetColumns = 0;
     int sheetTileWidth = 160;
 

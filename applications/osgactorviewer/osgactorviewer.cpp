@@ -9,6 +9,7 @@
 #include "CameraView.h"
 #include "InfoPanel.h"
 #include "PlaybackClock.h"
+#include "RetargetPreview.h"
 #include "SceneLoader.h"
 #include "SkeletonOverlay.h"
 #include "WindowCapture.h"
@@ -49,6 +50,9 @@ void describeUsage(osg::ArgumentParser& arguments)
     usage->addCommandLineOption("--frames <n>", "Quit after n frames (for tests and recordings).");
     usage->addCommandLineOption("--paused", "Start with playback paused.");
     usage->addCommandLineOption("--capture <file>", "Write the last frame's image to a file (runs single-threaded).");
+    usage->addCommandLineOption("--retarget-preview <motion>", "Retarget a motion file (BVH, or ASF with its AMC "
+                                                              "beside it) onto the first actor and show its own "
+                                                              "skeleton playing it beside (docs/retargeting.md).");
 }
 
 /** The panel's window size: the master camera's viewport once the viewer is realized. */
@@ -83,6 +87,8 @@ int main(int argc, char** argv)
     while (arguments.read("--paused")) clock.setPlaying(false);
     std::string captureFile;
     while (arguments.read("--capture", captureFile)) {}
+    std::string retargetPreview;
+    while (arguments.read("--retarget-preview", retargetPreview)) {}
 
     arguments.reportRemainingOptionsAsUnrecognized();
     if (arguments.errors())
@@ -97,7 +103,8 @@ int main(int argc, char** argv)
     if (!captureFile.empty() && maxFrames == 0) return fail("--capture needs --frames (which frame to capture)");
 
     std::string error;
-    const osg::ref_ptr<osg::Node> scene = osgActorApps::loadSceneFiles(files, error);
+    osg::ref_ptr<osg::Node> scene = osgActorApps::loadSceneFiles(files, error);
+    if (scene && !retargetPreview.empty()) scene = osgActorApps::makeRetargetPreview(*scene, retargetPreview, error);
     if (!scene) return fail(error);
 
     // The scene, an overlay per actor, and the panel.

@@ -23,7 +23,7 @@ bool parseShapeKind(const std::string& text, GeometryKind& kind)
     return false;
 }
 
-bool isReservedSection(const std::string&) { return false; }
+bool isReservedSection(const std::string& keyword) { return keyword == "jointmap"; }
 
 BuildResult buildDefinition(const ActorDocument& document, const std::string& fileName)
 {

@@ -1,6 +1,7 @@
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/io/ActorNumbers>
 #include <osgActor/io/ActorReader>
+#include <osgActor/io/JointMapSection>
 #include <osgActor/mocap/MotionFile>
 
 #include <glm/ext/scalar_constants.hpp>
@@ -856,6 +857,11 @@ private:
                 if (!once(seen, c) || !readClipFile(c, clip)) return false;
                 continue;
             }
+            if (c.keyword == "retarget")
+            {
+                if (!once(seen, c) || !readClipRetarget(c, _fileName, clip.retarget, _error)) return false;
+                continue;
+            }
             const bool isChannel = c.keyword == "channel";
             if (!isChannel && c.keyword != "frame_rate" && c.keyword != "channels" && c.keyword != "frame")
                 return unknownKeyword(c, "in a clip");
@@ -863,6 +869,8 @@ private:
             uniform = uniform || !isChannel;
             if (keyed && uniform) return fail(c.line, "a clip has either 'channel' blocks or frames, not both");
         }
+        if (clip.retarget.enabled && clip.file.empty())
+            return fail(clip.retarget.line, "'retarget' is for a clip whose motion is in a file");
         if (!clip.file.empty())
         {
             if (keyed || uniform)
@@ -916,6 +924,7 @@ ActorReadResult readActor(std::istream& in, const std::string& fileName)
         result.error = built.error;
         return result;
     }
+    if (!checkActorJointMaps(document.sections, *built.definition, fileName, result.error)) return result;
     if (!reader.readClips(*built.definition, document))
     {
         result.error = reader.error();

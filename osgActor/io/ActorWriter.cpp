@@ -146,6 +146,7 @@ SyntaxStatement clipStatement(const ClipDocument& document)
     if (!document.file.empty())
     {
         s.children.push_back(clipFileStatement(document.file, document.fileOptions));
+        if (document.retarget.enabled) s.children.push_back(clipRetargetStatement(document.retarget));
         return s;
     }
     const Clip& clip = *document.clip;

@@ -1,0 +1,254 @@
+// The per-frame retargeting: what validate() refuses, then the measures of issue 27 on real motion capture: the same
+// skeleton reproduces its DOFs, T-pose and A-pose targets move alike, bones keep their lengths, bones along other
+// local axes move alike; and by hand: a spine of 3 onto a spine of 5, a hinge at its limit.
+#include "RetargetTestUtil"
+
+#include <osgActor/core/retarget/RetargetMeasures>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <limits>
+#include <random>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+/** Retargets a whole clip without the IK pass, failing the test on an error. */
+RetargetClipResult retargetAll(const RetargetRigPtr& rig, const Clip& clip)
+{
+    const RetargetClipResult result = retargetClip(*rig, clip);
+    EXPECT_TRUE(result) << result.error;
+    return result;
+}
+
+/** A chain skeleton: root (6 DOFs) and n spine joints of length `length` each along +Z, then a head. */
+ActorDefinitionPtr spine(const std::string& name, unsigned n, double length)
+{
+    ActorDefinitionBuilder b(name);
+    b.addJoint("root").offset(0, 0, 1).dofs(kRotationDofs | Dof::TX | Dof::TY | Dof::TZ);
+    std::string parent = "root";
+    for (unsigned i = 0; i < n; ++i)
+    {
+        const std::string joint = "s" + std::to_string(i);
+        b.addJoint(joint, parent).offset(0, 0, i == 0 ? 0.0 : length).dofs(kRotationDofs);
+        parent = joint;
+    }
+    b.addJoint("head", parent).offset(0, 0, length).dofs(kRotationDofs);
+    b.addJoint("head_end", "head").offset(0, 0, 0.2);
+    return b.build().definition;
+}
+
+} // namespace
+
+TEST(RetargetJob, RefusesWrongSizesAndValuesThatAreNotFinite)
+{
+    const ActorDefinitionPtr humanoid = readHumanoid();
+    const RetargetRigPtr rig = buildRig(skeleton(humanoid), skeleton(humanoid));
+    ASSERT_TRUE(rig);
+    RetargetWorkspace workspace;
+    std::vector<double> source = humanoid->getDefaultDofs(), target = humanoid->getDefaultDofs();
+    RetargetJob job;
+    job.rig = rig.get();
+    job.sourceDofs = source;
+    job.targetDofs = target;
+    job.workspace = &workspace;
+    EXPECT_FALSE(job.validate()) << "a workspace not sized for the rig";
+    workspace.resize(*rig);
+    EXPECT_TRUE(job.validate());
+    job.sourceDofs = Span<const double>(source.data(), source.size() - 1);
+    EXPECT_FALSE(job.run());
+    job.sourceDofs = source;
+    source[3] = std::numeric_limits<double>::quiet_NaN();
+    const std::vector<double> before = target;
+    EXPECT_FALSE(job.run());
+    EXPECT_EQ(target, before) << "nothing written";
+    source[3] = 2e150;
+    EXPECT_FALSE(job.run());
+    source[3] = 0.0;
+    target[0] = std::numeric_limits<double>::infinity();
+    EXPECT_FALSE(job.run());
+    target[0] = 0.0;
+    job.rig = nullptr;
+    EXPECT_FALSE(job.run());
+}
+
+TEST(RetargetJob, TheSameSkeletonReproducesItsDofs)
+{
+    // Both CMU formats, BVH and ASF/AMC, every frame; and the humanoid, whose DOFs have limits, on a random pose.
+    for (const MocapImport& motion :
+         {readBvhScaled(repositoryMocap("bvh/12_03.bvh")), readCmuAmc("charleston.asf", "charleston1.amc")})
+    {
+        SCOPED_TRACE(motion.definition->getName());
+        const RetargetRigPtr rig = buildRig(skeleton(motion.definition), skeleton(motion.definition));
+        ASSERT_TRUE(rig);
+        const RetargetClipResult result = retargetAll(rig, *motion.clip);
+        ASSERT_EQ(result.clip->getNumFrames(), motion.clip->getNumFrames());
+        double largest = 0.0;
+        for (unsigned f = 0; f < motion.clip->getNumFrames(); ++f)
+            for (unsigned d = 0; d < motion.clip->getNumChannels(); ++d)
+                largest = std::max(largest, std::abs(result.clip->getFrame(f)[d] - motion.clip->getFrame(f)[d]));
+        EXPECT_LE(largest, 1e-9);
+    }
+    const ActorDefinitionPtr humanoid = readHumanoid();
+    const RetargetRigPtr rig = buildRig(skeleton(humanoid), skeleton(humanoid));
+    std::mt19937 random(27);
+    std::vector<double> pose(humanoid->getNumDofs());
+    for (unsigned d = 0; d < pose.size(); ++d)
+    {
+        const double lo = std::max(humanoid->getDofMin(d), -1.0), hi = std::min(humanoid->getDofMax(d), 1.0);
+        pose[d] = std::uniform_real_distribution<double>(lo, hi)(random);
+    }
+    RetargetWorkspace workspace;
+    std::vector<double> target = humanoid->getDefaultDofs();
+    RetargetJob job = retargetJob(*rig, pose, target, workspace);
+    ASSERT_TRUE(job.run());
+    for (unsigned d = 0; d < pose.size(); ++d) EXPECT_NEAR(target[d], pose[d], 1e-9) << humanoid->getDofName(d);
+    EXPECT_EQ(job.numInexact, 0u);
+}
+
+TEST(RetargetJob, TPoseAndAPoseTargetsTurnTheirJointsAlike)
+{
+    // The same target skeleton with its rest pose's arms out (T) or half down (A): the retargeting reconciles each
+    // with the source's rest pose, so every joint's world orientation agrees on every frame.
+    const MocapImport walk = readBvhScaled(repositoryMocap("bvh/12_03.bvh"));
+    struct Variant
+    {
+        ActorDefinitionPtr definition;
+        std::vector<double> tPose, aPose;
+    };
+    const ActorDefinitionPtr humanoid = readHumanoid();
+    const MocapImport boxing = readBvhScaled(assimpBvh("Boxing_Toes.bvh"), 0.01);
+    const std::vector<Variant> variants = {
+        {humanoid, restWith(*humanoid, {{"l_shoulder.ry", degrees(-90)}, {"r_shoulder.ry", degrees(90)}}),
+         restWith(*humanoid, {{"l_shoulder.ry", degrees(-45)}, {"r_shoulder.ry", degrees(45)}})},
+        {boxing.definition, boxing.definition->getDefaultDofs(),
+         restWith(*boxing.definition, {{"LeftShoulder.rz", degrees(-45)}, {"RightShoulder.rz", degrees(45)}})}};
+    for (const Variant& variant : variants)
+    {
+        SCOPED_TRACE(variant.definition->getName());
+        const RetargetRigPtr tRig = buildRig(skeleton(walk.definition), skeleton(variant.definition, variant.tPose));
+        const RetargetRigPtr aRig = buildRig(skeleton(walk.definition), skeleton(variant.definition, variant.aPose));
+        ASSERT_TRUE(tRig && aRig);
+        const RetargetClipResult t = retargetAll(tRig, *walk.clip), a = retargetAll(aRig, *walk.clip);
+        double largest = 0.0;
+        for (unsigned f = 0; f < t.numFrames; ++f)
+        {
+            const std::vector<glm::dmat4> tModels = modelsAt(variant.definition, *t.clip, f);
+            const std::vector<glm::dmat4> aModels = modelsAt(variant.definition, *a.clip, f);
+            for (unsigned j = 0; j < tModels.size(); ++j)
+                largest = std::max(largest, angleBetween(glm::dmat3(tModels[j]), glm::dmat3(aModels[j])));
+        }
+        EXPECT_LE(largest, degrees(0.5));
+    }
+}
+
+TEST(RetargetJob, EveryTargetBoneKeepsItsLengthOnEveryFrame)
+{
+    const MocapImport walk = readBvhScaled(assimpBvh("01_01.bvh"));
+    const MocapImport boxing = readBvhScaled(assimpBvh("Boxing_Toes.bvh"), 0.01);
+    for (const ActorDefinitionPtr& target : {readHumanoid(), boxing.definition})
+    {
+        SCOPED_TRACE(target->getName());
+        const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(target));
+        const RetargetClipResult result = retargetAll(rig, *walk.clip);
+        const RetargetMeasures measures = measureRetargetedClip(*rig, *walk.clip, result);
+        EXPECT_LE(measures.largestLengthChange, 1e-9);
+        EXPECT_GT(measures.targetHeight, 1.5);
+    }
+}
+
+TEST(RetargetJob, BonesAlongOtherLocalAxesMoveAlike)
+{
+    // Boxing_Toes.bvh, and the same skeleton with every joint's frame turned by a rotation of its own (its children's
+    // offsets turned back, so the rest geometry is the same): the retargeted joints go to the same places.
+    const MocapImport walk = readBvhScaled(repositoryMocap("bvh/12_03.bvh"));
+    const ActorDefinitionPtr boxing = readBvhScaled(assimpBvh("Boxing_Toes.bvh"), 0.01).definition;
+    ActorDefinitionBuilder builder = toBuilder(*boxing);
+    std::mt19937 random(5);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::vector<glm::dquat> turn(builder.getNumJoints());
+    for (glm::dquat& q : turn) q = glm::normalize(glm::dquat(unit(random), unit(random), unit(random), unit(random)));
+    for (unsigned j = 0; j < builder.getNumJoints(); ++j)
+    {
+        JointSpec& spec = builder.joint(j).spec();
+        const int parent = boxing->getParent(j);
+        const glm::dquat parentTurn = parent >= 0 ? turn[static_cast<unsigned>(parent)] : glm::dquat(1, 0, 0, 0);
+        spec.translation = glm::inverse(parentTurn) * spec.translation;
+        spec.rotation = glm::inverse(parentTurn) * spec.rotation * turn[j];
+    }
+    const ActorDefinitionPtr turned = builder.build().definition;
+    ASSERT_TRUE(turned);
+    const RetargetRigPtr plain = buildRig(skeleton(walk.definition), skeleton(boxing));
+    const RetargetRigPtr other = buildRig(skeleton(walk.definition), skeleton(turned));
+    const RetargetClipResult a = retargetAll(plain, *walk.clip), b = retargetAll(other, *walk.clip);
+    double largest = 0.0;
+    for (unsigned f = 0; f < a.numFrames; f += 5)
+    {
+        const std::vector<glm::dmat4> aModels = modelsAt(boxing, *a.clip, f), bModels = modelsAt(turned, *b.clip, f);
+        for (unsigned j = 0; j < aModels.size(); ++j)
+            largest = std::max(largest, glm::length(glm::dvec3(aModels[j][3]) - glm::dvec3(bModels[j][3])));
+    }
+    EXPECT_LE(largest, 1e-9);
+}
+
+TEST(RetargetJob, ASpineOfThreeOntoASpineOfFiveSharesTheBendOut)
+{
+    // Each of the source's three spine joints bends 10 degrees about X: the target's five, unpaired between the first
+    // and the head, bend 6 degrees each (the bend spread along the chain), and the head ends where the source's does.
+    const ActorDefinitionPtr three = spine("three", 3, 0.2), five = spine("five", 5, 0.12);
+    const std::vector<std::pair<std::string, std::string>> ends = {
+        {"root", "HumanoidRoot"}, {"s0", "vl5"}, {"head", "skullbase"}};
+    const RetargetRigPtr rig = buildRig(mappedSkeleton(three, ends), mappedSkeleton(five, ends));
+    ASSERT_TRUE(rig);
+    std::vector<double> bent = three->getDefaultDofs();
+    for (const char* joint : {"s0.rx", "s1.rx", "s2.rx"})
+        bent[static_cast<unsigned>(three->findDof(joint))] = degrees(10);
+    RetargetWorkspace workspace;
+    std::vector<double> result = five->getDefaultDofs();
+    RetargetJob job = retargetJob(*rig, bent, result, workspace);
+    ASSERT_TRUE(job.run());
+    for (unsigned i = 0; i < 5; ++i)
+    {
+        const std::string joint = "s" + std::to_string(i);
+        EXPECT_NEAR(result[static_cast<unsigned>(five->findDof(joint + ".rx"))], degrees(6), 1e-9) << joint;
+        EXPECT_NEAR(result[static_cast<unsigned>(five->findDof(joint + ".ry"))], 0.0, 1e-12) << joint;
+    }
+    const unsigned sourceHead = static_cast<unsigned>(three->findJoint("head"));
+    const unsigned targetHead = static_cast<unsigned>(five->findJoint("head"));
+    EXPECT_LE(angleBetween(workspace.sourceRotations[sourceHead], workspace.targetRotations[targetHead]), 1e-12);
+}
+
+TEST(RetargetJob, AHingeStopsAtItsLimitAndTheJointsBelowKeepTheirOrientation)
+{
+    // The target's knee bends to 90 degrees at most; the source's bends 120. The knee stops at 90 (its DOF within its
+    // limits, the joint counted inexact) and the ankle below still turns as the source's does.
+    auto leg = [](const std::string& name, double kneeMax) {
+        ActorDefinitionBuilder b(name);
+        b.addJoint("hip").offset(0, 0, 1).dofs(kRotationDofs);
+        b.addJoint("knee", "hip").offset(0, 0, -0.45).dofs(dofBit(Dof::RX)).limits(Dof::RX, 0.0, kneeMax);
+        b.addJoint("ankle", "knee").offset(0, 0, -0.45).dofs(kRotationDofs);
+        b.addJoint("toe", "ankle").offset(0, -0.15, -0.05);
+        return b.build().definition;
+    };
+    const ActorDefinitionPtr source = leg("source", degrees(150)), target = leg("target", degrees(90));
+    const std::vector<std::pair<std::string, std::string>> joints = {
+        {"hip", "l_hip"}, {"knee", "l_knee"}, {"ankle", "l_ankle"}};
+    const RetargetRigPtr rig = buildRig(mappedSkeleton(source, joints), mappedSkeleton(target, joints));
+    ASSERT_TRUE(rig);
+    std::vector<double> pose = source->getDefaultDofs();
+    pose[static_cast<unsigned>(source->findDof("knee.rx"))] = degrees(120);
+    pose[static_cast<unsigned>(source->findDof("ankle.rz"))] = degrees(20);
+    RetargetWorkspace workspace;
+    std::vector<double> result = target->getDefaultDofs();
+    RetargetJob job = retargetJob(*rig, pose, result, workspace);
+    ASSERT_TRUE(job.run());
+    EXPECT_DOUBLE_EQ(result[static_cast<unsigned>(target->findDof("knee.rx"))], degrees(90));
+    EXPECT_EQ(workspace.targetExact[static_cast<unsigned>(target->findJoint("knee"))], 0);
+    EXPECT_EQ(job.numInexact, 1u);
+    EXPECT_LE(angleBetween(workspace.sourceRotations[static_cast<unsigned>(source->findJoint("ankle"))],
+                           workspace.targetRotations[static_cast<unsigned>(target->findJoint("ankle"))]),
+              1e-12);
+}
