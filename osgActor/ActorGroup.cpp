@@ -7,13 +7,14 @@
 
 namespace osgActor {
 
-ActorGroup::ActorGroup() : _numThreads(0), _actorsStale(true)
+ActorGroup::ActorGroup() : _numThreads(0), _actorsStale(true), _hasActorPolicy(false)
 {
     setUpdateCallback(new ActorGroupUpdateCallback);
 }
 
 ActorGroup::ActorGroup(const ActorGroup& group, const osg::CopyOp& copyop)
-    : osg::Group(group, copyop), _numThreads(group._numThreads), _actorsStale(true)
+    : osg::Group(group, copyop), _numThreads(group._numThreads), _actorsStale(true),
+      _hasActorPolicy(group._hasActorPolicy), _actorPolicy(group._actorPolicy)
 {
 }
 
@@ -22,6 +23,13 @@ void ActorGroup::setNumThreads(unsigned numThreads)
     if (numThreads == _numThreads) return;
     _numThreads = numThreads;
     _pool.reset();
+}
+
+void ActorGroup::setActorUpdatePolicy(const ActorNode::UpdatePolicy& policy)
+{
+    _actorPolicy = policy;
+    _hasActorPolicy = true;
+    _actorsStale = true; // collectActors() hands it to every actor
 }
 
 bool ActorGroup::setChild(unsigned i, osg::Node* node)
@@ -42,6 +50,7 @@ void ActorGroup::collectActors()
         // An actor that is a child twice is updated once (two workers must never run the same actor).
         auto found = indexOf.emplace(actor, static_cast<int>(_actors.size()));
         if (found.second) _actors.push_back(actor);
+        if (found.second && _hasActorPolicy) actor->setUpdatePolicy(_actorPolicy);
         _actorOfChild[i] = found.first->second;
     }
     _actorsStale = false;

@@ -1,16 +1,19 @@
 #include <osgActor/ActorNode>
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/GlmOsg>
+#include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/Prefetch.h>
 #include <osgActor/detail/SkeletonNodeAccess.h>
 
 #include <osg/FrameStamp>
 #include <osg/Notify>
+#include <osgUtil/CullVisitor>
 #include <osgUtil/Optimizer>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <typeinfo>
 
@@ -70,12 +73,35 @@ inline void writeDirtyingBounds(const int* parents, const osg::ref_ptr<SkeletonN
     if (SkeletonNodeAccess::matrixWritten(*nodes[joint])) dirtyBoundsAbove(parents, nodes, joint);
 }
 
+/** Each actor's phase for reduced-rate updates: consecutive actors take consecutive phases, so a crowd at half or
+  * quarter rate spreads its pose work evenly over the frames. */
+unsigned nextLodPhase()
+{
+    static std::atomic<unsigned> counter{0};
+    return counter.fetch_add(1, std::memory_order_relaxed);
+}
+
+std::uint32_t floatBits(float value)
+{
+    std::uint32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    return bits;
+}
+
+float bitsFloat(std::uint32_t bits)
+{
+    float value;
+    std::memcpy(&value, &bits, sizeof value);
+    return value;
+}
+
 } // namespace
 
 ActorNode::ActorNode()
     : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _transformMatricesDirty(true),
       _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false),
-      _boundMode(BOUND_COVERS_ROTATIONS), _numUpdatesRun(0), _lastFrameNumber(kNoFrame)
+      _boundMode(BOUND_COVERS_ROTATIONS), _numUpdatesRun(0), _lastFrameNumber(kNoFrame), _cullMode(CULL_AS_ONE),
+      _numUpdatesSkipped(0), _lodPhase(nextLodPhase()), _lastSeen(0)
 {
     setDataVariance(osg::Object::DYNAMIC);
     setUpdateCallback(new ActorUpdateCallback);
@@ -94,21 +120,13 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
       _transformMatricesDirty(actor._transformMatricesDirty), _boundsToPropagate(false),
       _actorMatrixWritten(actor._actorMatrixWritten),
       _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame),
-      _definitionObject(actor._definitionObject), _clipLibraryObject(actor._clipLibraryObject)
+      _cullMode(actor._cullMode), _updatePolicy(actor._updatePolicy), _numUpdatesSkipped(0),
+      _lodPhase(nextLodPhase()), _lastSeen(0), _definitionObject(actor._definitionObject), _clipLibraryObject(actor._clipLibraryObject)
 {
     for (const ControllerPtr& controller : actor._controllers)
         if (controller) _controllers.push_back(controller->cloneController());
     _ikChains = actor._ikChains; // immutable: shared
     rebindSkeletonNodes();
-}
-
-void ActorNode::traverse(osg::NodeVisitor& nv)
-{
-    // The optimizer's visitors are plain node visitors: the update and cull traversals pay one comparison here.
-    if (nv.getVisitorType() == osg::NodeVisitor::NODE_VISITOR &&
-        dynamic_cast<osgUtil::Optimizer::RemoveEmptyNodesVisitor*>(&nv))
-        return;
-    osg::MatrixTransform::traverse(nv);
 }
 
 void ActorNode::setDefinition(ActorDefinitionPtr definition)
@@ -507,7 +525,7 @@ void ActorNode::update(const osg::NodeVisitor* nv)
 {
     const osg::FrameStamp* stamp = nv ? nv->getFrameStamp() : nullptr;
     if (!claimFrame(stamp)) return;
-    computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
+    if (poseWorkDue(stamp)) computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
     writeJointMatrices();
     writeActorMatrix();
 }
@@ -516,7 +534,7 @@ unsigned char ActorNode::updateWithinGroup(const osg::FrameStamp* stamp)
 {
     unsigned char left = hasUpdateTraversalWorkBeyondOwnUpdate() ? GROUP_WORK_VISIT : GROUP_WORK_NONE;
     if (!claimFrame(stamp)) return left;
-    computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
+    if (poseWorkDue(stamp)) computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
     writeJointMatrices();
     // Nothing to write for a still actor_m whose bounds below stayed clean (the covering bounds' usual frame):
     // the update thread then need not touch this actor at all.
@@ -562,6 +580,77 @@ void ActorNode::computeFrame(double time)
     runControllers(time); // does nothing for kNoTime
     // Local matrices only: the scene graph composes them; model matrices wait for a query (updatePose()).
     _pose.updateLocalMatrices();
+}
+
+bool ActorNode::poseWorkDue(const osg::FrameStamp* stamp)
+{
+    if (!_updatePolicy.onlyWhenSeen || !stamp || _numUpdatesRun <= 1) return true; // always pose the first frame
+    for (const ControllerPtr& controller : _controllers)
+        if (controller && controller->getEnabled() && !controller->canSkipFrames()) return true;
+    const std::uint64_t seen = _lastSeen.load(std::memory_order_relaxed);
+    const unsigned frame = stamp->getFrameNumber();
+    const unsigned seenFrame = static_cast<unsigned>(seen >> 32); // plus one; 0: never seen
+    bool due = seenFrame != 0 && frame - (seenFrame - 1) <= 1; // seen at the previous frame or this one
+    if (due)
+    {
+        const float size = bitsFloat(static_cast<std::uint32_t>(seen));
+        const unsigned period = size < _updatePolicy.quarterRateBelowPixels ? 4u
+                                : size < _updatePolicy.halfRateBelowPixels  ? 2u
+                                                                             : 1u;
+        due = (frame + _lodPhase) % period == 0;
+    }
+    if (!due) ++_numUpdatesSkipped;
+    return due;
+}
+
+void ActorNode::traverse(osg::NodeVisitor& nv)
+{
+    if (nv.getVisitorType() != osg::NodeVisitor::CULL_VISITOR)
+    {
+        // The optimizer's visitors are plain node visitors: the update traversal pays one comparison here.
+        if (nv.getVisitorType() == osg::NodeVisitor::NODE_VISITOR &&
+            dynamic_cast<osgUtil::Optimizer::RemoveEmptyNodesVisitor*>(&nv))
+            return;
+        osg::MatrixTransform::traverse(nv);
+        return;
+    }
+    // The visitor found our bound visible to come here.
+    if (_updatePolicy.onlyWhenSeen) noteSeen(nv);
+    osgUtil::CullVisitor* cv = nv.asCullVisitor();
+    if (_cullMode == CULL_AS_ONE && cv && detail::ActorCull::canCullAsOne(*cv))
+    {
+        // The walk reads every skeleton node (its mask, children, state, matrix): with many actors they have left
+        // the caches since the update, so fetch them all at once and let the fetches overlap.
+        for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes)
+            detail::prefetchForRead(node.get(), sizeof(detail::PlacedSkeletonNode));
+        detail::ActorCull(*cv).cullChildren(*this);
+    }
+    else
+        osg::MatrixTransform::traverse(nv);
+}
+
+void ActorNode::noteSeen(osg::NodeVisitor& nv)
+{
+    const osg::FrameStamp* stamp = nv.getFrameStamp();
+    osgUtil::CullVisitor* cv = nv.asCullVisitor();
+    if (!stamp || !cv) return;
+    // Distance and size at the root joint's origin (the body, which may walk away from the reference point), in
+    // this node's frame, whose model-view matrix the visitor holds now.
+    const osg::Vec3d root = _skeletonNodes.empty() ? osg::Vec3d() : _skeletonNodes.front()->getMatrix().getTrans();
+    const osg::Vec3d eye = root * *cv->getModelViewMatrix();
+    if (!(eye.length() <= _updatePolicy.maxDistance)) return;
+    const float size = cv->clampedPixelSize(osg::Vec3(root), getBound().radius());
+    const std::uint64_t frame = static_cast<std::uint64_t>(stamp->getFrameNumber()) + 1u;
+    // Several cull threads may see the actor in one frame: keep the largest size of the latest frame.
+    std::uint64_t old = _lastSeen.load(std::memory_order_relaxed);
+    for (;;)
+    {
+        const bool sameFrame = (old >> 32) == frame;
+        if (sameFrame && !(bitsFloat(static_cast<std::uint32_t>(old)) < size)) return;
+        if (!sameFrame && (old >> 32) > frame) return; // a later frame noted already
+        const std::uint64_t noted = (frame << 32) | floatBits(std::isfinite(size) ? size : std::numeric_limits<float>::max());
+        if (_lastSeen.compare_exchange_weak(old, noted, std::memory_order_relaxed)) return;
+    }
 }
 
 void ActorNode::writeJointMatrices()

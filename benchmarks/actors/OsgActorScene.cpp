@@ -11,11 +11,28 @@ namespace bench {
 
 osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, Motion motion, unsigned threads, Bounds bounds)
 {
+    OsgActorCrowd crowd;
+    crowd.motion = motion;
+    crowd.threads = threads;
+    crowd.bounds = bounds;
+    return makeOsgActorScene(numActors, crowd);
+}
+
+osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, const OsgActorCrowd& crowd)
+{
+    const Motion motion = crowd.motion;
+    const unsigned threads = crowd.threads;
+    const Bounds bounds = crowd.bounds;
     osg::ref_ptr<osgActor::ActorNode> prototype = new osgActor::ActorNode(humanoidDefinition());
     for (unsigned j = 0; j < prototype->getNumSkeletonNodes(); ++j)
         prototype->getSkeletonNode(j)->addChild(jointBox().get());
     prototype->setBoundMode(bounds == Bounds::FollowPose ? osgActor::ActorNode::BOUND_FOLLOWS_POSE
                                                          : osgActor::ActorNode::BOUND_COVERS_ROTATIONS);
+    prototype->setCullMode(crowd.cullNodeByNode ? osgActor::ActorNode::CULL_NODE_BY_NODE
+                                                : osgActor::ActorNode::CULL_AS_ONE);
+    osgActor::ActorNode::UpdatePolicy policy;
+    policy.onlyWhenSeen = crowd.onlyWhenSeen;
+    prototype->setUpdatePolicy(policy);
     if (motion != Motion::Idle)
     {
         auto controller = std::make_shared<osgActor::ClipPlayer>(humanoidOsgActorClip());
@@ -37,7 +54,11 @@ osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, Motion motion, un
     else
         scene = new osg::Group;
     for (unsigned a = 0; a < numActors; ++a)
-        scene->addChild(osg::clone(prototype.get(), osg::CopyOp::SHALLOW_COPY));
+    {
+        osg::ref_ptr<osgActor::ActorNode> actor = osg::clone(prototype.get(), osg::CopyOp::SHALLOW_COPY);
+        if (outOfView(a, crowd.outOfView)) actor->setPreTranslation(outOfViewPosition());
+        scene->addChild(actor.get());
+    }
     return scene;
 }
 

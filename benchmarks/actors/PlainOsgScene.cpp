@@ -19,6 +19,25 @@ osg::ref_ptr<osg::Geode> jointBox()
     return box;
 }
 
+bool outOfView(unsigned i, double share)
+{
+    // Instance i is out when the count out among the first i + 1 grows: evenly spread, exact for any share.
+    return static_cast<unsigned>((i + 1) * share) > static_cast<unsigned>(i * share);
+}
+
+osg::Vec3d outOfViewPosition() { return osg::Vec3d(0.0, -40.0, 0.0); } // FrameLoop's camera is at y = -8, facing +y
+
+void placeInstances(osg::Group& scene, double share)
+{
+    for (unsigned i = 0; i < scene.getNumChildren(); ++i)
+    {
+        osg::ref_ptr<osg::MatrixTransform> place = new osg::MatrixTransform;
+        if (outOfView(i, share)) place->setMatrix(osg::Matrixd::translate(outOfViewPosition()));
+        place->addChild(scene.getChild(i));
+        scene.setChild(i, place.get());
+    }
+}
+
 osg::Quat eulerXYZ(const double* angles)
 {
     // Rx * Ry * Rz in column notation; OSG's row-vector product of the same rotations reads right to left.

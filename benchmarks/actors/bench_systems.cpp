@@ -1,6 +1,9 @@
 // osgActor against osgAnimation and plain OSG, side by side in one run: the same 31-joint humanoid and the same
-// looping clip in each system, N = 1, 10, 100, 1000 instances, the update traversal alone and update plus cull.
-// Reported per joint; the summary at the end gives each result's ratio to osgAnimation at the same N and mode.
+// looping clip in each system, N = 1, 10, 100, 1000 instances (--actors=N,...: up to 16000), the update traversal
+// alone and update plus cull; the frame with every instance in view and with three in four behind the camera; the
+// update of the largest crowd in an ActorGroup on 1, 2, 4, ... threads up to the machine's cores
+// (--threads=N,...). Reported per joint; the summary at the end gives each result's ratio to osgAnimation at the
+// same N and mode, and each system's frame in view against its frame with three in four out of view.
 #include "BenchReport"
 #include "FrameLoop"
 #include "NsPerJoint"
@@ -10,31 +13,53 @@
 
 #include <osg/MatrixTransform>
 
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
 namespace {
 
 using bench::Motion;
 
-enum class System { OsgActorAll, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg, OsgActorAllFollow,
-                    OsgActor1Thread, OsgActor2Threads };
+enum class System { OsgActorAll, OsgActorAllNodeByNode, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg,
+                    OsgActorAllFollow };
 
-osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors)
+const char* const kNames[] = {"osgActor_all", "osgActor_all_nodebynode", "osgActor_quarter", "osgActor_idle",
+                              "osgAnimation", "plainOSG",     "osgActor_all_follow"};
+
+/** A system's crowd; outOfView: the share of its instances behind the camera, where osgActor's actors follow
+  * ActorNode::UpdatePolicy::onlyWhenSeen (the peers have no such thing). */
+osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors, double outOfView = -1.0)
 {
+    bench::OsgActorCrowd crowd;
+    if (outOfView >= 0.0)
+    {
+        crowd.outOfView = outOfView;
+        crowd.onlyWhenSeen = true;
+    }
+    osg::ref_ptr<osg::Group> scene;
     switch (system)
     {
-    case System::OsgActorAll: return bench::makeOsgActorScene(numActors, Motion::All);
-    case System::OsgActorQuarter: return bench::makeOsgActorScene(numActors, Motion::Quarter);
-    case System::OsgActorIdle: return bench::makeOsgActorScene(numActors, Motion::Idle);
-    case System::OsgAnimation: return bench::makeOsgAnimationScene(numActors);
-    case System::PlainOsg: return bench::makePlainOsgScene(numActors);
+    case System::OsgActorAll: return bench::makeOsgActorScene(numActors, crowd);
+    case System::OsgActorAllNodeByNode: crowd.cullNodeByNode = true; return bench::makeOsgActorScene(numActors, crowd);
+    case System::OsgActorQuarter: crowd.motion = Motion::Quarter; return bench::makeOsgActorScene(numActors, crowd);
+    case System::OsgActorIdle: crowd.motion = Motion::Idle; return bench::makeOsgActorScene(numActors, crowd);
     case System::OsgActorAllFollow:
-        return bench::makeOsgActorScene(numActors, Motion::All, 0, bench::Bounds::FollowPose);
-    case System::OsgActor1Thread: return bench::makeOsgActorScene(numActors, Motion::All, 1);
-    case System::OsgActor2Threads: return bench::makeOsgActorScene(numActors, Motion::All, 2);
+        crowd.bounds = bench::Bounds::FollowPose;
+        return bench::makeOsgActorScene(numActors, crowd);
+    case System::OsgAnimation: scene = bench::makeOsgAnimationScene(numActors); break;
+    case System::PlainOsg: scene = bench::makePlainOsgScene(numActors); break;
     }
-    return nullptr;
+    if (outOfView >= 0.0) bench::placeInstances(*scene, outOfView);
+    return scene;
 }
 
-/** A sum over every transform matrix of the last instance: it changes when any joint of that instance moves. */
+/** A sum over every transform matrix of the first instance (always in view): it changes when any joint of that
+  * instance moves. */
 double poseSignature(osg::Group& scene)
 {
     struct Summer : osg::NodeVisitor
@@ -47,21 +72,20 @@ double poseSignature(osg::Group& scene)
         }
         double sum = 0.0;
     } summer;
-    scene.getChild(scene.getNumChildren() - 1)->accept(summer);
+    scene.getChild(0)->accept(summer);
     return summer.sum;
 }
 
-void runSystem(benchmark::State& state, System system, bool withCull)
+void runScene(benchmark::State& state, osg::Group& scene, bool withCull, bool shouldMove)
 {
     const unsigned numActors = static_cast<unsigned>(state.range(0));
-    osg::ref_ptr<osg::Group> scene = makeScene(system, numActors);
-    bench::FrameLoop loop(scene.get(), withCull);
+    bench::FrameLoop loop(&scene, withCull);
     // Warm up (osgAnimation links its channels on the first frame) and check that the system moves.
     loop.frame();
-    const double before = poseSignature(*scene);
+    const double before = poseSignature(scene);
     for (int i = 0; i < 5; ++i) loop.frame();
-    const bool moves = poseSignature(*scene) != before;
-    if (moves != (system != System::OsgActorIdle))
+    const bool moves = poseSignature(scene) != before;
+    if (moves != shouldMove)
     {
         state.SkipWithError(moves ? "the idle actor moved" : "the system does not animate its instances");
         return;
@@ -71,38 +95,112 @@ void runSystem(benchmark::State& state, System system, bool withCull)
     if (withCull) state.counters["drawables"] = loop.lastDrawables();
 }
 
-const char* const kNames[] = {"osgActor_all", "osgActor_quarter",   "osgActor_idle",    "osgAnimation",
-                              "plainOSG",     "osgActor_all_follow", "osgActor_1thread", "osgActor_2threads"};
+/** What the command line chose: the crowd sizes and the thread counts of the parallel sweep. */
+struct Sweep
+{
+    std::vector<int> actors{1, 10, 100, 1000};
+    std::vector<int> threads;
+};
 
-void registerAll()
+void registerAll(const Sweep& sweep)
 {
     // Interleaved: for each N and mode, every system in turn, so drift in machine load hits all of them alike.
     for (bool withCull : {false, true})
-        for (int n : {1, 10, 100, 1000})
-            for (int s = 0; s < 6; ++s)
+        for (int n : sweep.actors)
+            for (int s = 0; s < 7; ++s)
             {
                 const System system = static_cast<System>(s);
+                if (system == System::OsgActorAllNodeByNode && !withCull) continue; // the same update as _all
                 const std::string name = std::string(withCull ? "update_cull/" : "update/") + kNames[s];
                 benchmark::RegisterBenchmark(name.c_str(), [system, withCull](benchmark::State& state) {
-                    runSystem(state, system, withCull);
+                    osg::ref_ptr<osg::Group> scene = makeScene(system, static_cast<unsigned>(state.range(0)));
+                    runScene(state, *scene, withCull, system != System::OsgActorIdle);
                 })->Arg(n)->Unit(benchmark::kMicrosecond);
             }
-    // Many actors in an ActorGroup on one thread and on two: the update traversal, wall-clock time.
-    for (int s : {6, 7})
+    // The whole frame (update + cull) with every instance in view, and with three in four behind the camera; each
+    // instance under a placing transform in both, osgActor's actors updating only when seen.
+    for (int n : sweep.actors)
     {
-        const System system = static_cast<System>(s);
-        benchmark::RegisterBenchmark((std::string("parallel/") + kNames[s]).c_str(), [system](benchmark::State& state) {
-            runSystem(state, system, false);
-        })->Arg(1000)->Unit(benchmark::kMicrosecond)->UseRealTime();
+        if (n < 4) continue;
+        for (double share : {0.0, 0.75})
+            for (System system : {System::OsgActorAll, System::OsgAnimation, System::PlainOsg})
+            {
+                const std::string name =
+                    std::string(share > 0.0 ? "frame_quarter_in_view/" : "frame_in_view/") + kNames[int(system)];
+                benchmark::RegisterBenchmark(name.c_str(), [system, share](benchmark::State& state) {
+                    osg::ref_ptr<osg::Group> scene = makeScene(system, static_cast<unsigned>(state.range(0)), share);
+                    runScene(state, *scene, true, true);
+                })->Arg(n)->Unit(benchmark::kMicrosecond);
+            }
     }
+    // The largest crowd in an ActorGroup on each thread count: the update traversal, wall-clock time.
+    const int largest = *std::max_element(sweep.actors.begin(), sweep.actors.end());
+    for (int threads : sweep.threads)
+    {
+        const std::string name =
+            "parallel/osgActor_" + std::to_string(threads) + (threads == 1 ? "thread" : "threads");
+        benchmark::RegisterBenchmark(name.c_str(), [threads](benchmark::State& state) {
+            osg::ref_ptr<osg::Group> scene =
+                bench::makeOsgActorScene(static_cast<unsigned>(state.range(0)), Motion::All, unsigned(threads));
+            runScene(state, *scene, false, true);
+        })->Arg(largest)->Unit(benchmark::kMicrosecond)->UseRealTime();
+    }
+}
+
+/** Parses a list of positive integers ("1,10,100"); false if it is not one. */
+bool parseList(const char* text, std::vector<int>& values)
+{
+    values.clear();
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ','))
+    {
+        char* end = nullptr;
+        const long value = std::strtol(item.c_str(), &end, 10);
+        if (item.empty() || *end != '\0' || value < 1 || value > 16000) return false;
+        values.push_back(static_cast<int>(value));
+    }
+    return !values.empty();
+}
+
+/** Takes --actors=N,... and --threads=N,... out of the arguments (Google Benchmark's own stay); false, with a
+  * message, on a bad value. */
+bool parseSweep(int& argc, char** argv, Sweep& sweep)
+{
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    for (unsigned t = 1; t < cores; t *= 2) sweep.threads.push_back(static_cast<int>(t));
+    sweep.threads.push_back(static_cast<int>(cores));
+    int kept = 1;
+    for (int i = 1; i < argc; ++i)
+    {
+        const std::string argument = argv[i];
+        std::vector<int>* target = argument.rfind("--actors=", 0) == 0    ? &sweep.actors
+                                   : argument.rfind("--threads=", 0) == 0 ? &sweep.threads
+                                                                           : nullptr;
+        if (!target)
+        {
+            argv[kept++] = argv[i];
+            continue;
+        }
+        if (!parseList(argv[i] + argument.find('=') + 1, *target))
+        {
+            std::fprintf(stderr, "osgactorbench: %s: want a list of counts in 1..16000, such as 1,10,100,1000\n",
+                         argv[i]);
+            return false;
+        }
+    }
+    argc = kept;
+    return true;
 }
 
 } // namespace
 
 int main(int argc, char** argv)
 {
+    Sweep sweep;
+    if (!parseSweep(argc, argv, sweep)) return 2;
     benchmark::Initialize(&argc, argv);
-    registerAll();
+    registerAll(sweep);
     bench::registerMemoryBenchmarks();
     bench::SummaryReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
