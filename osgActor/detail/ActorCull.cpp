@@ -145,7 +145,10 @@ void ActorCull::addDrawable(osg::Drawable& drawable, JointFrame& frame)
     if (_computeNearFar && box.valid())
     {
         if (_frustumCulling && drawable.isCullingActive() && isOutsideFrustum(box, frame.modelView)) return;
-        if (!_cv.updateCalculatedNearFar(frame.modelView, drawable, false)) return;
+        // The visitor takes the box's nearest and farthest corners along the view in the frame of the matrix it last
+        // pushed, which here is the actor's, not the joint's: its billboard form finds them from the matrix given,
+        // with the same arithmetic pushModelViewMatrix() uses, so the planes are those of the ordinary traversal.
+        if (!_cv.updateCalculatedNearFar(frame.modelView, drawable, true)) return;
     }
     const float depth = box.valid() ? eyeDepth(box.center(), frame.modelView) : 0.0f;
     if (osg::isNaN(depth)) return; // the visitor drops it too (with a notice)

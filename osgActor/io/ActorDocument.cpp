@@ -1,5 +1,7 @@
 #include <osgActor/io/ActorDocument>
 
+#include "../core/detail/EnumNames.h"
+
 namespace osgActor {
 
 namespace {
@@ -9,18 +11,6 @@ const char* const kKindNames[] = {"box", "sphere", "capsule", "cylinder", "cone"
 const char* const kInterpolationNames[] = {"step", "linear", "cubic"};
 const char* const kTranslationModeNames[] = {"after_rotation", "before_rotation"};
 const char* const kBoundsNames[] = {"follows_pose", "covers_rotations"}; // false, true
-
-template <class Enum, std::size_t N>
-bool parseName(const char* const (&names)[N], const std::string& text, Enum& value)
-{
-    for (std::size_t i = 0; i < N; ++i)
-        if (text == names[i])
-        {
-            value = static_cast<Enum>(i);
-            return true;
-        }
-    return false;
-}
 
 } // namespace
 
@@ -38,21 +28,21 @@ const char* interpolationName(Interpolation interpolation)
 
 bool parseInterpolation(const std::string& text, Interpolation& interpolation)
 {
-    return parseName(kInterpolationNames, text, interpolation);
+    return parseEnumName(kInterpolationNames, text, interpolation);
 }
 
 const char* translationModeName(TranslationMode mode) { return kTranslationModeNames[static_cast<unsigned>(mode)]; }
 
 bool parseTranslationMode(const std::string& text, TranslationMode& mode)
 {
-    return parseName(kTranslationModeNames, text, mode);
+    return parseEnumName(kTranslationModeNames, text, mode);
 }
 
 const char* boundsName(bool coverRotations) { return kBoundsNames[coverRotations ? 1 : 0]; }
 
 bool parseBounds(const std::string& text, bool& coverRotations)
 {
-    return parseName(kBoundsNames, text, coverRotations);
+    return parseEnumName(kBoundsNames, text, coverRotations);
 }
 
 const char* geometryKindName(GeometryKind kind) { return kKindNames[static_cast<unsigned>(kind)]; }

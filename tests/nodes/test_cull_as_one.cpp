@@ -128,8 +128,12 @@ std::size_t expectSameRenderGraph(unsigned numActors, const osg::Vec3d& eye, con
     probe.lookAt(eye, centre);
     crowd.setCullMode(ActorNode::CULL_NODE_BY_NODE);
     const std::vector<CulledLeaf> ordinary = probe.cull(1);
+    const double ordinaryNear = probe.calculatedNear(), ordinaryFar = probe.calculatedFar();
     crowd.setCullMode(ActorNode::CULL_AS_ONE);
     const std::vector<CulledLeaf> asOne = probe.cull(2);
+    // The planes come from each drawable's box corners nearest and farthest along the view in its joint's frame.
+    EXPECT_EQ(probe.calculatedNear(), ordinaryNear);
+    EXPECT_EQ(probe.calculatedFar(), ordinaryFar);
     EXPECT_EQ(asOne.size(), ordinary.size());
     for (std::size_t i = 0; i < ordinary.size() && i < asOne.size(); ++i)
         EXPECT_TRUE(asOne[i] == ordinary[i]) << "leaf " << i;
@@ -254,4 +258,33 @@ TEST(CullAsOne, LeavesPickingAndOtherVisitorsAlone)
     } counter;
     crowd.scene->accept(counter);
     EXPECT_EQ(counter.joints, actor.getNumSkeletonNodes());
+}
+
+TEST(CullAsOne, ComputesTheOrdinaryNearAndFarPlanesWhateverWayTheJointsFace)
+{
+    // The visitor takes each box's nearest and farthest corners along the view in the frame the box is drawn in:
+    // joints turned half round (pelvis about Z, arms about all three axes) face other ways than the actor.
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    osg::ref_ptr<ActorNode> actor = makeTestFigure();
+    actor->setDof("pelvis.rz", 2.8);
+    actor->setDof("l_shoulder.rx", 2.2);
+    actor->setDof("l_shoulder.ry", -2.9);
+    actor->setDof("r_shoulder.rz", 3.0);
+    actor->setDof("l_elbow.rx", -2.4);
+    actor->getSkeletonNode("l_elbow")->addChild(makeBox(osg::Vec3(0.05f, -0.02f, -0.2f), 0.07f));
+    actor->update(nullptr);
+    scene->addChild(actor.get());
+    CullProbe probe(scene.get());
+    for (const osg::Vec3d& eye : {osg::Vec3d(0.7, -1.2, 1.6), osg::Vec3d(-1.1, 0.9, 0.4), osg::Vec3d(0.2, 1.5, 2.4)})
+    {
+        probe.lookAt(eye, osg::Vec3d(0.0, 0.0, 1.0));
+        actor->setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        const std::vector<CulledLeaf> ordinary = probe.cull(1);
+        const double ordinaryNear = probe.calculatedNear(), ordinaryFar = probe.calculatedFar();
+        actor->setCullMode(ActorNode::CULL_AS_ONE);
+        const std::vector<CulledLeaf> asOne = probe.cull(2);
+        EXPECT_EQ(probe.calculatedNear(), ordinaryNear) << "eye " << eye.x() << " " << eye.y() << " " << eye.z();
+        EXPECT_EQ(probe.calculatedFar(), ordinaryFar) << "eye " << eye.x() << " " << eye.y() << " " << eye.z();
+        EXPECT_EQ(asOne.size(), ordinary.size());
+    }
 }
