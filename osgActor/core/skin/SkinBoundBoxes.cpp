@@ -130,29 +130,41 @@ SkinJointBox smallestBox(const std::vector<glm::dvec3>& points, const glm::dmat4
 
 namespace {
 
-/** Vertices of one set of joints (the first joint, then the others in increasing order): bind positions and, per
-  * vertex, the weight of each joint of the set in that order. */
+/** Vertices of one set of joints (Set::joints: the first joint, then the others in increasing order): bind
+  * positions and, per vertex, the weight of each joint of the set in that order. */
 struct SetVertices
 {
     std::vector<glm::dvec3> points;
-    std::vector<float> weights; // points.size() rows of numJoints
+    std::vector<float> weights; // points.size() rows of joints.size()
 };
 
 /** A piece is small enough when its box's longest side and every joint's weight spread (as that fraction of half
-  * the bind box's diagonal) are within an eighth of that diagonal. */
+  * the bind box's diagonal) are within an eighth of that diagonal; a skin gets at most kPiecesPerJoint pieces per
+  * joint (or one per joint set, if more), the largest split first. */
 constexpr double kPieceFraction = 1.0 / 8.0;
 constexpr double kWeightLength = 0.5;
+constexpr std::size_t kPiecesPerJoint = 8;
 
-/** Splits the set's vertices into pieces (see computeSkinBoundBoxes()), appended to pieces. */
-void splitIntoPieces(SetVertices vertices, std::size_t numJoints, const glm::dmat4& inverseBind, double diagonal,
-                     std::vector<SetVertices>& pieces)
+/** A piece being split: its vertices, the set they follow, and how it would be split. */
+struct Piece
 {
+    std::size_t set = 0;
+    SetVertices vertices;
+    double size = 0.0;        // the larger of the box's longest side and the largest weight spread (model units)
+    glm::dvec3 direction{0.0}; // split along this bind-space direction, or
+    int weightJoint = -1;     // along this joint's weight, when >= 0
+};
+
+Piece measured(std::size_t set, SetVertices vertices, std::size_t numJoints, const glm::dmat4& inverseBind, double diagonal)
+{
+    Piece piece;
+    piece.set = set;
     const std::size_t count = vertices.points.size();
     const SkinJointBox box = smallestBox(vertices.points, inverseBind);
     const glm::vec3 size = box.box.max - box.box.min;
-    int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
-    double longest = size[axis];
-    int weightJoint = -1;
+    const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
+    piece.size = size[axis];
+    piece.direction = glm::dvec3(glm::vec3(box.boxToBind[axis]));
     for (std::size_t j = 0; j < numJoints; ++j)
     {
         float low = 1.0f, high = 0.0f;
@@ -162,19 +174,24 @@ void splitIntoPieces(SetVertices vertices, std::size_t numJoints, const glm::dma
             high = std::max(high, vertices.weights[i * numJoints + j]);
         }
         const double spread = (high - low) * kWeightLength * diagonal;
-        if (spread > longest) longest = spread, weightJoint = static_cast<int>(j);
+        if (spread > piece.size) piece.size = spread, piece.weightJoint = static_cast<int>(j);
     }
-    if (count < 2 || longest <= kPieceFraction * diagonal)
-    {
-        pieces.push_back(std::move(vertices));
-        return;
-    }
-    const glm::dvec3 direction(glm::vec3(box.boxToBind[axis]));
+    if (count < 2) piece.size = 0.0; // nothing to split
+    piece.vertices = std::move(vertices);
+    return piece;
+}
+
+/** The two halves of a piece's vertices, cut at the median along its split direction. */
+void splitInHalves(const Piece& piece, std::size_t numJoints, SetVertices halves[2])
+{
+    const SetVertices& vertices = piece.vertices;
+    const std::size_t count = vertices.points.size();
     std::vector<std::pair<double, std::size_t>> order(count);
     for (std::size_t i = 0; i < count; ++i)
-        order[i] = {weightJoint < 0 ? glm::dot(direction, vertices.points[i]) : vertices.weights[i * numJoints + weightJoint], i};
+        order[i] = {piece.weightJoint < 0 ? glm::dot(piece.direction, vertices.points[i])
+                                          : vertices.weights[i * numJoints + std::size_t(piece.weightJoint)],
+                    i};
     std::sort(order.begin(), order.end());
-    SetVertices halves[2];
     for (std::size_t i = 0; i < count; ++i)
     {
         SetVertices& half = halves[i < count / 2 ? 0 : 1];
@@ -182,8 +199,6 @@ void splitIntoPieces(SetVertices vertices, std::size_t numJoints, const glm::dma
         const auto row = vertices.weights.begin() + static_cast<std::ptrdiff_t>(order[i].second * numJoints);
         half.weights.insert(half.weights.end(), row, row + static_cast<std::ptrdiff_t>(numJoints));
     }
-    splitIntoPieces(std::move(halves[0]), numJoints, inverseBind, diagonal, pieces);
-    splitIntoPieces(std::move(halves[1]), numJoints, inverseBind, diagonal, pieces);
 }
 
 } // namespace
@@ -222,43 +237,67 @@ SkinBoundBoxes computeSkinBoundBoxes(const SkinVertices& vertices, Span<const gl
     for (std::size_t a = 0; a < numJoints; ++a)
         if (!firstOf[a].empty()) boxes.joints[a] = smallestBox(firstOf[a], inverseBindMatrices[a]);
     const double diagonal = vertex > 0 ? glm::length(high - low) : 0.0;
+    std::vector<std::vector<std::uint32_t>> setJoints;
+    std::vector<Piece> pieces;
     for (auto& entry : sets)
     {
-        const std::vector<std::uint32_t>& joints = entry.first;
-        std::vector<SetVertices> pieces;
-        splitIntoPieces(std::move(entry.second), joints.size(), inverseBindMatrices[joints[0]], diagonal, pieces);
-        for (const SetVertices& piece : pieces)
+        pieces.push_back(measured(setJoints.size(), std::move(entry.second), entry.first.size(),
+                                  inverseBindMatrices[entry.first[0]], diagonal));
+        setJoints.push_back(entry.first);
+    }
+    // Split the largest piece until every one is small enough or the budget is spent.
+    const std::size_t budget = std::max(pieces.size(), kPiecesPerJoint * numJoints);
+    const auto smaller = [](const Piece& p, const Piece& q) { return p.size < q.size; };
+    std::make_heap(pieces.begin(), pieces.end(), smaller);
+    while (!pieces.empty() && pieces.size() < budget && pieces.front().size > kPieceFraction * diagonal)
+    {
+        std::pop_heap(pieces.begin(), pieces.end(), smaller);
+        const Piece largest = std::move(pieces.back());
+        pieces.pop_back();
+        const std::vector<std::uint32_t>& joints = setJoints[largest.set];
+        SetVertices halves[2];
+        splitInHalves(largest, joints.size(), halves);
+        for (SetVertices& half : halves)
         {
-            // Centred on the points' box (close enough to the smallest sphere), the radius rounded up.
-            const std::vector<glm::dvec3>& points = piece.points;
-            glm::dvec3 pieceLow = points[0], pieceHigh = points[0];
-            for (const glm::dvec3& p : points)
-            {
-                pieceLow = glm::min(pieceLow, p);
-                pieceHigh = glm::max(pieceHigh, p);
-            }
-            const glm::vec3 centre(0.5 * (pieceLow + pieceHigh));
-            double radius = 0.0;
-            for (const glm::dvec3& p : points) radius = std::max(radius, glm::length(p - glm::dvec3(centre)));
-            SkinBlendSet set;
-            set.box = smallestBox(points, inverseBindMatrices[joints[0]]);
-            set.centre = centre;
-            set.radius = static_cast<float>(radius * (1.0 + 1e-6));
-            set.firstJoint = static_cast<std::uint32_t>(boxes.setJoints.size());
-            set.numJoints = static_cast<std::uint32_t>(joints.size());
-            boxes.setJoints.insert(boxes.setJoints.end(), joints.begin(), joints.end());
-            // The first joint's smallest weight, the others' largest; weights sum to 1 within float rounding: the
-            // other joints' weights rounded up by as much.
-            for (std::size_t j = 0; j < joints.size(); ++j)
-            {
-                float weight = j == 0 ? 1.0f : 0.0f;
-                for (std::size_t i = 0; i < points.size(); ++i)
-                    weight = j == 0 ? std::min(weight, piece.weights[i * joints.size()])
-                                    : std::max(weight, piece.weights[i * joints.size() + j]);
-                boxes.setWeights.push_back(j == 0 ? weight : weight + 4.0f * std::numeric_limits<float>::epsilon());
-            }
-            boxes.sets.push_back(set);
+            pieces.push_back(measured(largest.set, std::move(half), joints.size(), inverseBindMatrices[joints[0]], diagonal));
+            std::push_heap(pieces.begin(), pieces.end(), smaller);
         }
+    }
+    // In the order of their sets, for a skin built the same way twice to have the same pieces in the same order.
+    std::stable_sort(pieces.begin(), pieces.end(), [](const Piece& p, const Piece& q) { return p.set < q.set; });
+    for (const Piece& piece : pieces)
+    {
+        const std::vector<std::uint32_t>& joints = setJoints[piece.set];
+        const std::vector<float>& weights = piece.vertices.weights;
+        // Centred on the points' box (close enough to the smallest sphere), the radius rounded up.
+        const std::vector<glm::dvec3>& points = piece.vertices.points;
+        glm::dvec3 pieceLow = points[0], pieceHigh = points[0];
+        for (const glm::dvec3& p : points)
+        {
+            pieceLow = glm::min(pieceLow, p);
+            pieceHigh = glm::max(pieceHigh, p);
+        }
+        const glm::vec3 centre(0.5 * (pieceLow + pieceHigh));
+        double radius = 0.0;
+        for (const glm::dvec3& p : points) radius = std::max(radius, glm::length(p - glm::dvec3(centre)));
+        SkinBlendSet set;
+        set.box = smallestBox(points, inverseBindMatrices[joints[0]]);
+        set.centre = centre;
+        set.radius = static_cast<float>(radius * (1.0 + 1e-6));
+        set.firstJoint = static_cast<std::uint32_t>(boxes.setJoints.size());
+        set.numJoints = static_cast<std::uint32_t>(joints.size());
+        boxes.setJoints.insert(boxes.setJoints.end(), joints.begin(), joints.end());
+        // The first joint's smallest weight, the others' largest; weights sum to 1 within float rounding: the
+        // other joints' weights rounded up by as much.
+        for (std::size_t j = 0; j < joints.size(); ++j)
+        {
+            float weight = j == 0 ? 1.0f : 0.0f;
+            for (std::size_t i = 0; i < points.size(); ++i)
+                weight = j == 0 ? std::min(weight, weights[i * joints.size()])
+                                : std::max(weight, weights[i * joints.size() + j]);
+            boxes.setWeights.push_back(j == 0 ? weight : weight + 4.0f * std::numeric_limits<float>::epsilon());
+        }
+        boxes.sets.push_back(set);
     }
     return boxes;
 }
