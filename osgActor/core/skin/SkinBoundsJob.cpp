@@ -116,17 +116,41 @@ bool SkinBoundsJob::validate() const
 
 namespace {
 
-/** How far linear blending can take a piece's vertices past M_a v along each model axis, per side (see
-  * SkinBoundsJob): the largest sum_k w_k d_k over 0 <= w_k <= W_k with sum_k w_k <= 1 - W_a, d_k the side of the box
-  * around (M_k - M_a) B; the largest d_k filled first. low holds the (non-positive) sums towards -axis. */
-OSGACTOR_SKIN_INLINE void linearBlendReachOf(const glm::mat4& ma, const SkinBlendSet& set, Span<const std::uint32_t> setJoints,
-                                             Span<const float> setWeights, Span<const glm::mat4> matrices,
-                                             glm::vec3& low, glm::vec3& high)
+/** A piece's box moved by M_a and widened by how far linear blending can take its vertices past M_a v along each
+  * model axis, per side (see SkinBoundsJob): the largest sum_k w_k d_k over 0 <= w_k <= W_k with
+  * sum_k w_k <= 1 - W_a, d_k that side of the box around (M_k - M_a) B; the largest d_k filled first. The box around
+  * (M_k - M_a) B is computed from each joint's own products with B's centre and half-axes (the map is linear). */
+OSGACTOR_SKIN_INLINE SkinBox linearBlendBoxOf(const SkinBlendSet& set, Span<const std::uint32_t> setJoints,
+                                              Span<const float> setWeights, Span<const glm::mat4> matrices)
 {
+    const SkinJointBox& box = set.box;
+    const glm::vec3 halfSize = 0.5f * (box.box.max - box.box.min);
+    const glm::vec3 bindCentre = glm::vec3(box.boxToBind[3]) + glm::mat3(box.boxToBind) * (0.5f * (box.box.min + box.box.max));
+    const glm::vec3 halfAxes[3] = {glm::vec3(box.boxToBind[0]) * halfSize.x, glm::vec3(box.boxToBind[1]) * halfSize.y,
+                                   glm::vec3(box.boxToBind[2]) * halfSize.z};
+    const glm::mat4& ma = matrices[setJoints[set.firstJoint]];
+    const glm::mat3 la(ma);
+    const glm::vec3 centreA = glm::vec3(ma[3]) + la * bindCentre;
+    const glm::vec3 axesA[3] = {la * halfAxes[0], la * halfAxes[1], la * halfAxes[2]};
+    const glm::vec3 reachA = glm::abs(axesA[0]) + glm::abs(axesA[1]) + glm::abs(axesA[2]);
+    SkinBox moved;
+    moved.min = centreA - reachA;
+    moved.max = centreA + reachA;
     const std::uint32_t others = set.numJoints - 1;
-    SkinBox moved[kMaxSkinInfluences];
+    if (others == 0) return moved;
+
+    // Per other joint, the box around (M_k - M_a) B: its low and high sides.
+    glm::vec3 lows[kMaxSkinInfluences], highs[kMaxSkinInfluences];
     for (std::uint32_t i = 0; i < others; ++i)
-        moved[i] = boxAround(matrices[setJoints[set.firstJoint + 1 + i]] - ma, set.box);
+    {
+        const glm::mat4& mk = matrices[setJoints[set.firstJoint + 1 + i]];
+        const glm::mat3 lk(mk);
+        const glm::vec3 centre = glm::vec3(mk[3]) + lk * bindCentre - centreA;
+        const glm::vec3 reach = glm::abs(lk * halfAxes[0] - axesA[0]) + glm::abs(lk * halfAxes[1] - axesA[1]) +
+                                glm::abs(lk * halfAxes[2] - axesA[2]);
+        lows[i] = centre - reach;
+        highs[i] = centre + reach;
+    }
     // Weights sum to 1 within float rounding: what the others may have, rounded up by as much.
     const float budget = std::max(0.0f, 1.0f - setWeights[set.firstJoint]) + 4.0f * std::numeric_limits<float>::epsilon();
     for (int axis = 0; axis < 3; ++axis)
@@ -138,7 +162,7 @@ OSGACTOR_SKIN_INLINE void linearBlendReachOf(const glm::mat4& ma, const SkinBlen
             std::uint32_t count = 0;
             for (std::uint32_t i = 0; i < others; ++i)
             {
-                const float gain = side == 1 ? moved[i].max[axis] : -moved[i].min[axis];
+                const float gain = side == 1 ? highs[i][axis] : -lows[i][axis];
                 if (!(gain > 0.0f)) continue;
                 std::uint32_t at = count++;
                 for (; at > 0 && gains[at - 1] < gain; --at) gains[at] = gains[at - 1], caps[at] = caps[at - 1];
@@ -152,9 +176,10 @@ OSGACTOR_SKIN_INLINE void linearBlendReachOf(const glm::mat4& ma, const SkinBlen
                 sum += weight * gains[i];
                 left -= weight;
             }
-            if (side == 1) high[axis] = sum;
-            else low[axis] = -sum;
+            if (side == 1) moved.max[axis] += sum;
+            else moved.min[axis] -= sum;
         }
+    return moved;
 }
 
 /** run()'s work, built for x86-64-v3 and the baseline (OSGACTOR_HOT_PATH): per piece, a few small matrix
@@ -170,21 +195,19 @@ OSGACTOR_HOT_PATH SkinBox computeBound(const SkinBoundsJob& job)
     for (const SkinBlendSet& set : blendSets)
     {
         if (set.box.box.isEmpty()) continue;
-        const glm::mat4& first = matrices[blendSetJoints[set.firstJoint]];
-        SkinBox box = boxAround(first, set.box);
         bindReach = std::max(bindReach, bindReachOf(set.box));
+        SkinBox box;
         if (job.method == SkinningMethod::DualQuaternion)
         {
+            const glm::mat4& first = matrices[blendSetJoints[set.firstJoint]];
             const glm::vec3 reach(dualQuaternionReachOf(first, set, blendSetJoints, blendSetWeights, matrices));
+            box = boxAround(first, set.box);
             box.min -= reach;
             box.max += reach;
         }
-        else if (set.numJoints > 1)
+        else
         {
-            glm::vec3 low(0.0f), high(0.0f);
-            linearBlendReachOf(first, set, blendSetJoints, blendSetWeights, matrices, low, high);
-            box.min += low;
-            box.max += high;
+            box = linearBlendBoxOf(set, blendSetJoints, blendSetWeights, matrices);
         }
         const bool empty = result.isEmpty();
         result.min = empty ? box.min : glm::min(result.min, box.min);
