@@ -150,6 +150,28 @@ TEST(SkinBoundsJob, BoxesEachJointInTheFrameWhereItsVerticesFitTightest)
     EXPECT_LT(size.x * size.y * size.z, 0.01f * bindSize.x * bindSize.y * bindSize.z);
 }
 
+TEST(SkinBoundsJob, CutsASkinIntoAtMostEightPiecesPerJointWhateverItsVertexCount)
+{
+    // Scattered vertices with random weights on three joints: the worst case for pieces (every split would help).
+    for (const unsigned numVertices : {300u, 30000u})
+    {
+        SkinBuilder builder("scattered");
+        for (const char* name : {"a", "b", "c"}) builder.addJoint(name);
+        std::uint32_t state = 12345u;
+        const auto next = [&state]() { return (state = state * 1664525u + 1013904223u) / 4294967296.0f; };
+        for (unsigned v = 0; v < numVertices; ++v)
+        {
+            builder.addVertex(glm::vec3(next(), next(), next()));
+            for (unsigned j = 0; j < 3; ++j) builder.addInfluence(v, j, 0.05f + next());
+        }
+        const SkinBuildResult built = builder.build();
+        ASSERT_TRUE(built) << built.error;
+        const std::size_t pieces = built.skin->getBlendSets().size();
+        EXPECT_GE(pieces, 3u) << numVertices << " vertices"; // a set per joint that is some vertex's largest
+        EXPECT_LE(pieces, 24u) << numVertices << " vertices";
+    }
+}
+
 class SkinBoundsOnAClip : public ::testing::TestWithParam<std::tuple<std::string, SkinningMethod>>
 {
 };
