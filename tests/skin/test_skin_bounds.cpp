@@ -47,50 +47,21 @@ MocapImport loadClip(const std::string& name)
 
 // --- invalid jobs first ---
 
-TEST(SkinBoundsJob, RefusesAMissingBoundOrMatricesOfAnotherCount)
+TEST(SkinBoundsJob, RefusesAMissingBoundAndGivesAnEmptyBoxForNoPiece)
 {
-    std::vector<SkinJointBox> boxes(3);
     std::vector<glm::mat4> matrices(2);
     SkinBox bound;
     SkinBoundsJob job;
-    job.jointBoxes = boxes;
     job.matrices = matrices;
-    job.bound = &bound;
     EXPECT_FALSE(job.validate());
     EXPECT_FALSE(job.run());
-    matrices.resize(3);
-    job.matrices = matrices;
-    job.bound = nullptr;
-    EXPECT_FALSE(job.validate());
     job.bound = &bound;
     EXPECT_TRUE(job.run());
-    EXPECT_TRUE(bound.isEmpty()); // no joint influences a vertex
+    EXPECT_TRUE(bound.isEmpty()); // no piece, no vertex
 }
 
-TEST(SkinBoundsJob, RefusesBlendBoxesOutOfRangeOrOutOfOrder)
+TEST(SkinBoundsJob, RefusesPiecesNamingJointsOrWeightsOutOfRangeOrTooManyJoints)
 {
-    std::vector<SkinJointBox> boxes(3);
-    std::vector<glm::mat4> matrices(3);
-    std::vector<SkinBlendBox> blends(2);
-    SkinBox bound;
-    SkinBoundsJob job;
-    job.jointBoxes = boxes;
-    job.matrices = matrices;
-    job.blendBoxes = blends;
-    job.bound = &bound;
-    blends[0].joint = 1;
-    blends[1].joint = 2;
-    blends[1].other = 3;
-    EXPECT_FALSE(job.validate());
-    blends[1].other = 0;
-    EXPECT_TRUE(job.validate());
-    blends[1].joint = 0;
-    EXPECT_FALSE(job.validate());
-}
-
-TEST(SkinBoundsJob, RefusesBlendSetsNamingJointsOrWeightsOutOfRange)
-{
-    std::vector<SkinJointBox> boxes(3);
     std::vector<glm::mat4> matrices(3);
     std::vector<SkinBlendSet> sets(1);
     std::vector<std::uint32_t> setJoints{0, 2};
@@ -98,7 +69,6 @@ TEST(SkinBoundsJob, RefusesBlendSetsNamingJointsOrWeightsOutOfRange)
     SkinBox bound;
     SkinBoundsJob job;
     job.method = SkinningMethod::DualQuaternion;
-    job.jointBoxes = boxes;
     job.matrices = matrices;
     job.blendSets = sets;
     job.blendSetJoints = setJoints;
@@ -114,6 +84,15 @@ TEST(SkinBoundsJob, RefusesBlendSetsNamingJointsOrWeightsOutOfRange)
     sets[0].numJoints = 2;
     job.blendSetWeights = Span<const float>(setWeights.data(), 1); // a weight short
     EXPECT_FALSE(job.validate());
+    job.blendSetWeights = setWeights;
+    std::vector<std::uint32_t> nineJoints(9, 0);
+    std::vector<float> nineWeights(9, 1.0f / 9.0f);
+    job.blendSetJoints = nineJoints;
+    job.blendSetWeights = nineWeights;
+    sets[0].numJoints = 9; // more joints than a vertex may follow
+    EXPECT_FALSE(job.validate());
+    sets[0].numJoints = 8;
+    EXPECT_TRUE(job.validate());
 }
 
 // --- what it computes ---
@@ -134,8 +113,7 @@ TEST(SkinBoundsJob, MovesAJointsBoxByItsMatrixAsDerivedByHand)
     const std::vector<glm::mat4> matrices{glm::translate(glm::mat4(1.0f), glm::vec3(10, 0, 0)) *
                                           glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(0, 0, 1))};
     SkinBox bound;
-    SkinBoundsJob job;
-    job.jointBoxes = built.skin->getJointBoxes();
+    SkinBoundsJob job = makeSkinBoundsJob(*built.skin);
     job.matrices = matrices;
     job.bound = &bound;
     ASSERT_TRUE(job.run());
@@ -170,6 +148,28 @@ TEST(SkinBoundsJob, BoxesEachJointInTheFrameWhereItsVerticesFitTightest)
     const SkinBox& bindBox = built.skin->getBindBox();
     const glm::vec3 bindSize = bindBox.max - bindBox.min;
     EXPECT_LT(size.x * size.y * size.z, 0.01f * bindSize.x * bindSize.y * bindSize.z);
+}
+
+TEST(SkinBoundsJob, CutsASkinIntoAtMostEightPiecesPerJointWhateverItsVertexCount)
+{
+    // Scattered vertices with random weights on three joints: the worst case for pieces (every split would help).
+    for (const unsigned numVertices : {300u, 30000u})
+    {
+        SkinBuilder builder("scattered");
+        for (const char* name : {"a", "b", "c"}) builder.addJoint(name);
+        std::uint32_t state = 12345u;
+        const auto next = [&state]() { return (state = state * 1664525u + 1013904223u) / 4294967296.0f; };
+        for (unsigned v = 0; v < numVertices; ++v)
+        {
+            builder.addVertex(glm::vec3(next(), next(), next()));
+            for (unsigned j = 0; j < 3; ++j) builder.addInfluence(v, j, 0.05f + next());
+        }
+        const SkinBuildResult built = builder.build();
+        ASSERT_TRUE(built) << built.error;
+        const std::size_t pieces = built.skin->getBlendSets().size();
+        EXPECT_GE(pieces, 3u) << numVertices << " vertices"; // a set per joint that is some vertex's largest
+        EXPECT_LE(pieces, 24u) << numVertices << " vertices";
+    }
 }
 
 class SkinBoundsOnAClip : public ::testing::TestWithParam<std::tuple<std::string, SkinningMethod>>

@@ -128,107 +128,175 @@ SkinJointBox smallestBox(const std::vector<glm::dvec3>& points, const glm::dmat4
 
 } // namespace
 
+namespace {
+
+/** Vertices of one set of joints (Set::joints: the first joint, then the others in increasing order): bind
+  * positions and, per vertex, the weight of each joint of the set in that order. */
+struct SetVertices
+{
+    std::vector<glm::dvec3> points;
+    std::vector<float> weights; // points.size() rows of joints.size()
+};
+
+/** A piece is small enough when its box's longest side and every joint's weight spread (as that fraction of half
+  * the bind box's diagonal) are within an eighth of that diagonal; a skin gets at most kPiecesPerJoint pieces per
+  * joint (or one per joint set, if more), the largest split first. */
+constexpr double kPieceFraction = 1.0 / 8.0;
+constexpr double kWeightLength = 0.5;
+constexpr std::size_t kPiecesPerJoint = 8;
+
+/** A piece being split: its vertices, the set they follow, and how it would be split. */
+struct Piece
+{
+    std::size_t set = 0;
+    SetVertices vertices;
+    double size = 0.0;        // the larger of the box's longest side and the largest weight spread (model units)
+    glm::dvec3 direction{0.0}; // split along this bind-space direction, or
+    int weightJoint = -1;     // along this joint's weight, when >= 0
+};
+
+Piece measured(std::size_t set, SetVertices vertices, std::size_t numJoints, const glm::dmat4& inverseBind, double diagonal)
+{
+    Piece piece;
+    piece.set = set;
+    const std::size_t count = vertices.points.size();
+    const SkinJointBox box = smallestBox(vertices.points, inverseBind);
+    const glm::vec3 size = box.box.max - box.box.min;
+    const int axis = size.x >= size.y && size.x >= size.z ? 0 : (size.y >= size.z ? 1 : 2);
+    piece.size = size[axis];
+    piece.direction = glm::dvec3(glm::vec3(box.boxToBind[axis]));
+    for (std::size_t j = 0; j < numJoints; ++j)
+    {
+        float low = 1.0f, high = 0.0f;
+        for (std::size_t i = 0; i < count; ++i)
+        {
+            low = std::min(low, vertices.weights[i * numJoints + j]);
+            high = std::max(high, vertices.weights[i * numJoints + j]);
+        }
+        const double spread = (high - low) * kWeightLength * diagonal;
+        if (spread > piece.size) piece.size = spread, piece.weightJoint = static_cast<int>(j);
+    }
+    if (count < 2) piece.size = 0.0; // nothing to split
+    piece.vertices = std::move(vertices);
+    return piece;
+}
+
+/** The two halves of a piece's vertices, cut at the median along its split direction. */
+void splitInHalves(const Piece& piece, std::size_t numJoints, SetVertices halves[2])
+{
+    const SetVertices& vertices = piece.vertices;
+    const std::size_t count = vertices.points.size();
+    std::vector<std::pair<double, std::size_t>> order(count);
+    for (std::size_t i = 0; i < count; ++i)
+        order[i] = {piece.weightJoint < 0 ? glm::dot(piece.direction, vertices.points[i])
+                                          : vertices.weights[i * numJoints + std::size_t(piece.weightJoint)],
+                    i};
+    std::sort(order.begin(), order.end());
+    for (std::size_t i = 0; i < count; ++i)
+    {
+        SetVertices& half = halves[i < count / 2 ? 0 : 1];
+        half.points.push_back(vertices.points[order[i].second]);
+        const auto row = vertices.weights.begin() + static_cast<std::ptrdiff_t>(order[i].second * numJoints);
+        half.weights.insert(half.weights.end(), row, row + static_cast<std::ptrdiff_t>(numJoints));
+    }
+}
+
+} // namespace
+
 SkinBoundBoxes computeSkinBoundBoxes(const SkinVertices& vertices, Span<const glm::dmat4> inverseBindMatrices)
 {
     // Per vertex, its first (largest-weight) joint: influences come largest first (the builder's order).
     const std::size_t numJoints = inverseBindMatrices.size();
     std::vector<std::vector<glm::dvec3>> firstOf(numJoints);
-    struct Pair
-    {
-        std::vector<glm::dvec3> points;
-        float maxWeight = 0.0f;
-    };
-    std::vector<std::vector<std::pair<std::uint32_t, Pair>>> pairsOf(numJoints); // per first joint, by other joint
-    // Per set of joints (the first joint, then the others in increasing order), its vertices and their largest sum
-    // of weights other than the first joint's.
-    struct BlendSetPoints
-    {
-        std::vector<glm::dvec3> points;
-        std::vector<float> weights; // per joint of the key: the largest weight (the first joint's smallest)
-    };
-    std::map<std::vector<std::uint32_t>, BlendSetPoints> sets;
+    std::map<std::vector<std::uint32_t>, SetVertices> sets;
+    glm::dvec3 low(std::numeric_limits<double>::max()), high(-std::numeric_limits<double>::max());
     std::size_t influence = 0;
     std::size_t vertex = 0;
     for (unsigned k = 1; k <= kMaxSkinInfluences; ++k)
         for (std::uint32_t i = 0; i < vertices.counts[k - 1]; ++i, ++vertex, influence += k)
         {
             const glm::dvec3 position(vertices.positions[vertex]);
-            const std::uint32_t first = vertices.joints[influence];
-            firstOf[first].push_back(position);
-            if (k > 1)
+            low = glm::min(low, position);
+            high = glm::max(high, position);
+            firstOf[vertices.joints[influence]].push_back(position);
+            std::vector<std::uint32_t> key(vertices.joints.begin() + influence, vertices.joints.begin() + influence + k);
+            std::sort(key.begin() + 1, key.end());
+            SetVertices& set = sets[key];
+            set.points.push_back(position);
+            const std::size_t row = set.weights.size();
+            set.weights.resize(row + k);
+            for (unsigned j = 0; j < k; ++j)
             {
-                std::vector<std::uint32_t> key(vertices.joints.begin() + influence, vertices.joints.begin() + influence + k);
-                std::sort(key.begin() + 1, key.end());
-                BlendSetPoints& set = sets[key];
-                if (set.weights.empty())
-                {
-                    set.weights.assign(k, 0.0f);
-                    set.weights[0] = 1.0f;
-                }
-                set.points.push_back(position);
-                for (unsigned j = 0; j < k; ++j)
-                {
-                    const float weight = vertices.weights[influence + j];
-                    const std::size_t at = j == 0 ? 0 : std::size_t(std::find(key.begin() + 1, key.end(),
-                                                                               vertices.joints[influence + j]) - key.begin());
-                    set.weights[at] = j == 0 ? std::min(set.weights[0], weight) : std::max(set.weights[at], weight);
-                }
-            }
-            for (unsigned j = 1; j < k; ++j)
-            {
-                const std::uint32_t other = vertices.joints[influence + j];
-                auto& pairs = pairsOf[first];
-                auto found = std::find_if(pairs.begin(), pairs.end(), [&](const auto& p) { return p.first == other; });
-                if (found == pairs.end())
-                {
-                    pairs.emplace_back(other, Pair());
-                    found = pairs.end() - 1;
-                }
-                found->second.points.push_back(position);
-                found->second.maxWeight = std::max(found->second.maxWeight, vertices.weights[influence + j]);
+                const std::size_t at = std::size_t(std::find(key.begin(), key.end(), vertices.joints[influence + j]) - key.begin());
+                set.weights[row + at] = vertices.weights[influence + j];
             }
         }
 
     SkinBoundBoxes boxes;
     boxes.joints.resize(numJoints);
     for (std::size_t a = 0; a < numJoints; ++a)
-    {
         if (!firstOf[a].empty()) boxes.joints[a] = smallestBox(firstOf[a], inverseBindMatrices[a]);
-        std::sort(pairsOf[a].begin(), pairsOf[a].end(), [](const auto& p, const auto& q) { return p.first < q.first; });
-        for (const auto& pair : pairsOf[a])
+    const double diagonal = vertex > 0 ? glm::length(high - low) : 0.0;
+    std::vector<std::vector<std::uint32_t>> setJoints;
+    std::vector<Piece> pieces;
+    for (auto& entry : sets)
+    {
+        pieces.push_back(measured(setJoints.size(), std::move(entry.second), entry.first.size(),
+                                  inverseBindMatrices[entry.first[0]], diagonal));
+        setJoints.push_back(entry.first);
+    }
+    // Split the largest piece until every one is small enough or the budget is spent.
+    const std::size_t budget = std::max(pieces.size(), kPiecesPerJoint * numJoints);
+    const auto smaller = [](const Piece& p, const Piece& q) { return p.size < q.size; };
+    std::make_heap(pieces.begin(), pieces.end(), smaller);
+    while (!pieces.empty() && pieces.size() < budget && pieces.front().size > kPieceFraction * diagonal)
+    {
+        std::pop_heap(pieces.begin(), pieces.end(), smaller);
+        const Piece largest = std::move(pieces.back());
+        pieces.pop_back();
+        const std::vector<std::uint32_t>& joints = setJoints[largest.set];
+        SetVertices halves[2];
+        splitInHalves(largest, joints.size(), halves);
+        for (SetVertices& half : halves)
         {
-            SkinBlendBox blend;
-            blend.joint = static_cast<std::uint32_t>(a);
-            blend.other = pair.first;
-            blend.maxWeight = pair.second.maxWeight;
-            blend.box = smallestBox(pair.second.points, inverseBindMatrices[a]);
-            boxes.blends.push_back(blend);
+            pieces.push_back(measured(largest.set, std::move(half), joints.size(), inverseBindMatrices[joints[0]], diagonal));
+            std::push_heap(pieces.begin(), pieces.end(), smaller);
         }
     }
-    for (const auto& entry : sets)
+    // In the order of their sets, for a skin built the same way twice to have the same pieces in the same order.
+    std::stable_sort(pieces.begin(), pieces.end(), [](const Piece& p, const Piece& q) { return p.set < q.set; });
+    for (const Piece& piece : pieces)
     {
+        const std::vector<std::uint32_t>& joints = setJoints[piece.set];
+        const std::vector<float>& weights = piece.vertices.weights;
         // Centred on the points' box (close enough to the smallest sphere), the radius rounded up.
-        const std::vector<glm::dvec3>& points = entry.second.points;
-        glm::dvec3 low = points[0], high = points[0];
+        const std::vector<glm::dvec3>& points = piece.vertices.points;
+        glm::dvec3 pieceLow = points[0], pieceHigh = points[0];
         for (const glm::dvec3& p : points)
         {
-            low = glm::min(low, p);
-            high = glm::max(high, p);
+            pieceLow = glm::min(pieceLow, p);
+            pieceHigh = glm::max(pieceHigh, p);
         }
-        const glm::vec3 centre(0.5 * (low + high));
+        const glm::vec3 centre(0.5 * (pieceLow + pieceHigh));
         double radius = 0.0;
         for (const glm::dvec3& p : points) radius = std::max(radius, glm::length(p - glm::dvec3(centre)));
         SkinBlendSet set;
-        set.box = smallestBox(points, inverseBindMatrices[entry.first[0]]);
+        set.box = smallestBox(points, inverseBindMatrices[joints[0]]);
         set.centre = centre;
         set.radius = static_cast<float>(radius * (1.0 + 1e-6));
         set.firstJoint = static_cast<std::uint32_t>(boxes.setJoints.size());
-        set.numJoints = static_cast<std::uint32_t>(entry.first.size());
-        boxes.setJoints.insert(boxes.setJoints.end(), entry.first.begin(), entry.first.end());
-        // Weights sum to 1 within float rounding: the other joints' weights rounded up by as much.
-        for (std::size_t j = 0; j < entry.first.size(); ++j)
-            boxes.setWeights.push_back(j == 0 ? entry.second.weights[0]
-                                              : entry.second.weights[j] + 4.0f * std::numeric_limits<float>::epsilon());
+        set.numJoints = static_cast<std::uint32_t>(joints.size());
+        boxes.setJoints.insert(boxes.setJoints.end(), joints.begin(), joints.end());
+        // The first joint's smallest weight, the others' largest; weights sum to 1 within float rounding: the
+        // other joints' weights rounded up by as much.
+        for (std::size_t j = 0; j < joints.size(); ++j)
+        {
+            float weight = j == 0 ? 1.0f : 0.0f;
+            for (std::size_t i = 0; i < points.size(); ++i)
+                weight = j == 0 ? std::min(weight, weights[i * joints.size()])
+                                : std::max(weight, weights[i * joints.size() + j]);
+            boxes.setWeights.push_back(j == 0 ? weight : weight + 4.0f * std::numeric_limits<float>::epsilon());
+        }
         boxes.sets.push_back(set);
     }
     return boxes;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace osgActor {
 
@@ -92,8 +93,6 @@ SkinBoundsJob makeSkinBoundsJob(const Skin& skin)
 {
     SkinBoundsJob job;
     job.method = skin.getMethod();
-    job.jointBoxes = skin.getJointBoxes();
-    job.blendBoxes = skin.getBlendBoxes();
     job.blendSets = skin.getBlendSets();
     job.blendSetJoints = skin.getBlendSetJoints();
     job.blendSetWeights = skin.getBlendSetWeights();
@@ -102,74 +101,118 @@ SkinBoundsJob makeSkinBoundsJob(const Skin& skin)
 
 bool SkinBoundsJob::validate() const
 {
-    if (bound == nullptr || matrices.size() != jointBoxes.size()) return false;
+    if (bound == nullptr) return false;
     if (blendSetWeights.size() != blendSetJoints.size()) return false;
     for (const SkinBlendSet& set : blendSets)
     {
-        if (set.numJoints == 0 || set.firstJoint > blendSetJoints.size() ||
+        if (set.numJoints == 0 || set.numJoints > kMaxSkinInfluences || set.firstJoint > blendSetJoints.size() ||
             set.numJoints > blendSetJoints.size() - set.firstJoint)
             return false;
         for (std::uint32_t i = 0; i < set.numJoints; ++i)
             if (blendSetJoints[set.firstJoint + i] >= matrices.size()) return false;
-    }
-    for (std::size_t i = 0; i < blendBoxes.size(); ++i)
-    {
-        const SkinBlendBox& blend = blendBoxes[i];
-        if (blend.joint >= matrices.size() || blend.other >= matrices.size()) return false;
-        if (i > 0 && blend.joint < blendBoxes[i - 1].joint) return false;
     }
     return true;
 }
 
 namespace {
 
-/** run()'s work, built for x86-64-v3 and the baseline (OSGACTOR_HOT_PATH): a few hundred small matrix products per
-  * frame. */
+/** A piece's box moved by M_a and widened by how far linear blending can take its vertices past M_a v along each
+  * model axis, per side (see SkinBoundsJob): the largest sum_k w_k d_k over 0 <= w_k <= W_k with
+  * sum_k w_k <= 1 - W_a, d_k that side of the box around (M_k - M_a) B; the largest d_k filled first. The box around
+  * (M_k - M_a) B is computed from each joint's own products with B's centre and half-axes (the map is linear). */
+OSGACTOR_SKIN_INLINE SkinBox linearBlendBoxOf(const SkinBlendSet& set, Span<const std::uint32_t> setJoints,
+                                              Span<const float> setWeights, Span<const glm::mat4> matrices)
+{
+    const SkinJointBox& box = set.box;
+    const glm::vec3 halfSize = 0.5f * (box.box.max - box.box.min);
+    const glm::vec3 bindCentre = glm::vec3(box.boxToBind[3]) + glm::mat3(box.boxToBind) * (0.5f * (box.box.min + box.box.max));
+    const glm::vec3 halfAxes[3] = {glm::vec3(box.boxToBind[0]) * halfSize.x, glm::vec3(box.boxToBind[1]) * halfSize.y,
+                                   glm::vec3(box.boxToBind[2]) * halfSize.z};
+    const glm::mat4& ma = matrices[setJoints[set.firstJoint]];
+    const glm::mat3 la(ma);
+    const glm::vec3 centreA = glm::vec3(ma[3]) + la * bindCentre;
+    const glm::vec3 axesA[3] = {la * halfAxes[0], la * halfAxes[1], la * halfAxes[2]};
+    const glm::vec3 reachA = glm::abs(axesA[0]) + glm::abs(axesA[1]) + glm::abs(axesA[2]);
+    SkinBox moved;
+    moved.min = centreA - reachA;
+    moved.max = centreA + reachA;
+    const std::uint32_t others = set.numJoints - 1;
+    if (others == 0) return moved;
+
+    // Per other joint, the box around (M_k - M_a) B: its low and high sides.
+    glm::vec3 lows[kMaxSkinInfluences], highs[kMaxSkinInfluences];
+    for (std::uint32_t i = 0; i < others; ++i)
+    {
+        const glm::mat4& mk = matrices[setJoints[set.firstJoint + 1 + i]];
+        const glm::mat3 lk(mk);
+        const glm::vec3 centre = glm::vec3(mk[3]) + lk * bindCentre - centreA;
+        const glm::vec3 reach = glm::abs(lk * halfAxes[0] - axesA[0]) + glm::abs(lk * halfAxes[1] - axesA[1]) +
+                                glm::abs(lk * halfAxes[2] - axesA[2]);
+        lows[i] = centre - reach;
+        highs[i] = centre + reach;
+    }
+    // Weights sum to 1 within float rounding: what the others may have, rounded up by as much.
+    const float budget = std::max(0.0f, 1.0f - setWeights[set.firstJoint]) + 4.0f * std::numeric_limits<float>::epsilon();
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side)
+        {
+            // Each other joint's gain along this side (only positive gains are worth a weight), largest first.
+            float gains[kMaxSkinInfluences];
+            float caps[kMaxSkinInfluences];
+            std::uint32_t count = 0;
+            for (std::uint32_t i = 0; i < others; ++i)
+            {
+                const float gain = side == 1 ? highs[i][axis] : -lows[i][axis];
+                if (!(gain > 0.0f)) continue;
+                std::uint32_t at = count++;
+                for (; at > 0 && gains[at - 1] < gain; --at) gains[at] = gains[at - 1], caps[at] = caps[at - 1];
+                gains[at] = gain;
+                caps[at] = setWeights[set.firstJoint + 1 + i];
+            }
+            float left = budget, sum = 0.0f;
+            for (std::uint32_t i = 0; i < count && left > 0.0f; ++i)
+            {
+                const float weight = std::min(left, caps[i]);
+                sum += weight * gains[i];
+                left -= weight;
+            }
+            if (side == 1) moved.max[axis] += sum;
+            else moved.min[axis] -= sum;
+        }
+    return moved;
+}
+
+/** run()'s work, built for x86-64-v3 and the baseline (OSGACTOR_HOT_PATH): per piece, a few small matrix
+  * products. */
 OSGACTOR_HOT_PATH SkinBox computeBound(const SkinBoundsJob& job)
 {
-    const SkinningMethod method = job.method;
-    const Span<const SkinJointBox> jointBoxes = job.jointBoxes;
-    const Span<const SkinBlendBox> blendBoxes = job.blendBoxes;
     const Span<const SkinBlendSet> blendSets = job.blendSets;
     const Span<const std::uint32_t> blendSetJoints = job.blendSetJoints;
     const Span<const float> blendSetWeights = job.blendSetWeights;
     const Span<const glm::mat4> matrices = job.matrices;
     SkinBox result;
-    float bindReach = 0.0f; // over every joint box, so over every vertex
-    std::size_t nextBlend = 0;
-    for (std::size_t a = 0; a < jointBoxes.size(); ++a)
+    float bindReach = 0.0f; // over every piece, so over every vertex
+    for (const SkinBlendSet& set : blendSets)
     {
-        const SkinJointBox& joint = jointBoxes[a];
-        if (joint.box.isEmpty())
-        {
-            while (nextBlend < blendBoxes.size() && blendBoxes[nextBlend].joint == a) ++nextBlend;
-            continue;
-        }
-        SkinBox box = boxAround(matrices[a], joint);
-        bindReach = std::max(bindReach, bindReachOf(joint));
-        // Widened by what the joint's vertices owe to the other joints they follow.
-        for (; nextBlend < blendBoxes.size() && blendBoxes[nextBlend].joint == a; ++nextBlend)
-        {
-            if (method == SkinningMethod::DualQuaternion) continue;
-            const SkinBlendBox& blend = blendBoxes[nextBlend];
-            const SkinBox moved = boxAround(matrices[blend.other] - matrices[a], blend.box);
-            box.min += glm::min(glm::vec3(0.0f), blend.maxWeight * moved.min);
-            box.max += glm::max(glm::vec3(0.0f), blend.maxWeight * moved.max);
-        }
-        const bool first = result.isEmpty();
-        result.min = first ? box.min : glm::min(result.min, box.min);
-        result.max = first ? box.max : glm::max(result.max, box.max);
-    }
-    if (method == SkinningMethod::DualQuaternion)
-        for (const SkinBlendSet& set : blendSets)
+        if (set.box.box.isEmpty()) continue;
+        bindReach = std::max(bindReach, bindReachOf(set.box));
+        SkinBox box;
+        if (job.method == SkinningMethod::DualQuaternion)
         {
             const glm::mat4& first = matrices[blendSetJoints[set.firstJoint]];
-            const SkinBox moved = boxAround(first, set.box);
             const glm::vec3 reach(dualQuaternionReachOf(first, set, blendSetJoints, blendSetWeights, matrices));
-            const bool empty = result.isEmpty();
-            result.min = empty ? moved.min - reach : glm::min(result.min, moved.min - reach);
-            result.max = empty ? moved.max + reach : glm::max(result.max, moved.max + reach);
+            box = boxAround(first, set.box);
+            box.min -= reach;
+            box.max += reach;
         }
+        else
+        {
+            box = linearBlendBoxOf(set, blendSetJoints, blendSetWeights, matrices);
+        }
+        const bool empty = result.isEmpty();
+        result.min = empty ? box.min : glm::min(result.min, box.min);
+        result.max = empty ? box.max : glm::max(result.max, box.max);
+    }
     if (!result.isEmpty())
     {
         // How large the numbers SkinningJob adds can be: a joint's translation plus its linear part applied to the

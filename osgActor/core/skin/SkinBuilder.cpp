@@ -344,7 +344,6 @@ SkinBuildResult SkinBuilder::build() const
     }
     SkinBoundBoxes boxes = computeSkinBoundBoxes(skin->getVertices(), skin->_inverseBindMatrices);
     skin->_jointBoxes = std::move(boxes.joints);
-    skin->_blendBoxes = std::move(boxes.blends);
     skin->_blendSets = std::move(boxes.sets);
     skin->_blendSetJoints = std::move(boxes.setJoints);
     skin->_blendSetWeights = std::move(boxes.setWeights);
