@@ -257,6 +257,7 @@ private:
         for (const RiggedAnimation& animation : _model.animations)
             for (const AnimationChannel& channel : animation.channels)
             {
+                if (channel.path == AnimationPath::Scale) continue; // its node may be no joint (chooseJoints())
                 JointPlan& plan = _plans[_jointOfNode[channel.node]];
                 if (channel.path == AnimationPath::Rotation) plan.rotates = true;
                 if (channel.path == AnimationPath::Translation) plan.translates = true;
@@ -436,15 +437,16 @@ private:
         double worstLeft = 0.0;
         for (const AnimationChannel& channel : animation.channels)
         {
-            const JointPlan& plan = _plans[_jointOfNode[channel.node]];
-            const std::string& joint = _model.nodes[plan.node].name;
-            const glm::dquat toReference = glm::inverse(plan.reference);
-            TripleKeys keys;
+            // Scale is not animated (a warning); its node may be no joint at all (chooseJoints() leaves it out).
             if (channel.path == AnimationPath::Scale)
             {
                 checkAnimatedScale(animation, index, channel);
                 continue;
             }
+            const JointPlan& plan = _plans[_jointOfNode[channel.node]];
+            const std::string& joint = _model.nodes[plan.node].name;
+            const glm::dquat toReference = glm::inverse(plan.reference);
+            TripleKeys keys;
             if (channel.path == AnimationPath::Rotation)
             {
                 const EulerOrder order = plan.order;

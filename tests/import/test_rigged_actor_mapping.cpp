@@ -158,6 +158,27 @@ TEST(RiggedActorMapping, WarnsAboutAnimatedScaleAndNonUniformScaleAboveJoints)
     EXPECT_TRUE(actor.clips.empty());
 }
 
+TEST(RiggedActorMapping, AnAnimatedScaleOnANodeThatIsNoJointIsWarnedAboutAndTheRestRead)
+{
+    // "prop" is no joint (no skin names it, nothing it carries moves, only its scale is animated): the scale channel
+    // is warned about and skipped; before, the mapping looked up the joint of that node, which it does not have.
+    GltfTestFile file;
+    const int times = file.addFloats({0, 1}, "SCALAR");
+    const int scales = file.addFloats({1, 1, 1, 2, 2, 2}, "VEC3");
+    const int turns = file.addFloats({0, 0, 0, 1, 0, 0, 0.7071068f, 0.7071068f}, "VEC4");
+    const auto n = [](int i) { return std::to_string(i); };
+    const std::string body = R"("scenes":[{"nodes":[0,2]}],"nodes":[{"name":"arm","children":[1]},{"name":"hand"},{"name":"prop"}],"skins":[{"joints":[0,1]}],
+        "animations":[{"name":"wave","channels":[{"sampler":0,"target":{"node":2,"path":"scale"}},{"sampler":1,"target":{"node":0,"path":"rotation"}}],
+        "samplers":[{"input":)" + n(times) + R"(,"output":)" + n(scales) + R"(},{"input":)" + n(times) + R"(,"output":)" + n(turns) + "}]}]";
+    file.write(written("prop_scale.gltf"), body);
+    const RiggedActor actor = import(written("prop_scale.gltf"));
+    ASSERT_TRUE(actor) << actor.error;
+    EXPECT_TRUE(anyWarningSays(actor.warnings, "animations[0] 'wave': the scale of nodes[2] 'prop' is animated"));
+    ASSERT_EQ(actor.clips.size(), 1u);
+    EXPECT_GE(actor.clips[0]->findChannel("arm.rz"), 0);
+    EXPECT_EQ(actor.definition->findJoint("prop"), -1);
+}
+
 TEST(RiggedActorMapping, KeysLandOnTheFilesKeyTimesAndResampleBetween)
 {
     const RiggedActor actor = import(gltf2("simple_skin/simple_skin.gltf"));
