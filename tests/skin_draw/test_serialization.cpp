@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <fstream>
 #include <sstream>
 
@@ -132,4 +133,23 @@ TEST(SkinnedMeshSerialization, ASkinnedActorReadsBackInlineEqualAndWritesTheSame
         ASSERT_TRUE(mesh.computeSkinnedVertices(*actor, *b));
         EXPECT_EQ(maxDistance(*a, *b), 0.0) << extension;
     }
+}
+
+TEST(SkinnedMeshSerialization, AVertexWordThatIsNotANumberFailsTheReadNamingIt)
+{
+    const RiggedModelActor read = readCesiumMan();
+    const std::string file = written("cesium_man_not_a_number.osgt");
+    ASSERT_TRUE(osgDB::writeNodeFile(*read.sceneNode, file));
+    std::string text = contentsOf(file);
+    // The first vertex's x becomes a word no number reads as.
+    const std::size_t vertices = text.find("Vertices ");
+    ASSERT_NE(vertices, std::string::npos);
+    std::size_t x = text.find('{', vertices) + 1;
+    while (std::isspace(static_cast<unsigned char>(text[x]))) ++x;
+    text.replace(x, text.find(' ', x) - x, "1.5x");
+    std::ofstream(file, std::ios::binary) << text;
+    osgDB::ReaderWriter::ReadResult result = osgDB::Registry::instance()->readNode(file, nullptr);
+    EXPECT_FALSE(result.validNode());
+    EXPECT_NE(result.message().find("skinned mesh: a vertex"), std::string::npos) << result.message();
+    EXPECT_NE(result.message().find("1.5x"), std::string::npos) << result.message();
 }

@@ -47,7 +47,7 @@ template <class Vector>
 Vector readVector(osgDB::InputStream& is, int size)
 {
     Vector v(0.0f);
-    for (int i = 0; i < size; ++i) v[i] = readExactNumber<float>(is);
+    for (int i = 0; i < size; ++i) v[i] = readExactNumber<float>(is, "skinned mesh: a vertex");
     return v;
 }
 
@@ -131,7 +131,7 @@ static bool readSkin(osgDB::InputStream& is, osgActor::SkinnedMesh& mesh)
         is.readWrappedString(joint);
         glm::dmat4 inverseBind(1.0);
         for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) inverseBind[c][r] = readExact(is);
+            for (int r = 0; r < 4; ++r) inverseBind[c][r] = readExact(is, "skinned mesh: an inverse bind matrix");
         builder.addJoint(joint, inverseBind);
     }
     is >> is.END_BRACKET;
@@ -161,7 +161,7 @@ static bool readSkin(osgDB::InputStream& is, osgActor::SkinnedMesh& mesh)
         for (unsigned k = 0; k < count; ++k)
         {
             is >> joints.back()[k];
-            weights.back()[k] = readExactNumber<float>(is);
+            weights.back()[k] = readExactNumber<float>(is, "skinned mesh: an influence weight");
         }
     }
     is >> is.END_BRACKET >> is.END_BRACKET;
