@@ -10,6 +10,7 @@ packages=(
     libtinygltf-dev                        # the glTF reader (osgActor/import)
     libassimp-dev                          # the Collada, FBX and DirectX reader (osgActor/import)
     libosmesa6-dev                         # offscreen rendering
+    libegl-dev libopengl-dev               # the GPU draw benchmark's headless context (EGL, glvnd)
     fonts-dejavu-core                      # the viewer panel's font
     libgtest-dev libgmock-dev googletest   # unit tests
     libbenchmark-dev                       # benchmarks
