@@ -244,6 +244,10 @@ bool runOne(const std::string& system, unsigned n, const Options& options, osg::
                 1000.0 / result.msPerFrame, result.update, result.cull, result.draw, result.gpu, result.frames,
                 buildSeconds);
     std::fflush(stdout);
+    // Never taken apart: each crowd's members share nodes (the rigid systems one box geode under every joint), and
+    // OSG removes a parent from a node's list by a linear search and erase, which for 300,000 parents of one node
+    // costs minutes. The process ends soon after the runs.
+    scene->ref();
     viewer->setDone(true);
     viewer->stopThreading();
     // The context outlives this viewer: detach it so that the next viewer can use it.
