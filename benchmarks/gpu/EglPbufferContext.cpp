@@ -3,7 +3,6 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
-#include <osg/GL>
 #include <osg/State>
 
 #include <cstring>
@@ -179,15 +178,6 @@ bool EglPbufferContext::makeContextCurrentImplementation(osg::GraphicsContext*) 
 bool EglPbufferContext::releaseContextImplementation()
 {
     return _surface && eglMakeCurrent(_display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT) == EGL_TRUE;
-}
-
-std::string EglPbufferContext::describeCurrentGl()
-{
-    auto text = [](GLenum name) {
-        const GLubyte* value = glGetString(name);
-        return value ? std::string(reinterpret_cast<const char*>(value)) : std::string("?");
-    };
-    return text(GL_VENDOR) + " | " + text(GL_RENDERER) + " | " + text(GL_VERSION);
 }
 
 } // namespace bench

@@ -1,18 +1,25 @@
-// The whole frame drawn on a GPU, side by side in one run (issues 26 and 28): N rigid humanoids (osgActor, osgAnimation,
+// The whole frame drawn, side by side in one run (issues 26 and 28): N rigid humanoids (osgActor, osgAnimation,
 // plain OSG; the benchmark's 31-joint humanoid with a box under every joint) and N skinned Cesium Men (osgActor's
 // SkinnedMesh on its GPU path, osgAnimation's RigGeometry with RigTransformHardware), standing on a square grid that
-// the camera frames, animated, drawn at 1280 x 720 through osgViewer into a headless EGL context on a GPU
-// (EglPbufferContext): no X server needed. Each frame ends with glFinish, so its time holds the GPU's work too.
-// Reported per system and N: milliseconds per frame and frames per second, the update, cull and draw-dispatch times
-// and the GPU's draw time from OSG's own statistics, and the ratio to the peers at the same N.
+// the camera frames, animated, drawn at 1280 x 720 through osgViewer into a headless context: on a GPU through EGL
+// (osgactor_gpu_draw_bench, EglPbufferContext: no X server needed), or on OSMesa (osgactor_osmesa_draw_bench,
+// OsMesaGraphicsContext). Each frame ends with glFinish, so its time holds the GL's work too. Reported per system and
+// N: milliseconds per frame and frames per second, the update, cull and draw-dispatch times and (EGL) the GPU's draw
+// time from OSG's own statistics, and the ratio to the peers at the same N.
 //
 //   osgactor_gpu_draw_bench [--actors=1000,10000] [--systems=NAME,...] [--seconds=S] [--size=WxH]
 //                           [--threading=single|draw] [--device=I] [--images=DIR] [--cesium-man=FILE]
 //
 // With --images, each run's last frame is written to DIR/<system>_<N>.png, and the skinned Cesium Man is drawn once
 // on the GPU path and once on the CPU path at the same time of its clip, both written, and compared (the GPU's vertex
-// shader against the CPU's skinning job, on real hardware). Not part of the test suite: a machine with a GPU runs it.
+// shader against the CPU's skinning job, on real hardware). Not part of the test suite.
+#if OSGACTOR_DRAW_BENCH_OSMESA
+#include "OsMesaGraphicsContext"
+using HeadlessContext = bench::OsMesaGraphicsContext;
+#else
 #include "EglPbufferContext"
+using HeadlessContext = bench::EglPbufferContext;
+#endif
 
 #include "../actors/PeerScenes"
 #include "../skin_draw/SkinnedCrowds"
@@ -138,6 +145,16 @@ private:
     std::set<std::string> _seen;
 };
 
+/** What the driver calls itself: GL_VENDOR, GL_RENDERER and GL_VERSION (while a context is current). */
+std::string describeCurrentGl()
+{
+    auto text = [](GLenum name) {
+        const GLubyte* value = glGetString(name);
+        return value ? std::string(reinterpret_cast<const char*>(value)) : std::string("?");
+    };
+    return text(GL_VENDOR) + " | " + text(GL_RENDERER) + " | " + text(GL_VERSION);
+}
+
 /** A viewer drawing the scene into the context, its camera framing the scene's bound from the front, above. */
 osg::ref_ptr<osgViewer::Viewer> makeViewer(osg::GraphicsContext* context, osg::Node* scene, const Options& options,
                                            FinishAndRead* finish)
@@ -156,7 +173,10 @@ osg::ref_ptr<osgViewer::Viewer> makeViewer(osg::GraphicsContext* context, osg::N
                                                  : osgViewer::Viewer::SingleThreaded);
     viewer->getViewerStats()->collectStats("update", true);
     camera->getStats()->collectStats("rendering", true);
+#if !OSGACTOR_DRAW_BENCH_OSMESA
+    // OSMesa has no timer queries (OSG's GPU statistics leave an invalid-operation error there).
     camera->getStats()->collectStats("gpu", true);
+#endif
     return viewer;
 }
 
@@ -361,7 +381,7 @@ bool parseOptions(int argc, char** argv, Options& options)
         else good = false;
         if (!good)
         {
-            std::fprintf(stderr, "osgactor_gpu_draw_bench: bad argument '%s' (see the source's head for usage)\n",
+            std::fprintf(stderr, "draw bench: bad argument '%s' (see the source's head for usage)\n",
                          argv[i]);
             return false;
         }
@@ -381,23 +401,22 @@ int main(int argc, char** argv)
     bench::jointBox()->setDrawable(0, new osg::ShapeDrawable(new osg::Box(osg::Vec3(), 0.12f)));
     if (!options.imageDir.empty() && !osgDB::makeDirectory(options.imageDir))
     {
-        std::fprintf(stderr, "osgactor_gpu_draw_bench: cannot make the folder %s\n", options.imageDir.c_str());
+        std::fprintf(stderr, "draw bench: cannot make the folder %s\n", options.imageDir.c_str());
         return 1;
     }
     std::string error;
-    osg::ref_ptr<bench::EglPbufferContext> context =
-        bench::EglPbufferContext::create(options.width, options.height, options.device, error);
+    osg::ref_ptr<HeadlessContext> context = HeadlessContext::create(options.width, options.height, options.device, error);
     if (!context)
     {
-        std::fprintf(stderr, "osgactor_gpu_draw_bench: %s\nEGL devices:\n%s", error.c_str(),
-                     bench::EglPbufferContext::listDevices().c_str());
+        std::fprintf(stderr, "draw bench: %s\nEGL devices:\n%s", error.c_str(),
+                     HeadlessContext::listDevices().c_str());
         return 1;
     }
     context->makeCurrent();
-    std::printf("OpenGL: %s\n", bench::EglPbufferContext::describeCurrentGl().c_str());
+    std::printf("OpenGL: %s\n", describeCurrentGl().c_str());
     context->releaseContext();
     if (!options.imageDir.empty() && !compareSkinningPaths(options, context.get()))
-        std::fprintf(stderr, "osgactor_gpu_draw_bench: the skinning paths could not be compared\n");
+        std::fprintf(stderr, "draw bench: the skinning paths could not be compared\n");
     std::printf("%-26s %6s %9s %8s %8s %8s %8s %8s %7s %7s\n", "system", "N", "ms/frame", "fps", "update", "cull",
                 "draw", "gpu", "frames", "build_s");
     std::map<std::pair<std::string, int>, double> msPerFrame;
