@@ -218,7 +218,7 @@ TEST(RetargetJob, ASpineOfThreeOntoASpineOfFiveSharesTheBendOut)
     }
     const unsigned sourceHead = static_cast<unsigned>(three->findJoint("head"));
     const unsigned targetHead = static_cast<unsigned>(five->findJoint("head"));
-    EXPECT_LE(angleBetween(workspace.sourceRotations[sourceHead], workspace.targetRotations[targetHead]), 1e-12);
+    EXPECT_LE(angleBetween(workspace.sourceRotation(sourceHead), workspace.targetRotation(targetHead)), 1e-12);
 }
 
 TEST(RetargetJob, AHingeStopsAtItsLimitAndTheJointsBelowKeepTheirOrientation)
@@ -248,7 +248,55 @@ TEST(RetargetJob, AHingeStopsAtItsLimitAndTheJointsBelowKeepTheirOrientation)
     EXPECT_DOUBLE_EQ(result[static_cast<unsigned>(target->findDof("knee.rx"))], degrees(90));
     EXPECT_EQ(workspace.targetExact[static_cast<unsigned>(target->findJoint("knee"))], 0);
     EXPECT_EQ(job.numInexact, 1u);
-    EXPECT_LE(angleBetween(workspace.sourceRotations[static_cast<unsigned>(source->findJoint("ankle"))],
-                           workspace.targetRotations[static_cast<unsigned>(target->findJoint("ankle"))]),
+    EXPECT_LE(angleBetween(workspace.sourceRotation(static_cast<unsigned>(source->findJoint("ankle"))),
+                           workspace.targetRotation(static_cast<unsigned>(target->findJoint("ankle")))),
               1e-12);
+}
+
+TEST(RetargetJob, PosesOnlyTheSourceJointsTheRigReadsAndTheyMatchTheFullForwardKinematics)
+{
+    // 12_03.bvh onto the humanoid, which has no fingers or toes: the job poses the source joints its plans follow, the
+    // root, the first joint of every H-Anim joint both have, and their ancestors; those come out as the source's own
+    // forward kinematics of the whole skeleton (ActorPose) makes them, and the joints left out change nothing.
+    const MocapImport walk = readBvhScaled(repositoryMocap("bvh/12_03.bvh"));
+    const ActorDefinitionPtr humanoid = readHumanoid();
+    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(humanoid));
+    ASSERT_TRUE(rig);
+    const ActorDefinition& source = *walk.definition;
+    const std::vector<std::uint8_t>& read = rig->getJobTables().sourceJointsRead;
+    ASSERT_EQ(read.size(), source.getNumJoints());
+    for (unsigned j = 0; j < source.getNumJoints(); ++j)
+        if (read[j] && source.getParent(j) >= 0)
+            EXPECT_TRUE(read[static_cast<unsigned>(source.getParent(j))]) << "the parent of " << source.getJointName(j);
+    for (const RetargetJointPlan& plan : rig->getPlans())
+        for (int joint : {plan.sourceA, plan.sourceB})
+            if (plan.kind != RetargetJointKind::Rest && joint >= 0) EXPECT_TRUE(read[static_cast<unsigned>(joint)]);
+    for (const char* name : {"Hips", "LeftFoot", "RightHand", "Head"})
+        EXPECT_TRUE(read[static_cast<unsigned>(source.findJoint(name))]) << name;
+    for (const char* name : {"LThumb", "RightHandIndex1", "LeftToeBase"})
+        EXPECT_FALSE(read[static_cast<unsigned>(source.findJoint(name))]) << name;
+
+    RetargetWorkspace workspace, moved;
+    std::vector<double> target = rig->getTargetRestDofs(), otherTarget = target;
+    for (unsigned f = 0; f < walk.clip->getNumFrames(); f += 50)
+    {
+        const Span<const double> frame(walk.clip->getFrame(f), walk.clip->getNumChannels());
+        RetargetJob job = retargetJob(*rig, frame, target, workspace);
+        ASSERT_TRUE(job.run());
+        const std::vector<glm::dmat4> full = modelsAt(walk.definition, *walk.clip, f);
+        for (unsigned j = 0; j < source.getNumJoints(); ++j)
+            if (read[j])
+                for (int c = 0; c < 4; ++c)
+                    for (int r = 0; r < 3; ++r)
+                        EXPECT_NEAR(workspace.sourceModels[j][c][r], full[j][c][r], 1e-12) << source.getJointName(j);
+
+        // The same frame with every joint the rig does not read turned: the same target DOFs, to the bit.
+        std::vector<double> turned(frame.begin(), frame.end());
+        for (unsigned j = 0; j < source.getNumJoints(); ++j)
+            if (!read[j])
+                for (unsigned d = source.getFirstDof(j); d < source.getFirstDof(j + 1); ++d) turned[d] += 0.5;
+        RetargetJob other = retargetJob(*rig, turned, otherTarget, moved);
+        ASSERT_TRUE(other.run());
+        EXPECT_EQ(otherTarget, target);
+    }
 }

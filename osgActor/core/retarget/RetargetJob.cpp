@@ -36,10 +36,6 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     sourceModels.assign(numSource, glm::dmat4(1.0));
     sourceLocals.assign(numSource, glm::dmat4(1.0));
     targetModels.assign(numTarget, glm::dmat4(1.0));
-    sourceRotations.assign(numSource, glm::dmat3(1.0));
-    sourcePositions.assign(numSource, glm::dvec3(0.0));
-    targetRotations.assign(numTarget, glm::dmat3(1.0));
-    targetPositions.assign(numTarget, glm::dvec3(0.0));
     targetExact.assign(numTarget, 0);
     scratch.sourceLocalPointers.assign(numSource, nullptr);
     scratch.sourceDirty.assign(numSource, 1);
@@ -58,8 +54,6 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
     const std::size_t numTarget = rig.getTargetDefinition()->getNumJoints();
     const Scratch& s = scratch;
     return sourceModels.size() == numSource && sourceLocals.size() == numSource &&
-           sourceRotations.size() == numSource && sourcePositions.size() == numSource &&
-           targetRotations.size() == numTarget && targetPositions.size() == numTarget &&
            s.sourceLocalPointers.size() == numSource && s.sourceDirty.size() == numSource &&
            s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
            targetModels.size() == numTarget &&
@@ -82,8 +76,10 @@ bool RetargetJob::validate() const
 
 namespace {
 
-/** Pass 1: the source's model matrices, every joint rebuilt. */
-OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const double* dofs, RetargetWorkspace& w)
+/** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourceJointsRead) and the
+  * joints below them. */
+OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const RetargetJobTables& tables, const double* dofs,
+                                RetargetWorkspace& w)
 {
     RetargetWorkspace::Scratch& s = w.scratch;
     const unsigned numJoints = source.getNumJoints();
@@ -91,7 +87,7 @@ OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const double* dof
     // Pointers into sourceLocals, set again whenever the workspace has moved (a copy, a vector of workspaces grown).
     if (s.sourceLocalPointers[0] != &w.sourceLocals[0][0][0])
         for (unsigned j = 0; j < numJoints; ++j) s.sourceLocalPointers[j] = &w.sourceLocals[j][0][0];
-    std::memset(s.sourceDirty.data(), 1, numJoints);
+    std::memcpy(s.sourceDirty.data(), tables.sourceJointsRead.data(), numJoints);
     LocalMatricesJob local;
     local.definition = &source;
     local.dofs = Span<const double>(dofs, source.getNumDofs());
@@ -106,11 +102,6 @@ OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const double* dof
     toModel.modelStale = s.sourceModelStale;
     toModel.model = w.sourceModels;
     toModel.run();
-    for (unsigned j = 0; j < numJoints; ++j)
-    {
-        w.sourceRotations[j] = glm::dmat3(w.sourceModels[j]);
-        w.sourcePositions[j] = glm::dvec3(w.sourceModels[j][3]);
-    }
 }
 
 /** The model-space rotation change of a source joint since the rest pose, as a quaternion; identity for -1. */
@@ -335,8 +326,6 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
         glm::dmat4& model = w.targetModels[t];
         storeRotation(&model[0][0], rotation);
         storeColumn(&model[3][0], parentPosition + combine(parentRotation, origin));
-        w.targetRotations[t] = glm::dmat3(model);
-        w.targetPositions[t] = glm::dvec3(model[3]);
         w.targetExact[t] = exact ? 1 : 0;
     }
     return numInexact;
@@ -348,7 +337,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
 {
     if (!validate()) return false;
     RetargetWorkspace& w = *workspace;
-    poseSource(*rig->getSourceDefinition(), sourceDofs.data(), w);
+    poseSource(*rig->getSourceDefinition(), rig->getJobTables(), sourceDofs.data(), w);
     desireRotations(*rig, w);
     fitEulerBatches(*rig, targetDofs.data(), w);
     numInexact = placeJoints(*rig, sourceDofs.data(), targetDofs.data(), w);

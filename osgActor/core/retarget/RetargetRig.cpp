@@ -591,6 +591,7 @@ struct RetargetRigBuilder
         tables.origins.assign(std::size_t(numTarget) * 4, 0.0);
         tables.originMoves.assign(numTarget, 0);
         tables.inEulerBatch.assign(numTarget, 0);
+        markSourceJointsRead(tables.sourceJointsRead);
         for (unsigned j = 0; j < numTarget; ++j)
         {
             storeRotation(&tables.postRotations[j * kRotationDoubles], rig->_plans[j].postRotation);
@@ -621,6 +622,28 @@ struct RetargetRigBuilder
                 setEulerLane(batch, lane, j);
             ++batch.numJoints;
         }
+    }
+
+    /** RetargetJobTables::sourceJointsRead. */
+    void markSourceJointsRead(std::vector<std::uint8_t>& read) const
+    {
+        const unsigned numSource = source.definition->getNumJoints();
+        read.assign(numSource, 0);
+        const auto mark = [&](int joint) {
+            if (joint >= 0) read[static_cast<unsigned>(joint)] = 1;
+        };
+        for (const RetargetJointPlan& plan : rig->_plans)
+        {
+            if (plan.kind == RetargetJointKind::Rest) continue;
+            mark(plan.sourceA);
+            mark(plan.sourceB);
+        }
+        mark(rig->_sourceRoot);
+        for (unsigned h = 0; h < getNumHAnimJoints(); ++h)
+            if (target.topOf[h] >= 0) mark(source.topOf[h]);
+        // Children after their parents: from the last joint up, each read joint marks its parent.
+        for (unsigned j = numSource; j-- > 0;)
+            if (read[j]) mark(source.parent(static_cast<int>(j)));
     }
 
     /** A lane of a batch for target joint j (three rotations, distinct axes i, j, k in product order). */
