@@ -13,10 +13,9 @@
 #include <osgActor/core/retarget/HAnimHumanoid>
 #include <osgActor/core/retarget/JointMapGuess>
 #include <osgActor/core/retarget/JointRotationFit>
-#include <osgActor/core/LocalMatricesJob>
-#include <osgActor/core/LocalToModelJob>
 #include <osgActor/core/ik/IkKinematics>
 
+#include "ModelMatrices.h"
 #include "RotationColumns.h"
 
 #include <glm/geometric.hpp>
@@ -96,12 +95,10 @@ std::string prepareSide(const RetargetSkeleton& skeleton, Side& side, std::vecto
     side.topOf.assign(getNumHAnimJoints(), -1);
     side.runOf.assign(getNumHAnimJoints(), {});
     side.children.assign(numJoints, {});
-    side.restModels.resize(numJoints);
+    side.restModels = retarget_detail::computeModelMatrices(definition, side.rest);
     for (unsigned j = 0; j < numJoints; ++j)
     {
         const int parent = definition.getParent(j);
-        const glm::dmat4 local = computeJointMatrix(definition.getKinematics(j), side.rest.data());
-        side.restModels[j] = parent < 0 ? local : multiplyAffine(side.restModels[static_cast<unsigned>(parent)], local);
         if (parent >= 0) side.children[static_cast<unsigned>(parent)].push_back(j);
         const int h = side.hanim[j];
         if (h < 0) continue;
