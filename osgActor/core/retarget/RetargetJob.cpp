@@ -5,8 +5,10 @@
 // 3. the Euler fits of the joints with three rotations, four joints to a vector (EulerLanes.h), each from its local
 //    rotation under its parent's desired rotation; a lane that needs more (a limit, gimbal lock, the second solution)
 //    is left to the scalar fit;
-// 4. parents first, each joint's DOFs and actual model matrix: the lanes' angles where its parent took its desired
-//    rotation, else the scalar fit under the parent's actual rotation, so an inexact parent's error does not spread.
+// 4. depth by depth, each joint's DOFs and actual model matrix: the Euler lanes' angles where its parent took its
+//    desired rotation; for joints with one or two rotations (a knee, an ankle), the fits of the depth's axis batches,
+//    four joints to a vector (AxisLanes.h), under their parents' actual rotations; else the scalar fit under the
+//    parent's actual rotation, so an inexact parent's error does not spread.
 // Rotations are handled as columns of four doubles (RotationColumns.h); the run is built for x86-64-v3 and the
 // baseline (HotPath.h).
 #include <osgActor/core/retarget/RetargetJob>
@@ -17,6 +19,7 @@
 
 #include "../detail/HotPath.h"
 #include "../detail/SinCosColumn.h"
+#include "AxisLanes.h"
 #include "EulerLanes.h"
 #include "RotationColumns.h"
 
@@ -45,6 +48,7 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     scratch.local.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
     scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
     scratch.laneFitted.assign(numTarget, 0);
+    scratch.laneCosSin.assign(std::size_t(numTarget) * 4, 0.0);
     scratch.asDesired.assign(numTarget, 0);
 }
 
@@ -59,7 +63,8 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
            s.local.size() == numTarget * kRotationDoubles && s.laneAngles.size() == numTarget * 3 &&
-           s.laneFitted.size() == numTarget && s.asDesired.size() == numTarget;
+           s.laneFitted.size() == numTarget && s.laneCosSin.size() == numTarget * 4 &&
+           s.asDesired.size() == numTarget;
 }
 
 namespace {
@@ -221,6 +226,39 @@ OSGACTOR_INLINE RotationColumns rotateByDofs(RotationColumns frame, const JointK
     return frame;
 }
 
+/** The fits of an axis batch's joints (one or two rotations), four at a time, each under its parent's actual model
+  * rotation: the parents, a depth up, are placed. */
+OSGACTOR_INLINE void fitAxisBatch(const RetargetAxisBatch& batch, const ActorDefinition& target,
+                                  const RetargetJobTables& tables, const double* dofs, RetargetWorkspace& w)
+{
+    RetargetWorkspace::Scratch& s = w.scratch;
+    double local[RetargetAxisBatch::kWidth][kRotationDoubles];
+    const double* lanes[RetargetAxisBatch::kWidth];
+    for (unsigned lane = 0; lane < RetargetAxisBatch::kWidth; ++lane)
+    {
+        lanes[lane] = local[lane < batch.numJoints ? lane : batch.numJoints - 1];
+        if (lane >= batch.numJoints) continue;
+        const unsigned t = batch.joints[lane];
+        const int parent = target.getParent(t);
+        const RotationColumns parentRotation =
+            parent >= 0 ? loadRotation(w.targetModels[static_cast<unsigned>(parent)]) : identityColumns();
+        const RotationColumns frame = jointFrame(tables, t, parent >= 0, parentRotation);
+        storeRotation(local[lane], multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
+    }
+    const AxisLanesFit fit = fitAxisLanes(batch, lanes, dofs);
+    for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+    {
+        const unsigned t = batch.joints[lane];
+        s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+        for (unsigned r = 0; r < batch.numRotations; ++r)
+        {
+            s.laneAngles[3 * t + r] = fit.angles[r][lane];
+            s.laneCosSin[4 * t + 2 * r] = fit.cosines[r][lane];
+            s.laneCosSin[4 * t + 2 * r + 1] = fit.sines[r][lane];
+        }
+    }
+}
+
 /** The root's translation DOFs, from where the source's root goes (RetargetRig::mapPosition) less its offset, turned
   * back through whatever of its rotations acts on them; what they cannot reach is dropped. Returns its origin in its
   * parent's frame. */
@@ -245,101 +283,124 @@ glm::dvec3 placeRoot(const RetargetRig& rig, const RetargetWorkspace& w, unsigne
     return offset + (beforeRotation ? offsetRotation : localRotation) * jointSlide(k, dofs);
 }
 
-/** Pass 4: parents first, each target joint's DOFs and model matrix. Returns how many joints the source drives came
-  * out inexact. */
-OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourceValues, double* targetValues,
-                                     RetargetWorkspace& w)
+/** One target joint's DOFs and model matrix, its parent placed. Returns whether it counts as inexact (the source
+  * drives it, and it could not take its desired rotation). */
+OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double* sourceValues, double* targetValues,
+                                RetargetWorkspace& w)
 {
     const ActorDefinition& source = *rig.getSourceDefinition();
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
-    const std::vector<RetargetJointPlan>& plans = rig.getPlans();
     const std::vector<double>& rest = rig.getTargetRestDofs();
     const int targetRoot = rig.getTargetRoot();
     RetargetWorkspace::Scratch& s = w.scratch;
-    unsigned numInexact = 0;
-    for (unsigned t = 0; t < target.getNumJoints(); ++t)
+    const JointKinematics& k = target.getKinematics(t);
+    const RetargetJointPlan& plan = rig.getPlans()[t];
+    const int parent = target.getParent(t);
+    const bool hasParent = parent >= 0;
+    const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
+    const RotationColumns parentRotation = hasParent ? loadRotation(w.targetModels[p]) : identityColumns();
+    const Column parentPosition = hasParent ? loadColumn(&w.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
+    const bool parentExact = !hasParent || w.targetExact[p] != 0;
+    const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
+    const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
+    if (k.hasTranslation)
+        for (unsigned axis = 0; axis < 3; ++axis)
+            if (k.translationDof[axis] >= 0)
+                targetValues[k.translationDof[axis]] = rest[static_cast<unsigned>(k.translationDof[axis])];
+
+    RotationColumns rotation;
+    bool exact = false;
+    if (plan.kind == RetargetJointKind::Rest)
     {
-        const JointKinematics& k = target.getKinematics(t);
-        const RetargetJointPlan& plan = plans[t];
-        const int parent = target.getParent(t);
-        const bool hasParent = parent >= 0;
-        const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
-        const RotationColumns parentRotation = hasParent ? loadRotation(w.targetModels[p]) : identityColumns();
-        const Column parentPosition = hasParent ? loadColumn(&w.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
-        const bool parentExact = !hasParent || w.targetExact[p] != 0;
-        const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
-        const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
-        if (k.hasTranslation)
-            for (unsigned axis = 0; axis < 3; ++axis)
-                if (k.translationDof[axis] >= 0)
-                    targetValues[k.translationDof[axis]] = rest[static_cast<unsigned>(k.translationDof[axis])];
-
-        RotationColumns rotation;
-        bool exact = false;
-        if (plan.kind == RetargetJointKind::Rest)
+        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
+        const RotationColumns restLocal = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
+        rotation = hasParent ? multiply(parentRotation, restLocal) : restLocal;
+    }
+    else if (plan.kind == RetargetJointKind::Copy && parentExact)
+    {
+        // The same local frames as the source joint's: its angles, turned or clamped into the limits.
+        const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(plan.sourceB));
+        bool clamped = false;
+        for (unsigned r = 0; r < k.numRotations; ++r)
         {
-            for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
-            const RotationColumns restLocal = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
-            rotation = hasParent ? multiply(parentRotation, restLocal) : restLocal;
-        }
-        else if (plan.kind == RetargetJointKind::Copy && parentExact)
-        {
-            // The same local frames as the source joint's: its angles, turned or clamped into the limits.
-            const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(plan.sourceB));
-            bool clamped = false;
-            for (unsigned r = 0; r < k.numRotations; ++r)
+            const unsigned dof = k.rotationDof[r];
+            const double angle = sourceValues[sk.rotationDof[r]];
+            double& value = targetValues[dof];
+            if (!turnWithinLimits(angle, target.getDofRangeMin(dof), target.getDofRangeMax(dof), angle, value))
             {
-                const unsigned dof = k.rotationDof[r];
-                const double angle = sourceValues[sk.rotationDof[r]];
-                double& value = targetValues[dof];
-                if (!turnWithinLimits(angle, target.getDofRangeMin(dof), target.getDofRangeMax(dof), angle, value))
-                {
-                    value = fitAngleToLimits(angle, target.getDofRangeMin(dof), target.getDofRangeMax(dof), angle);
-                    clamped = true;
-                }
+                value = fitAngleToLimits(angle, target.getDofRangeMin(dof), target.getDofRangeMax(dof), angle);
+                clamped = true;
             }
-            exact = !clamped;
-            rotation =
-                exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
         }
-        else if (tables.inEulerBatch[t] && s.laneFitted[t] && parentAsDesired)
+        exact = !clamped;
+        rotation =
+            exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
+    }
+    else if (tables.inEulerBatch[t] && s.laneFitted[t] && parentAsDesired)
+    {
+        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        exact = true;
+        rotation = desired;
+    }
+    else if (tables.inAxisBatch[t] && s.laneFitted[t])
+    {
+        // Fewer than three rotations: the nearest the joint can come, never exact (as fitJointRotationDofs).
+        rotation = jointFrame(tables, t, hasParent, parentRotation);
+        for (unsigned r = 0; r < k.numRotations; ++r)
         {
-            for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
-            exact = true;
-            rotation = desired;
+            targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+            postRotate(rotation, k.rotationAxis[r], s.laneCosSin[4 * t + 2 * r], s.laneCosSin[4 * t + 2 * r + 1]);
         }
-        else
-        {
-            const RotationColumns frame = jointFrame(tables, t, hasParent, parentRotation);
-            // A batch's joint under a parent that took its desired rotation has its local rotation worked out.
-            const RotationColumns local = tables.inEulerBatch[t] && parentAsDesired
-                                              ? loadRotation(&s.local[t * kRotationDoubles])
-                                              : multiply(transpose(frame), desired);
-            exact = fitJointRotationDofs(target, t, toMat3(local), targetValues);
-            rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
-        }
-        if (!exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0) ++numInexact;
-        s.asDesired[t] = exact || (plan.kind == RetargetJointKind::Rest && parentAsDesired) ? 1 : 0;
+    }
+    else
+    {
+        const RotationColumns frame = jointFrame(tables, t, hasParent, parentRotation);
+        // A batch's joint under a parent that took its desired rotation has its local rotation worked out.
+        const RotationColumns local = tables.inEulerBatch[t] && parentAsDesired
+                                          ? loadRotation(&s.local[t * kRotationDoubles])
+                                          : multiply(transpose(frame), desired);
+        exact = fitJointRotationDofs(target, t, toMat3(local), targetValues);
+        rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
+    }
+    const bool counted = !exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0;
+    s.asDesired[t] = exact || (plan.kind == RetargetJointKind::Rest && parentAsDesired) ? 1 : 0;
 
-        Column origin = loadColumn(&tables.origins[4 * t]);
-        if (tables.originMoves[t])
-        {
-            const glm::dmat3 parentMatrix = toMat3(parentRotation);
-            const glm::dmat3 localRotation = glm::transpose(parentMatrix) * toMat3(rotation);
-            glm::dvec3 moved;
-            if (static_cast<int>(t) == targetRoot && rig.getSourceRoot() >= 0)
-                moved = placeRoot(rig, w, t, parentMatrix, glm::dvec3(parentPosition[0], parentPosition[1],
-                                                                      parentPosition[2]),
-                                  localRotation, targetValues);
-            else
-                moved = glm::dvec3(k.offset[3]) + localRotation * jointSlide(k, targetValues);
-            origin = Column{moved.x, moved.y, moved.z, 0.0};
-        }
-        glm::dmat4& model = w.targetModels[t];
-        storeRotation(&model[0][0], rotation);
-        storeColumn(&model[3][0], parentPosition + combine(parentRotation, origin));
-        w.targetExact[t] = exact ? 1 : 0;
+    Column origin = loadColumn(&tables.origins[4 * t]);
+    if (tables.originMoves[t])
+    {
+        const glm::dmat3 parentMatrix = toMat3(parentRotation);
+        const glm::dmat3 localRotation = glm::transpose(parentMatrix) * toMat3(rotation);
+        glm::dvec3 moved;
+        if (static_cast<int>(t) == targetRoot && rig.getSourceRoot() >= 0)
+            moved = placeRoot(rig, w, t, parentMatrix, glm::dvec3(parentPosition[0], parentPosition[1],
+                                                                  parentPosition[2]),
+                              localRotation, targetValues);
+        else
+            moved = glm::dvec3(k.offset[3]) + localRotation * jointSlide(k, targetValues);
+        origin = Column{moved.x, moved.y, moved.z, 0.0};
+    }
+    glm::dmat4& model = w.targetModels[t];
+    storeRotation(&model[0][0], rotation);
+    storeColumn(&model[3][0], parentPosition + combine(parentRotation, origin));
+    w.targetExact[t] = exact ? 1 : 0;
+    return counted;
+}
+
+/** Pass 4: depth by depth, the fits of its axis batches (their joints' parents are placed, and their joints not yet),
+  * then each of its joints (placeJoint). Returns how many joints the source drives came out inexact. */
+OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourceValues, double* targetValues,
+                                     RetargetWorkspace& w)
+{
+    const ActorDefinition& target = *rig.getTargetDefinition();
+    const RetargetJobTables& tables = rig.getJobTables();
+    unsigned numInexact = 0;
+    for (std::size_t level = 0; level + 1 < tables.levelJoints.size(); ++level)
+    {
+        for (std::uint32_t b = tables.levelBatches[level]; b < tables.levelBatches[level + 1]; ++b)
+            fitAxisBatch(tables.axisBatches[b], target, tables, targetValues, w);
+        for (std::uint32_t i = tables.levelJoints[level]; i < tables.levelJoints[level + 1]; ++i)
+            numInexact += placeJoint(rig, tables.placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
     }
     return numInexact;
 }

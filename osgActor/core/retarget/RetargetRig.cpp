@@ -605,6 +605,7 @@ struct RetargetRigBuilder
             for (unsigned axis = 0; axis < 3; ++axis) tables.origins[4 * j + axis] = origin[axis];
         }
 
+        planPlacement(tables);
         for (unsigned j = 0; j < numTarget; ++j)
         {
             const JointKinematics& k = t.getKinematics(j);
@@ -618,6 +619,77 @@ struct RetargetRigBuilder
             for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
                 setEulerLane(batch, lane, j);
             ++batch.numJoints;
+        }
+    }
+
+    /** RetargetJobTables' placement order by depth and its axis batches. */
+    void planPlacement(RetargetJobTables& tables) const
+    {
+        const ActorDefinition& t = *target.definition;
+        const unsigned numTarget = t.getNumJoints();
+        std::vector<unsigned> depth(numTarget, 0);
+        unsigned numLevels = 0;
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const int parent = t.getParent(j);
+            depth[j] = parent < 0 ? 0 : depth[static_cast<unsigned>(parent)] + 1;
+            numLevels = std::max(numLevels, depth[j] + 1);
+        }
+        tables.placeOrder.clear();
+        tables.levelJoints.assign(1, 0);
+        tables.levelBatches.assign(1, 0);
+        tables.axisBatches.clear();
+        tables.inAxisBatch.assign(numTarget, 0);
+        for (unsigned level = 0; level < numLevels; ++level)
+        {
+            for (unsigned numRotations = 1; numRotations <= 2; ++numRotations)
+            {
+                RetargetAxisBatch* batch = nullptr;
+                for (unsigned j = 0; j < numTarget; ++j)
+                {
+                    if (depth[j] != level || rig->_plans[j].kind != RetargetJointKind::Follow ||
+                        t.getKinematics(j).numRotations != numRotations)
+                        continue;
+                    if (!batch || batch->numJoints == RetargetAxisBatch::kWidth)
+                    {
+                        tables.axisBatches.emplace_back();
+                        batch = &tables.axisBatches.back();
+                        batch->numRotations = static_cast<std::uint8_t>(numRotations);
+                    }
+                    tables.inAxisBatch[j] = 1;
+                    // Lanes past the last joint repeat it until another joint takes them.
+                    for (unsigned lane = batch->numJoints; lane < RetargetAxisBatch::kWidth; ++lane)
+                        setAxisLane(*batch, lane, j);
+                    ++batch->numJoints;
+                }
+            }
+            for (unsigned j = 0; j < numTarget; ++j)
+                if (depth[j] == level) tables.placeOrder.push_back(j);
+            tables.levelJoints.push_back(static_cast<std::uint32_t>(tables.placeOrder.size()));
+            tables.levelBatches.push_back(static_cast<std::uint32_t>(tables.axisBatches.size()));
+        }
+    }
+
+    /** A lane of an axis batch for target joint j (one or two rotations). */
+    void setAxisLane(RetargetAxisBatch& batch, unsigned lane, unsigned joint) const
+    {
+        const ActorDefinition& t = *target.definition;
+        const JointKinematics& k = t.getKinematics(joint);
+        unsigned axes[3];
+        axes[0] = k.rotationAxis[0];
+        axes[1] = k.numRotations == 2 ? k.rotationAxis[1] : (axes[0] + 1) % 3;
+        axes[2] = 3 - axes[0] - axes[1];
+        batch.joints[lane] = joint;
+        for (unsigned row = 0; row < 3; ++row)
+            for (unsigned column = 0; column < 3; ++column)
+                batch.element[row][column][lane] = static_cast<std::uint8_t>(4 * axes[column] + axes[row]);
+        batch.parity[lane] = axes[1] == (axes[0] + 1) % 3 ? 1.0 : -1.0;
+        for (unsigned r = 0; r < k.numRotations; ++r)
+        {
+            const unsigned dof = k.rotationDof[r];
+            batch.dof[r][lane] = dof;
+            batch.min[r][lane] = t.getDofRangeMin(dof);
+            batch.max[r][lane] = t.getDofRangeMax(dof);
         }
     }
 
