@@ -301,7 +301,7 @@ TEST(RetargetJob, PosesOnlyTheSourceJointsTheRigReadsAndTheyMatchTheFullForwardK
             if (!read[j]) continue;
             for (int c = 0; c < 4; ++c)
                 for (int r = 0; r < 3; ++r)
-                    EXPECT_NEAR(workspace.sourceModels[j][c][r], full[j][c][r], 1e-12) << source.getJointName(j);
+                    EXPECT_NEAR(workspace.sourceModel(j)[c][r], full[j][c][r], 1e-12) << source.getJointName(j);
         }
 
         // The same frame with every joint the rig does not read turned: the same target DOFs, to the bit.

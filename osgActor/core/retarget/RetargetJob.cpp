@@ -36,11 +36,14 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
 {
     const unsigned numSource = rig.getSourceDefinition()->getNumJoints();
     const unsigned numTarget = rig.getTargetDefinition()->getNumJoints();
-    sourceModels.assign(numSource, glm::dmat4(1.0));
+    const RetargetJobTables& tables = rig.getJobTables();
+    sourceModels.assign(tables.sourcePosed.size() + 1, glm::dmat4(1.0));
+    sourceSlots = tables.sourceSlots;
     sourceLocals.assign(numSource, glm::dmat4(1.0));
     targetModels.assign(numTarget, glm::dmat4(1.0));
     targetExact.assign(numTarget, 0);
     scratch.sourceLocalPointers.assign(numSource, nullptr);
+    scratch.posedLocalPointers.assign(tables.sourcePosed.size(), nullptr);
     scratch.sourceDirty.assign(numSource, 1);
     scratch.sourceLocalChanged.assign(numSource, 0);
     scratch.sourceModelStale.assign(numSource, 1);
@@ -57,8 +60,10 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
     const std::size_t numSource = rig.getSourceDefinition()->getNumJoints();
     const std::size_t numTarget = rig.getTargetDefinition()->getNumJoints();
     const Scratch& s = scratch;
-    return sourceModels.size() == numSource && sourceLocals.size() == numSource &&
-           s.sourceLocalPointers.size() == numSource && s.sourceDirty.size() == numSource &&
+    const RetargetJobTables& tables = rig.getJobTables();
+    return sourceModels.size() == tables.sourcePosed.size() + 1 && sourceSlots.size() == numSource &&
+           sourceLocals.size() == numSource && s.sourceLocalPointers.size() == numSource &&
+           s.posedLocalPointers.size() == tables.sourcePosed.size() && s.sourceDirty.size() == numSource &&
            s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
@@ -94,17 +99,21 @@ bool RetargetJob::validate() const
 
 namespace {
 
-/** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourceJointsRead) and the
-  * joints below them. */
+/** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourcePosed): their local
+  * matrices (LocalMatricesJob, the others not built), composed as a skeleton of their own (LocalToModelJob). */
 OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const RetargetJobTables& tables, const double* dofs,
                                 RetargetWorkspace& w)
 {
     RetargetWorkspace::Scratch& s = w.scratch;
     const unsigned numJoints = source.getNumJoints();
-    if (numJoints == 0) return;
+    const std::size_t numPosed = tables.sourcePosed.size();
+    if (numPosed == 0) return;
     // Pointers into sourceLocals, set again whenever the workspace has moved (a copy, a vector of workspaces grown).
     if (s.sourceLocalPointers[0] != &w.sourceLocals[0][0][0])
+    {
         for (unsigned j = 0; j < numJoints; ++j) s.sourceLocalPointers[j] = &w.sourceLocals[j][0][0];
+        for (std::size_t i = 0; i < numPosed; ++i) s.posedLocalPointers[i] = s.sourceLocalPointers[tables.sourcePosed[i]];
+    }
     std::memcpy(s.sourceDirty.data(), tables.sourceJointsRead.data(), numJoints);
     LocalMatricesJob local;
     local.definition = &source;
@@ -115,10 +124,9 @@ OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const RetargetJob
     local.modelStale = s.sourceModelStale;
     local.run();
     LocalToModelJob toModel;
-    toModel.parents = source.getParents();
-    toModel.local = Span<const double* const>(s.sourceLocalPointers.data(), numJoints);
-    toModel.modelStale = s.sourceModelStale;
-    toModel.model = w.sourceModels;
+    toModel.parents = tables.sourcePosedParents;
+    toModel.local = s.posedLocalPointers;
+    toModel.model = Span<glm::dmat4>(w.sourceModels.data(), numPosed);
     toModel.run();
 }
 
@@ -127,7 +135,7 @@ glm::dquat changeSinceRest(const RetargetRig& rig, const RetargetWorkspace& w, i
 {
     if (joint < 0) return glm::dquat(1.0, 0.0, 0.0, 0.0);
     const unsigned j = static_cast<unsigned>(joint);
-    return glm::quat_cast(glm::dmat3(w.sourceModels[j]) * glm::transpose(glm::dmat3(rig.getSourceRestModels()[j])));
+    return glm::quat_cast(w.sourceRotation(j) * glm::transpose(glm::dmat3(rig.getSourceRestModels()[j])));
 }
 
 /** Pass 2: every target joint's desired model rotation (see RetargetJointPlan), parents first; a joint at rest under
@@ -153,7 +161,7 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
         else if (plan.weight == 1.0)
         {
             // A * R_s(b) * postRotation, skipping the products with an identity.
-            d = plan.sourceB >= 0 ? loadRotation(w.sourceModels[static_cast<unsigned>(plan.sourceB)])
+            d = plan.sourceB >= 0 ? loadRotation(w.sourceModel(static_cast<unsigned>(plan.sourceB)))
                                   : identityColumns();
             if (!aligned) d = multiply(alignment, d);
             if (!plan.postIsIdentity) d = multiply(d, loadRotation(&tables.postRotations[t * kRotationDoubles]));
@@ -270,7 +278,7 @@ glm::dvec3 placeRoot(const RetargetRig& rig, const RetargetWorkspace& w, unsigne
     const glm::dmat3& offsetRotation = rig.getTargetOffsetRotations()[t];
     const glm::dvec3 offset(k.offset[3]);
     const glm::dvec3 goal =
-        rig.mapPosition(glm::dvec3(w.sourceModels[static_cast<unsigned>(rig.getSourceRoot())][3]));
+        rig.mapPosition(w.sourcePosition(static_cast<unsigned>(rig.getSourceRoot())));
     const glm::dvec3 inParent = glm::transpose(parentRotation) * (goal - parentPosition) - offset;
     const bool beforeRotation = k.translationMode == TranslationMode::BeforeRotation;
     const glm::dvec3 slide = glm::transpose(beforeRotation ? offsetRotation : localRotation) * inParent;

@@ -589,6 +589,20 @@ struct RetargetRigBuilder
         tables.originMoves.assign(numTarget, 0);
         tables.inEulerBatch.assign(numTarget, 0);
         markSourceJointsRead(tables.sourceJointsRead);
+        const unsigned numSource = source.definition->getNumJoints();
+        tables.sourcePosed.clear();
+        tables.sourcePosedParents.clear();
+        for (unsigned j = 0; j < numSource; ++j)
+            if (tables.sourceJointsRead[j]) tables.sourcePosed.push_back(j);
+        tables.sourceSlots.assign(numSource, static_cast<std::uint32_t>(tables.sourcePosed.size()));
+        for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
+        {
+            const int parent = source.parent(static_cast<int>(tables.sourcePosed[i]));
+            tables.sourceSlots[tables.sourcePosed[i]] = static_cast<std::uint32_t>(i);
+            // Read joints' ancestors are read: the parent has its place already.
+            tables.sourcePosedParents.push_back(parent < 0 ? -1
+                                                           : static_cast<int>(tables.sourceSlots[static_cast<unsigned>(parent)]));
+        }
         for (unsigned j = 0; j < numTarget; ++j)
         {
             storeRotation(&tables.postRotations[j * kRotationDoubles], rig->_plans[j].postRotation);
