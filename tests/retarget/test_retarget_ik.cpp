@@ -135,7 +135,7 @@ TEST(RetargetIkJob, LowersTheRootForALegOutOfReach)
     ASSERT_TRUE(retargetJob(*rig, humanoid->getDefaultDofs(), dofs, workspace).run());
     std::vector<IkGoal> goals(limbs.limbs.size());
     for (std::size_t i = 0; i < limbs.limbs.size(); ++i)
-        goals[i].position = workspace.targetPositions[limbs.limbs[i].chain->getEffectorJoint()];
+        goals[i].position = workspace.targetPosition(limbs.limbs[i].chain->getEffectorJoint());
     goals[0].position.z -= 0.1; // l_leg
     std::vector<IkWorkspace> ikWorkspaces;
     RetargetIkJob job = ikJob(*rig, limbs, goals, dofs, workspace, ikWorkspaces);

@@ -3,6 +3,7 @@
 // local axes move alike; and by hand: a spine of 3 onto a spine of 5, a hinge at its limit.
 #include "RetargetTestUtil"
 
+#include <osgActor/core/retarget/JointRotationFit>
 #include <osgActor/core/retarget/RetargetMeasures>
 
 #include <glm/geometric.hpp>
@@ -218,7 +219,7 @@ TEST(RetargetJob, ASpineOfThreeOntoASpineOfFiveSharesTheBendOut)
     }
     const unsigned sourceHead = static_cast<unsigned>(three->findJoint("head"));
     const unsigned targetHead = static_cast<unsigned>(five->findJoint("head"));
-    EXPECT_LE(angleBetween(workspace.sourceRotations[sourceHead], workspace.targetRotations[targetHead]), 1e-12);
+    EXPECT_LE(angleBetween(workspace.sourceRotation(sourceHead), workspace.targetRotation(targetHead)), 1e-12);
 }
 
 TEST(RetargetJob, AHingeStopsAtItsLimitAndTheJointsBelowKeepTheirOrientation)
@@ -248,7 +249,125 @@ TEST(RetargetJob, AHingeStopsAtItsLimitAndTheJointsBelowKeepTheirOrientation)
     EXPECT_DOUBLE_EQ(result[static_cast<unsigned>(target->findDof("knee.rx"))], degrees(90));
     EXPECT_EQ(workspace.targetExact[static_cast<unsigned>(target->findJoint("knee"))], 0);
     EXPECT_EQ(job.numInexact, 1u);
-    EXPECT_LE(angleBetween(workspace.sourceRotations[static_cast<unsigned>(source->findJoint("ankle"))],
-                           workspace.targetRotations[static_cast<unsigned>(target->findJoint("ankle"))]),
+    EXPECT_LE(angleBetween(workspace.sourceRotation(static_cast<unsigned>(source->findJoint("ankle"))),
+                           workspace.targetRotation(static_cast<unsigned>(target->findJoint("ankle")))),
               1e-12);
+}
+
+TEST(RetargetJob, PosesOnlyTheSourceJointsTheRigReadsAndTheyMatchTheFullForwardKinematics)
+{
+    // 12_03.bvh onto the humanoid, which has no fingers or toes: the job poses the source joints its plans follow, the
+    // root, the first joint of every H-Anim joint both have, and their ancestors; those come out as the source's own
+    // forward kinematics of the whole skeleton (ActorPose) makes them, and the joints left out change nothing.
+    const MocapImport walk = readBvhScaled(repositoryMocap("bvh/12_03.bvh"));
+    const ActorDefinitionPtr humanoid = readHumanoid();
+    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(humanoid));
+    ASSERT_TRUE(rig);
+    const ActorDefinition& source = *walk.definition;
+    const std::vector<std::uint8_t>& read = rig->getJobTables().sourceJointsRead;
+    ASSERT_EQ(read.size(), source.getNumJoints());
+    for (unsigned j = 0; j < source.getNumJoints(); ++j)
+    {
+        if (read[j] && source.getParent(j) >= 0)
+        {
+            EXPECT_TRUE(read[static_cast<unsigned>(source.getParent(j))]) << "the parent of " << source.getJointName(j);
+        }
+    }
+    for (const RetargetJointPlan& plan : rig->getPlans())
+    {
+        for (int joint : {plan.sourceA, plan.sourceB})
+        {
+            if (plan.kind != RetargetJointKind::Rest && joint >= 0)
+            {
+                EXPECT_TRUE(read[static_cast<unsigned>(joint)]);
+            }
+        }
+    }
+    for (const char* name : {"Hips", "LeftFoot", "RightHand", "Head"})
+        EXPECT_TRUE(read[static_cast<unsigned>(source.findJoint(name))]) << name;
+    for (const char* name : {"LThumb", "RightHandIndex1", "LeftToeBase"})
+        EXPECT_FALSE(read[static_cast<unsigned>(source.findJoint(name))]) << name;
+
+    RetargetWorkspace workspace, moved;
+    std::vector<double> target = rig->getTargetRestDofs(), otherTarget = target;
+    for (unsigned f = 0; f < walk.clip->getNumFrames(); f += 50)
+    {
+        const Span<const double> frame(walk.clip->getFrame(f), walk.clip->getNumChannels());
+        RetargetJob job = retargetJob(*rig, frame, target, workspace);
+        ASSERT_TRUE(job.run());
+        const std::vector<glm::dmat4> full = modelsAt(walk.definition, *walk.clip, f);
+        for (unsigned j = 0; j < source.getNumJoints(); ++j)
+        {
+            if (!read[j]) continue;
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 3; ++r)
+                    EXPECT_NEAR(workspace.sourceModel(j)[c][r], full[j][c][r], 1e-12) << source.getJointName(j);
+        }
+
+        // The same frame with every joint the rig does not read turned: the same target DOFs, to the bit.
+        std::vector<double> turned(frame.begin(), frame.end());
+        for (unsigned j = 0; j < source.getNumJoints(); ++j)
+            if (!read[j])
+                for (unsigned d = source.getFirstDof(j); d < source.getFirstDof(j + 1); ++d) turned[d] += 0.5;
+        RetargetJob other = retargetJob(*rig, turned, otherTarget, moved);
+        ASSERT_TRUE(other.run());
+        EXPECT_EQ(otherTarget, target);
+    }
+}
+
+TEST(RetargetJob, JointsWithOneOrTwoRotationsFittedFourAtATimeTakeTheScalarFitsAngles)
+{
+    // The humanoid's knees and elbows (one rotation) and ankles and wrists (two) are fitted in vector lanes, depth by
+    // depth: on every tenth frame of 12_03.bvh each takes the angles fitJointRotationDofs gives for its desired model
+    // rotation (RetargetJointPlan's formula, worked out here with GLM) under its parent's actual one, the previous
+    // frame's values as the reference.
+    const MocapImport walk = readBvhScaled(repositoryMocap("bvh/12_03.bvh"));
+    const ActorDefinitionPtr humanoid = readHumanoid();
+    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(humanoid));
+    ASSERT_TRUE(rig);
+    const RetargetJobTables& tables = rig->getJobTables();
+    unsigned batchedJoints[3] = {0, 0, 0};
+    for (const RetargetAxisBatch& batch : tables.axisBatches) batchedJoints[batch.numRotations] += batch.numJoints;
+    EXPECT_EQ(batchedJoints[1], 4u) << "knees and elbows";
+    EXPECT_EQ(batchedJoints[2], 4u) << "ankles and wrists";
+
+    const glm::dmat3 alignment = rig->getAlignment();
+    const auto change = [&](const RetargetWorkspace& w, int joint) {
+        if (joint < 0) return glm::dquat(1.0, 0.0, 0.0, 0.0);
+        const unsigned j = static_cast<unsigned>(joint);
+        return glm::quat_cast(w.sourceRotation(j) * glm::transpose(glm::dmat3(rig->getSourceRestModels()[j])));
+    };
+    RetargetWorkspace workspace;
+    std::vector<double> target = rig->getTargetRestDofs();
+    unsigned compared = 0;
+    for (unsigned f = 0; f < walk.clip->getNumFrames(); ++f)
+    {
+        const std::vector<double> previous = target;
+        RetargetJob job = retargetJob(*rig, Span<const double>(walk.clip->getFrame(f), walk.clip->getNumChannels()),
+                                      target, workspace);
+        ASSERT_TRUE(job.run());
+        if (f % 10 != 0) continue;
+        for (unsigned t = 0; t < humanoid->getNumJoints(); ++t)
+        {
+            if (!tables.inAxisBatch[t]) continue;
+            const RetargetJointPlan& plan = rig->getPlan(t);
+            const glm::dmat3 desired =
+                plan.weight == 1.0
+                    ? alignment * workspace.sourceRotation(static_cast<unsigned>(plan.sourceB)) * plan.postRotation
+                    : alignment *
+                          glm::mat3_cast(glm::slerp(change(workspace, plan.sourceA), change(workspace, plan.sourceB),
+                                                    plan.weight)) *
+                          plan.postRotation;
+            const glm::dmat3 frame = workspace.targetRotation(static_cast<unsigned>(humanoid->getParent(t))) *
+                                     rig->getTargetOffsetRotations()[t];
+            std::vector<double> expected = previous;
+            fitJointRotationDofs(*humanoid, t, glm::transpose(frame) * desired, expected.data());
+            const JointKinematics& k = humanoid->getKinematics(t);
+            for (unsigned r = 0; r < k.numRotations; ++r)
+                EXPECT_NEAR(target[k.rotationDof[r]], expected[k.rotationDof[r]], 1e-12)
+                    << humanoid->getJointName(t) << " frame " << f;
+            ++compared;
+        }
+    }
+    EXPECT_GE(compared, 8u * 50u);
 }

@@ -61,6 +61,25 @@ OSGACTOR_INLINE Column arctangent2Lanes(Column y, Column x, LaneMask& invalid)
     return select(signBits(y), -angle, angle);
 }
 
+/** Each lane's value of a DOF vector, the DOFs given per lane. */
+OSGACTOR_INLINE Column gatherLanes(const double* values, const std::uint32_t* index)
+{
+    return Column{values[index[0]], values[index[1]], values[index[2]], values[index[3]]};
+}
+
+/** angle turned, lane by lane, by the whole turns that bring it nearest reference (the previous frame's value);
+  * within is cleared in the lanes where that lies outside [min, max] (or the turns are too many to count). */
+OSGACTOR_INLINE Column turnNearLanes(Column angle, Column reference, Column min, Column max, LaneMask& within)
+{
+    constexpr double kTwoPi = 6.28318530717958647692;
+    constexpr double kRoundingShift = 0x1.8p52; // adding and subtracting it rounds to an integer, ties to even
+    const Column turns = (reference - angle) * (1.0 / kTwoPi);
+    const Column rounded = (turns + kRoundingShift) - kRoundingShift;
+    const Column turned = angle + kTwoPi * rounded;
+    within &= absColumn(turns) < 0x1p50 && turned >= min && turned <= max;
+    return turned;
+}
+
 /** What fitEulerLanes gives back: per lane, the three angles in product order, and whether the lane's joint is
   * fitted exactly. */
 struct EulerLanesFit
@@ -77,8 +96,6 @@ struct EulerLanesFit
 OSGACTOR_INLINE EulerLanesFit fitEulerLanes(const RetargetEulerBatch& batch, const double* const local[4],
                                             const double* dofs)
 {
-    constexpr double kTwoPi = 6.28318530717958647692;
-    constexpr double kRoundingShift = 0x1.8p52; // adding and subtracting it rounds to an integer, ties to even
     using E = RetargetEulerBatch;
     const auto element = [&](E::Element e) OSGACTOR_INLINE_LAMBDA {
         const std::uint8_t* at = batch.element[e];
@@ -99,14 +116,10 @@ OSGACTOR_INLINE EulerLanesFit fitEulerLanes(const RetargetEulerBatch& batch, con
     Column distance = broadcast(0.0);
     for (unsigned r = 0; r < 3; ++r)
     {
-        const std::uint32_t* dof = batch.dof[r];
-        const Column reference = {dofs[dof[0]], dofs[dof[1]], dofs[dof[2]], dofs[dof[3]]};
-        const Column turns = (reference - fit.angles[r]) * (1.0 / kTwoPi);
-        const Column rounded = (turns + kRoundingShift) - kRoundingShift;
-        const Column turned = fit.angles[r] + kTwoPi * rounded;
-        within &= absColumn(turns) < 0x1p50 && turned >= loadColumn(batch.min[r]) && turned <= loadColumn(batch.max[r]);
-        distance += absColumn(turned - reference);
-        fit.angles[r] = turned;
+        const Column reference = gatherLanes(dofs, batch.dof[r]);
+        fit.angles[r] =
+            turnNearLanes(fit.angles[r], reference, loadColumn(batch.min[r]), loadColumn(batch.max[r]), within);
+        distance += absColumn(fit.angles[r] - reference);
     }
     fit.fitted = within & (distance < 0.5 * 3.14159265358979323846);
     return fit;

@@ -1,8 +1,8 @@
 #include <osgActor/core/retarget/JointMapGuess>
 #include <osgActor/core/retarget/BuiltInJointMaps>
 #include <osgActor/core/retarget/HAnimHumanoid>
-#include <osgActor/core/LocalMatricesJob>
-#include <osgActor/core/LocalToModelJob>
+
+#include "ModelMatrices.h"
 
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
@@ -37,14 +37,12 @@ struct RestSkeleton
     RestSkeleton(const ActorDefinition& d, const std::vector<double>& rest) : definition(d)
     {
         const unsigned n = d.getNumJoints();
-        std::vector<glm::dmat4> models(n);
+        const std::vector<glm::dmat4> models = retarget_detail::computeModelMatrices(d, rest);
         positions.resize(n);
         children.resize(n);
         for (unsigned j = 0; j < n; ++j)
         {
             const int parent = d.getParent(j);
-            const glm::dmat4 local = computeJointMatrix(d.getKinematics(j), rest.data());
-            models[j] = parent < 0 ? local : multiplyAffine(models[static_cast<unsigned>(parent)], local);
             positions[j] = glm::dvec3(models[j][3]);
             if (parent >= 0) children[static_cast<unsigned>(parent)].push_back(j);
         }

@@ -56,9 +56,9 @@ RetargetClipResult retargetClip(const RetargetRig& rig, const Clip& source, cons
             for (std::size_t i = 0; i < numLimbs; ++i)
             {
                 const RetargetLimb& limb = limbs.limbs[i];
-                sourceFeet[i][f] = workspace.sourcePositions[limb.sourceEffector];
-                follow[i][f] = limb.goal(rig, sourceFeet[i][f], workspace.sourcePositions[limb.sourceRoot],
-                                         workspace.targetPositions[limb.chain->getRootJoint()]);
+                sourceFeet[i][f] = workspace.sourcePosition(limb.sourceEffector);
+                follow[i][f] = limb.goal(rig, sourceFeet[i][f], workspace.sourcePosition(limb.sourceRoot),
+                                         workspace.targetPosition(limb.chain->getRootJoint()));
             }
         }
         for (std::size_t i = 0; i < numLimbs; ++i)

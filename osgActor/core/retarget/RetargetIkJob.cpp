@@ -47,7 +47,7 @@ double RetargetIkJob::lowerRootForLegs()
         const unsigned hip = limb.chain->getRootJoint();
         if (!isBelow(target, hip, static_cast<unsigned>(root))) continue;
         // Lowered by d the hip is at hip - d z: |goal - hip + d z| = reach, below the hip.
-        const glm::dvec3 toGoal = goals[i].position - workspace->targetPositions[hip];
+        const glm::dvec3 toGoal = goals[i].position - workspace->targetPosition(hip);
         const double reach = 0.999 * limb.chain->getLength();
         const double across2 = toGoal.x * toGoal.x + toGoal.y * toGoal.y;
         if (glm::dot(toGoal, toGoal) <= reach * reach) continue;
@@ -60,10 +60,10 @@ double RetargetIkJob::lowerRootForLegs()
     const JointKinematics& k = target.getKinematics(r);
     const int parent = target.getParent(r);
     const glm::dmat3 parentRotation =
-        parent < 0 ? glm::dmat3(1.0) : workspace->targetRotations[static_cast<unsigned>(parent)];
+        parent < 0 ? glm::dmat3(1.0) : workspace->targetRotation(static_cast<unsigned>(parent));
     const glm::dmat3 slideFrame = k.translationMode == TranslationMode::BeforeRotation
                                       ? parentRotation * rig->getTargetOffsetRotations()[r]
-                                      : workspace->targetRotations[r];
+                                      : workspace->targetRotation(r);
     const glm::dvec3 slide = glm::transpose(slideFrame) * glm::dvec3(0.0, 0.0, -drop);
     for (unsigned axis = 0; axis < 3; ++axis)
         if (k.translationDof[axis] >= 0)
@@ -92,10 +92,8 @@ bool RetargetIkJob::run()
         glm::dmat4 rootParentModel(1.0);
         if (rootParent >= 0)
         {
-            rootParentModel = glm::dmat4(workspace->targetRotations[static_cast<unsigned>(rootParent)]);
-            rootParentModel[3] = glm::dvec4(workspace->targetPositions[static_cast<unsigned>(rootParent)] +
-                                                 (belowRoot ? drop : glm::dvec3(0.0)),
-                                             1.0);
+            rootParentModel = workspace->targetModels[static_cast<unsigned>(rootParent)];
+            if (belowRoot) rootParentModel[3] += glm::dvec4(drop, 0.0);
         }
         IkGoal goal = goals[i];
         if (!limb.isLeg && belowRoot) goal.position += drop;
@@ -116,7 +114,7 @@ bool RetargetIkJob::run()
                                    computeJointMatrix(target.getKinematics(chain.getJoint(c)), targetDofs.data()));
         const unsigned end = chain.getEffectorJoint();
         const glm::dmat3 frame = glm::dmat3(model) * rig->getTargetOffsetRotations()[end];
-        fitJointRotationDofs(target, end, glm::transpose(frame) * workspace->targetRotations[end], targetDofs.data());
+        fitJointRotationDofs(target, end, glm::transpose(frame) * workspace->targetRotation(end), targetDofs.data());
     }
     return true;
 }

@@ -5,8 +5,10 @@
 // 3. the Euler fits of the joints with three rotations, four joints to a vector (EulerLanes.h), each from its local
 //    rotation under its parent's desired rotation; a lane that needs more (a limit, gimbal lock, the second solution)
 //    is left to the scalar fit;
-// 4. parents first, each joint's DOFs and actual model matrix: the lanes' angles where its parent took its desired
-//    rotation, else the scalar fit under the parent's actual rotation, so an inexact parent's error does not spread.
+// 4. depth by depth, each joint's DOFs and actual model matrix: the Euler lanes' angles where its parent took its
+//    desired rotation; for joints with one or two rotations (a knee, an ankle), the fits of the depth's axis batches,
+//    four joints to a vector (AxisLanes.h), under their parents' actual rotations; else the scalar fit under the
+//    parent's actual rotation, so an inexact parent's error does not spread.
 // Rotations are handled as columns of four doubles (RotationColumns.h); the run is built for x86-64-v3 and the
 // baseline (HotPath.h).
 #include <osgActor/core/retarget/RetargetJob>
@@ -17,6 +19,7 @@
 
 #include "../detail/HotPath.h"
 #include "../detail/SinCosColumn.h"
+#include "AxisLanes.h"
 #include "EulerLanes.h"
 #include "RotationColumns.h"
 
@@ -33,15 +36,14 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
 {
     const unsigned numSource = rig.getSourceDefinition()->getNumJoints();
     const unsigned numTarget = rig.getTargetDefinition()->getNumJoints();
-    sourceModels.assign(numSource, glm::dmat4(1.0));
+    const RetargetJobTables& tables = rig.getJobTables();
+    sourceModels.assign(tables.sourcePosed.size() + 1, glm::dmat4(1.0));
+    sourceSlots = tables.sourceSlots;
     sourceLocals.assign(numSource, glm::dmat4(1.0));
     targetModels.assign(numTarget, glm::dmat4(1.0));
-    sourceRotations.assign(numSource, glm::dmat3(1.0));
-    sourcePositions.assign(numSource, glm::dvec3(0.0));
-    targetRotations.assign(numTarget, glm::dmat3(1.0));
-    targetPositions.assign(numTarget, glm::dvec3(0.0));
     targetExact.assign(numTarget, 0);
     scratch.sourceLocalPointers.assign(numSource, nullptr);
+    scratch.posedLocalPointers.assign(tables.sourcePosed.size(), nullptr);
     scratch.sourceDirty.assign(numSource, 1);
     scratch.sourceLocalChanged.assign(numSource, 0);
     scratch.sourceModelStale.assign(numSource, 1);
@@ -49,6 +51,7 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     scratch.local.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
     scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
     scratch.laneFitted.assign(numTarget, 0);
+    scratch.laneCosSin.assign(std::size_t(numTarget) * 4, 0.0);
     scratch.asDesired.assign(numTarget, 0);
 }
 
@@ -57,41 +60,61 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
     const std::size_t numSource = rig.getSourceDefinition()->getNumJoints();
     const std::size_t numTarget = rig.getTargetDefinition()->getNumJoints();
     const Scratch& s = scratch;
-    return sourceModels.size() == numSource && sourceLocals.size() == numSource &&
-           sourceRotations.size() == numSource && sourcePositions.size() == numSource &&
-           targetRotations.size() == numTarget && targetPositions.size() == numTarget &&
-           s.sourceLocalPointers.size() == numSource && s.sourceDirty.size() == numSource &&
+    const RetargetJobTables& tables = rig.getJobTables();
+    return sourceModels.size() == tables.sourcePosed.size() + 1 && sourceSlots.size() == numSource &&
+           sourceLocals.size() == numSource && s.sourceLocalPointers.size() == numSource &&
+           s.posedLocalPointers.size() == tables.sourcePosed.size() && s.sourceDirty.size() == numSource &&
            s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
            s.local.size() == numTarget * kRotationDoubles && s.laneAngles.size() == numTarget * 3 &&
-           s.laneFitted.size() == numTarget && s.asDesired.size() == numTarget;
+           s.laneFitted.size() == numTarget && s.laneCosSin.size() == numTarget * 4 &&
+           s.asDesired.size() == numTarget;
 }
+
+namespace {
+
+/** Whether every value's magnitude is at most bound (false for NaN), four values to a vector, with no branch per value
+  * and no chain of one comparison after another. */
+OSGACTOR_HOT_PATH bool allWithin(const double* values, std::size_t count, double bound)
+{
+    ColumnSignedBits outside = {0, 0, 0, 0};
+    std::size_t i = 0;
+    for (; i + 4 <= count; i += 4) outside |= !(absColumn(loadColumn(values + i)) <= bound);
+    bool valid = (outside[0] | outside[1] | outside[2] | outside[3]) == 0;
+    for (; i < count; ++i) valid &= std::abs(values[i]) <= bound;
+    return valid;
+}
+
+} // namespace
 
 bool RetargetJob::validate() const
 {
     if (!rig || !workspace || !workspace->fits(*rig)) return false;
     if (sourceDofs.size() != rig->getSourceDefinition()->getNumDofs()) return false;
     if (targetDofs.size() != rig->getTargetDefinition()->getNumDofs()) return false;
-    // Without a branch per value, so the loops vectorize.
-    bool valid = true;
-    for (double value : sourceDofs) valid &= std::abs(value) <= kMaxDofMagnitude; // also refuses NaN
-    for (double value : targetDofs) valid &= std::abs(value) <= std::numeric_limits<double>::max();
-    return valid;
+    return allWithin(sourceDofs.data(), sourceDofs.size(), kMaxDofMagnitude) &&
+           allWithin(targetDofs.data(), targetDofs.size(), std::numeric_limits<double>::max());
 }
 
 namespace {
 
-/** Pass 1: the source's model matrices, every joint rebuilt. */
-OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const double* dofs, RetargetWorkspace& w)
+/** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourcePosed): their local
+  * matrices (LocalMatricesJob, the others not built), composed as a skeleton of their own (LocalToModelJob). */
+OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const RetargetJobTables& tables, const double* dofs,
+                                RetargetWorkspace& w)
 {
     RetargetWorkspace::Scratch& s = w.scratch;
     const unsigned numJoints = source.getNumJoints();
-    if (numJoints == 0) return;
+    const std::size_t numPosed = tables.sourcePosed.size();
+    if (numPosed == 0) return;
     // Pointers into sourceLocals, set again whenever the workspace has moved (a copy, a vector of workspaces grown).
     if (s.sourceLocalPointers[0] != &w.sourceLocals[0][0][0])
+    {
         for (unsigned j = 0; j < numJoints; ++j) s.sourceLocalPointers[j] = &w.sourceLocals[j][0][0];
-    std::memset(s.sourceDirty.data(), 1, numJoints);
+        for (std::size_t i = 0; i < numPosed; ++i) s.posedLocalPointers[i] = s.sourceLocalPointers[tables.sourcePosed[i]];
+    }
+    std::memcpy(s.sourceDirty.data(), tables.sourceJointsRead.data(), numJoints);
     LocalMatricesJob local;
     local.definition = &source;
     local.dofs = Span<const double>(dofs, source.getNumDofs());
@@ -101,16 +124,10 @@ OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const double* dof
     local.modelStale = s.sourceModelStale;
     local.run();
     LocalToModelJob toModel;
-    toModel.parents = source.getParents();
-    toModel.local = Span<const double* const>(s.sourceLocalPointers.data(), numJoints);
-    toModel.modelStale = s.sourceModelStale;
-    toModel.model = w.sourceModels;
+    toModel.parents = tables.sourcePosedParents;
+    toModel.local = s.posedLocalPointers;
+    toModel.model = Span<glm::dmat4>(w.sourceModels.data(), numPosed);
     toModel.run();
-    for (unsigned j = 0; j < numJoints; ++j)
-    {
-        w.sourceRotations[j] = glm::dmat3(w.sourceModels[j]);
-        w.sourcePositions[j] = glm::dvec3(w.sourceModels[j][3]);
-    }
 }
 
 /** The model-space rotation change of a source joint since the rest pose, as a quaternion; identity for -1. */
@@ -118,7 +135,7 @@ glm::dquat changeSinceRest(const RetargetRig& rig, const RetargetWorkspace& w, i
 {
     if (joint < 0) return glm::dquat(1.0, 0.0, 0.0, 0.0);
     const unsigned j = static_cast<unsigned>(joint);
-    return glm::quat_cast(glm::dmat3(w.sourceModels[j]) * glm::transpose(glm::dmat3(rig.getSourceRestModels()[j])));
+    return glm::quat_cast(w.sourceRotation(j) * glm::transpose(glm::dmat3(rig.getSourceRestModels()[j])));
 }
 
 /** Pass 2: every target joint's desired model rotation (see RetargetJointPlan), parents first; a joint at rest under
@@ -144,7 +161,7 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
         else if (plan.weight == 1.0)
         {
             // A * R_s(b) * postRotation, skipping the products with an identity.
-            d = plan.sourceB >= 0 ? loadRotation(w.sourceModels[static_cast<unsigned>(plan.sourceB)])
+            d = plan.sourceB >= 0 ? loadRotation(w.sourceModel(static_cast<unsigned>(plan.sourceB)))
                                   : identityColumns();
             if (!aligned) d = multiply(alignment, d);
             if (!plan.postIsIdentity) d = multiply(d, loadRotation(&tables.postRotations[t * kRotationDoubles]));
@@ -217,6 +234,39 @@ OSGACTOR_INLINE RotationColumns rotateByDofs(RotationColumns frame, const JointK
     return frame;
 }
 
+/** The fits of an axis batch's joints (one or two rotations), four at a time, each under its parent's actual model
+  * rotation: the parents, a depth up, are placed. */
+OSGACTOR_INLINE void fitAxisBatch(const RetargetAxisBatch& batch, const ActorDefinition& target,
+                                  const RetargetJobTables& tables, const double* dofs, RetargetWorkspace& w)
+{
+    RetargetWorkspace::Scratch& s = w.scratch;
+    double local[RetargetAxisBatch::kWidth][kRotationDoubles];
+    const double* lanes[RetargetAxisBatch::kWidth];
+    for (unsigned lane = 0; lane < RetargetAxisBatch::kWidth; ++lane)
+    {
+        lanes[lane] = local[lane < batch.numJoints ? lane : batch.numJoints - 1];
+        if (lane >= batch.numJoints) continue;
+        const unsigned t = batch.joints[lane];
+        const int parent = target.getParent(t);
+        const RotationColumns parentRotation =
+            parent >= 0 ? loadRotation(w.targetModels[static_cast<unsigned>(parent)]) : identityColumns();
+        const RotationColumns frame = jointFrame(tables, t, parent >= 0, parentRotation);
+        storeRotation(local[lane], multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
+    }
+    const AxisLanesFit fit = fitAxisLanes(batch, lanes, dofs);
+    for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+    {
+        const unsigned t = batch.joints[lane];
+        s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+        for (unsigned r = 0; r < batch.numRotations; ++r)
+        {
+            s.laneAngles[3 * t + r] = fit.angles[r][lane];
+            s.laneCosSin[4 * t + 2 * r] = fit.cosines[r][lane];
+            s.laneCosSin[4 * t + 2 * r + 1] = fit.sines[r][lane];
+        }
+    }
+}
+
 /** The root's translation DOFs, from where the source's root goes (RetargetRig::mapPosition) less its offset, turned
   * back through whatever of its rotations acts on them; what they cannot reach is dropped. Returns its origin in its
   * parent's frame. */
@@ -228,7 +278,7 @@ glm::dvec3 placeRoot(const RetargetRig& rig, const RetargetWorkspace& w, unsigne
     const glm::dmat3& offsetRotation = rig.getTargetOffsetRotations()[t];
     const glm::dvec3 offset(k.offset[3]);
     const glm::dvec3 goal =
-        rig.mapPosition(glm::dvec3(w.sourceModels[static_cast<unsigned>(rig.getSourceRoot())][3]));
+        rig.mapPosition(w.sourcePosition(static_cast<unsigned>(rig.getSourceRoot())));
     const glm::dvec3 inParent = glm::transpose(parentRotation) * (goal - parentPosition) - offset;
     const bool beforeRotation = k.translationMode == TranslationMode::BeforeRotation;
     const glm::dvec3 slide = glm::transpose(beforeRotation ? offsetRotation : localRotation) * inParent;
@@ -241,103 +291,124 @@ glm::dvec3 placeRoot(const RetargetRig& rig, const RetargetWorkspace& w, unsigne
     return offset + (beforeRotation ? offsetRotation : localRotation) * jointSlide(k, dofs);
 }
 
-/** Pass 4: parents first, each target joint's DOFs and model matrix. Returns how many joints the source drives came
-  * out inexact. */
-OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourceValues, double* targetValues,
-                                     RetargetWorkspace& w)
+/** One target joint's DOFs and model matrix, its parent placed. Returns whether it counts as inexact (the source
+  * drives it, and it could not take its desired rotation). */
+OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double* sourceValues, double* targetValues,
+                                RetargetWorkspace& w)
 {
     const ActorDefinition& source = *rig.getSourceDefinition();
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
-    const std::vector<RetargetJointPlan>& plans = rig.getPlans();
     const std::vector<double>& rest = rig.getTargetRestDofs();
     const int targetRoot = rig.getTargetRoot();
     RetargetWorkspace::Scratch& s = w.scratch;
-    unsigned numInexact = 0;
-    for (unsigned t = 0; t < target.getNumJoints(); ++t)
+    const JointKinematics& k = target.getKinematics(t);
+    const RetargetJointPlan& plan = rig.getPlans()[t];
+    const int parent = target.getParent(t);
+    const bool hasParent = parent >= 0;
+    const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
+    const RotationColumns parentRotation = hasParent ? loadRotation(w.targetModels[p]) : identityColumns();
+    const Column parentPosition = hasParent ? loadColumn(&w.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
+    const bool parentExact = !hasParent || w.targetExact[p] != 0;
+    const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
+    const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
+    if (k.hasTranslation)
+        for (unsigned axis = 0; axis < 3; ++axis)
+            if (k.translationDof[axis] >= 0)
+                targetValues[k.translationDof[axis]] = rest[static_cast<unsigned>(k.translationDof[axis])];
+
+    RotationColumns rotation;
+    bool exact = false;
+    if (plan.kind == RetargetJointKind::Rest)
     {
-        const JointKinematics& k = target.getKinematics(t);
-        const RetargetJointPlan& plan = plans[t];
-        const int parent = target.getParent(t);
-        const bool hasParent = parent >= 0;
-        const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
-        const RotationColumns parentRotation = hasParent ? loadRotation(w.targetModels[p]) : identityColumns();
-        const Column parentPosition = hasParent ? loadColumn(&w.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
-        const bool parentExact = !hasParent || w.targetExact[p] != 0;
-        const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
-        const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
-        if (k.hasTranslation)
-            for (unsigned axis = 0; axis < 3; ++axis)
-                if (k.translationDof[axis] >= 0)
-                    targetValues[k.translationDof[axis]] = rest[static_cast<unsigned>(k.translationDof[axis])];
-
-        RotationColumns rotation;
-        bool exact = false;
-        if (plan.kind == RetargetJointKind::Rest)
+        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
+        const RotationColumns restLocal = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
+        rotation = hasParent ? multiply(parentRotation, restLocal) : restLocal;
+    }
+    else if (plan.kind == RetargetJointKind::Copy && parentExact)
+    {
+        // The same local frames as the source joint's: its angles, turned or clamped into the limits.
+        const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(plan.sourceB));
+        bool clamped = false;
+        for (unsigned r = 0; r < k.numRotations; ++r)
         {
-            for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
-            const RotationColumns restLocal = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
-            rotation = hasParent ? multiply(parentRotation, restLocal) : restLocal;
-        }
-        else if (plan.kind == RetargetJointKind::Copy && parentExact)
-        {
-            // The same local frames as the source joint's: its angles, turned or clamped into the limits.
-            const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(plan.sourceB));
-            bool clamped = false;
-            for (unsigned r = 0; r < k.numRotations; ++r)
+            const unsigned dof = k.rotationDof[r];
+            const double angle = sourceValues[sk.rotationDof[r]];
+            double& value = targetValues[dof];
+            if (!turnWithinLimits(angle, target.getDofRangeMin(dof), target.getDofRangeMax(dof), angle, value))
             {
-                const unsigned dof = k.rotationDof[r];
-                const double angle = sourceValues[sk.rotationDof[r]];
-                double& value = targetValues[dof];
-                if (!turnWithinLimits(angle, target.getDofRangeMin(dof), target.getDofRangeMax(dof), angle, value))
-                {
-                    value = fitAngleToLimits(angle, target.getDofRangeMin(dof), target.getDofRangeMax(dof), angle);
-                    clamped = true;
-                }
+                value = fitAngleToLimits(angle, target.getDofRangeMin(dof), target.getDofRangeMax(dof), angle);
+                clamped = true;
             }
-            exact = !clamped;
-            rotation =
-                exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
         }
-        else if (tables.inEulerBatch[t] && s.laneFitted[t] && parentAsDesired)
+        exact = !clamped;
+        rotation =
+            exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
+    }
+    else if (tables.inEulerBatch[t] && s.laneFitted[t] && parentAsDesired)
+    {
+        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        exact = true;
+        rotation = desired;
+    }
+    else if (tables.inAxisBatch[t] && s.laneFitted[t])
+    {
+        // Fewer than three rotations: the nearest the joint can come, never exact (as fitJointRotationDofs).
+        rotation = jointFrame(tables, t, hasParent, parentRotation);
+        for (unsigned r = 0; r < k.numRotations; ++r)
         {
-            for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
-            exact = true;
-            rotation = desired;
+            targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+            postRotate(rotation, k.rotationAxis[r], s.laneCosSin[4 * t + 2 * r], s.laneCosSin[4 * t + 2 * r + 1]);
         }
-        else
-        {
-            const RotationColumns frame = jointFrame(tables, t, hasParent, parentRotation);
-            // A batch's joint under a parent that took its desired rotation has its local rotation worked out.
-            const RotationColumns local = tables.inEulerBatch[t] && parentAsDesired
-                                              ? loadRotation(&s.local[t * kRotationDoubles])
-                                              : multiply(transpose(frame), desired);
-            exact = fitJointRotationDofs(target, t, toMat3(local), targetValues);
-            rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
-        }
-        if (!exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0) ++numInexact;
-        s.asDesired[t] = exact || (plan.kind == RetargetJointKind::Rest && parentAsDesired) ? 1 : 0;
+    }
+    else
+    {
+        const RotationColumns frame = jointFrame(tables, t, hasParent, parentRotation);
+        // A batch's joint under a parent that took its desired rotation has its local rotation worked out.
+        const RotationColumns local = tables.inEulerBatch[t] && parentAsDesired
+                                          ? loadRotation(&s.local[t * kRotationDoubles])
+                                          : multiply(transpose(frame), desired);
+        exact = fitJointRotationDofs(target, t, toMat3(local), targetValues);
+        rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
+    }
+    const bool counted = !exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0;
+    s.asDesired[t] = exact || (plan.kind == RetargetJointKind::Rest && parentAsDesired) ? 1 : 0;
 
-        Column origin = loadColumn(&tables.origins[4 * t]);
-        if (tables.originMoves[t])
-        {
-            const glm::dmat3 parentMatrix = toMat3(parentRotation);
-            const glm::dmat3 localRotation = glm::transpose(parentMatrix) * toMat3(rotation);
-            glm::dvec3 moved;
-            if (static_cast<int>(t) == targetRoot && rig.getSourceRoot() >= 0)
-                moved = placeRoot(rig, w, t, parentMatrix, glm::dvec3(parentPosition[0], parentPosition[1],
-                                                                      parentPosition[2]),
-                                  localRotation, targetValues);
-            else
-                moved = glm::dvec3(k.offset[3]) + localRotation * jointSlide(k, targetValues);
-            origin = Column{moved.x, moved.y, moved.z, 0.0};
-        }
-        glm::dmat4& model = w.targetModels[t];
-        storeRotation(&model[0][0], rotation);
-        storeColumn(&model[3][0], parentPosition + combine(parentRotation, origin));
-        w.targetRotations[t] = glm::dmat3(model);
-        w.targetPositions[t] = glm::dvec3(model[3]);
-        w.targetExact[t] = exact ? 1 : 0;
+    Column origin = loadColumn(&tables.origins[4 * t]);
+    if (tables.originMoves[t])
+    {
+        const glm::dmat3 parentMatrix = toMat3(parentRotation);
+        const glm::dmat3 localRotation = glm::transpose(parentMatrix) * toMat3(rotation);
+        glm::dvec3 moved;
+        if (static_cast<int>(t) == targetRoot && rig.getSourceRoot() >= 0)
+            moved = placeRoot(rig, w, t, parentMatrix, glm::dvec3(parentPosition[0], parentPosition[1],
+                                                                  parentPosition[2]),
+                              localRotation, targetValues);
+        else
+            moved = glm::dvec3(k.offset[3]) + localRotation * jointSlide(k, targetValues);
+        origin = Column{moved.x, moved.y, moved.z, 0.0};
+    }
+    glm::dmat4& model = w.targetModels[t];
+    storeRotation(&model[0][0], rotation);
+    storeColumn(&model[3][0], parentPosition + combine(parentRotation, origin));
+    w.targetExact[t] = exact ? 1 : 0;
+    return counted;
+}
+
+/** Pass 4: depth by depth, the fits of its axis batches (their joints' parents are placed, and their joints not yet),
+  * then each of its joints (placeJoint). Returns how many joints the source drives came out inexact. */
+OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourceValues, double* targetValues,
+                                     RetargetWorkspace& w)
+{
+    const ActorDefinition& target = *rig.getTargetDefinition();
+    const RetargetJobTables& tables = rig.getJobTables();
+    unsigned numInexact = 0;
+    for (std::size_t level = 0; level + 1 < tables.levelJoints.size(); ++level)
+    {
+        for (std::uint32_t b = tables.levelBatches[level]; b < tables.levelBatches[level + 1]; ++b)
+            fitAxisBatch(tables.axisBatches[b], target, tables, targetValues, w);
+        for (std::uint32_t i = tables.levelJoints[level]; i < tables.levelJoints[level + 1]; ++i)
+            numInexact += placeJoint(rig, tables.placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
     }
     return numInexact;
 }
@@ -348,7 +419,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
 {
     if (!validate()) return false;
     RetargetWorkspace& w = *workspace;
-    poseSource(*rig->getSourceDefinition(), sourceDofs.data(), w);
+    poseSource(*rig->getSourceDefinition(), rig->getJobTables(), sourceDofs.data(), w);
     desireRotations(*rig, w);
     fitEulerBatches(*rig, targetDofs.data(), w);
     numInexact = placeJoints(*rig, sourceDofs.data(), targetDofs.data(), w);

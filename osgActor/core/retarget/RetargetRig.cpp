@@ -13,10 +13,9 @@
 #include <osgActor/core/retarget/HAnimHumanoid>
 #include <osgActor/core/retarget/JointMapGuess>
 #include <osgActor/core/retarget/JointRotationFit>
-#include <osgActor/core/LocalMatricesJob>
-#include <osgActor/core/LocalToModelJob>
 #include <osgActor/core/ik/IkKinematics>
 
+#include "ModelMatrices.h"
 #include "RotationColumns.h"
 
 #include <glm/geometric.hpp>
@@ -96,12 +95,10 @@ std::string prepareSide(const RetargetSkeleton& skeleton, Side& side, std::vecto
     side.topOf.assign(getNumHAnimJoints(), -1);
     side.runOf.assign(getNumHAnimJoints(), {});
     side.children.assign(numJoints, {});
-    side.restModels.resize(numJoints);
+    side.restModels = retarget_detail::computeModelMatrices(definition, side.rest);
     for (unsigned j = 0; j < numJoints; ++j)
     {
         const int parent = definition.getParent(j);
-        const glm::dmat4 local = computeJointMatrix(definition.getKinematics(j), side.rest.data());
-        side.restModels[j] = parent < 0 ? local : multiplyAffine(side.restModels[static_cast<unsigned>(parent)], local);
         if (parent >= 0) side.children[static_cast<unsigned>(parent)].push_back(j);
         const int h = side.hanim[j];
         if (h < 0) continue;
@@ -591,6 +588,21 @@ struct RetargetRigBuilder
         tables.origins.assign(std::size_t(numTarget) * 4, 0.0);
         tables.originMoves.assign(numTarget, 0);
         tables.inEulerBatch.assign(numTarget, 0);
+        markSourceJointsRead(tables.sourceJointsRead);
+        const unsigned numSource = source.definition->getNumJoints();
+        tables.sourcePosed.clear();
+        tables.sourcePosedParents.clear();
+        for (unsigned j = 0; j < numSource; ++j)
+            if (tables.sourceJointsRead[j]) tables.sourcePosed.push_back(j);
+        tables.sourceSlots.assign(numSource, static_cast<std::uint32_t>(tables.sourcePosed.size()));
+        for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
+        {
+            const int parent = source.parent(static_cast<int>(tables.sourcePosed[i]));
+            tables.sourceSlots[tables.sourcePosed[i]] = static_cast<std::uint32_t>(i);
+            // Read joints' ancestors are read: the parent has its place already.
+            tables.sourcePosedParents.push_back(parent < 0 ? -1
+                                                           : static_cast<int>(tables.sourceSlots[static_cast<unsigned>(parent)]));
+        }
         for (unsigned j = 0; j < numTarget; ++j)
         {
             storeRotation(&tables.postRotations[j * kRotationDoubles], rig->_plans[j].postRotation);
@@ -607,6 +619,7 @@ struct RetargetRigBuilder
             for (unsigned axis = 0; axis < 3; ++axis) tables.origins[4 * j + axis] = origin[axis];
         }
 
+        planPlacement(tables);
         for (unsigned j = 0; j < numTarget; ++j)
         {
             const JointKinematics& k = t.getKinematics(j);
@@ -621,6 +634,99 @@ struct RetargetRigBuilder
                 setEulerLane(batch, lane, j);
             ++batch.numJoints;
         }
+    }
+
+    /** RetargetJobTables' placement order by depth and its axis batches. */
+    void planPlacement(RetargetJobTables& tables) const
+    {
+        const ActorDefinition& t = *target.definition;
+        const unsigned numTarget = t.getNumJoints();
+        std::vector<unsigned> depth(numTarget, 0);
+        unsigned numLevels = 0;
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const int parent = t.getParent(j);
+            depth[j] = parent < 0 ? 0 : depth[static_cast<unsigned>(parent)] + 1;
+            numLevels = std::max(numLevels, depth[j] + 1);
+        }
+        tables.placeOrder.clear();
+        tables.levelJoints.assign(1, 0);
+        tables.levelBatches.assign(1, 0);
+        tables.axisBatches.clear();
+        tables.inAxisBatch.assign(numTarget, 0);
+        for (unsigned level = 0; level < numLevels; ++level)
+        {
+            for (unsigned numRotations = 1; numRotations <= 2; ++numRotations)
+            {
+                RetargetAxisBatch* batch = nullptr;
+                for (unsigned j = 0; j < numTarget; ++j)
+                {
+                    if (depth[j] != level || rig->_plans[j].kind != RetargetJointKind::Follow ||
+                        t.getKinematics(j).numRotations != numRotations)
+                        continue;
+                    if (!batch || batch->numJoints == RetargetAxisBatch::kWidth)
+                    {
+                        tables.axisBatches.emplace_back();
+                        batch = &tables.axisBatches.back();
+                        batch->numRotations = static_cast<std::uint8_t>(numRotations);
+                    }
+                    tables.inAxisBatch[j] = 1;
+                    // Lanes past the last joint repeat it until another joint takes them.
+                    for (unsigned lane = batch->numJoints; lane < RetargetAxisBatch::kWidth; ++lane)
+                        setAxisLane(*batch, lane, j);
+                    ++batch->numJoints;
+                }
+            }
+            for (unsigned j = 0; j < numTarget; ++j)
+                if (depth[j] == level) tables.placeOrder.push_back(j);
+            tables.levelJoints.push_back(static_cast<std::uint32_t>(tables.placeOrder.size()));
+            tables.levelBatches.push_back(static_cast<std::uint32_t>(tables.axisBatches.size()));
+        }
+    }
+
+    /** A lane of an axis batch for target joint j (one or two rotations). */
+    void setAxisLane(RetargetAxisBatch& batch, unsigned lane, unsigned joint) const
+    {
+        const ActorDefinition& t = *target.definition;
+        const JointKinematics& k = t.getKinematics(joint);
+        unsigned axes[3];
+        axes[0] = k.rotationAxis[0];
+        axes[1] = k.numRotations == 2 ? k.rotationAxis[1] : (axes[0] + 1) % 3;
+        axes[2] = 3 - axes[0] - axes[1];
+        batch.joints[lane] = joint;
+        for (unsigned row = 0; row < 3; ++row)
+            for (unsigned column = 0; column < 3; ++column)
+                batch.element[row][column][lane] = static_cast<std::uint8_t>(4 * axes[column] + axes[row]);
+        batch.parity[lane] = axes[1] == (axes[0] + 1) % 3 ? 1.0 : -1.0;
+        for (unsigned r = 0; r < k.numRotations; ++r)
+        {
+            const unsigned dof = k.rotationDof[r];
+            batch.dof[r][lane] = dof;
+            batch.min[r][lane] = t.getDofRangeMin(dof);
+            batch.max[r][lane] = t.getDofRangeMax(dof);
+        }
+    }
+
+    /** RetargetJobTables::sourceJointsRead. */
+    void markSourceJointsRead(std::vector<std::uint8_t>& read) const
+    {
+        const unsigned numSource = source.definition->getNumJoints();
+        read.assign(numSource, 0);
+        const auto mark = [&](int joint) {
+            if (joint >= 0) read[static_cast<unsigned>(joint)] = 1;
+        };
+        for (const RetargetJointPlan& plan : rig->_plans)
+        {
+            if (plan.kind == RetargetJointKind::Rest) continue;
+            mark(plan.sourceA);
+            mark(plan.sourceB);
+        }
+        mark(rig->_sourceRoot);
+        for (unsigned h = 0; h < getNumHAnimJoints(); ++h)
+            if (target.topOf[h] >= 0) mark(source.topOf[h]);
+        // Children after their parents: from the last joint up, each read joint marks its parent.
+        for (unsigned j = numSource; j-- > 0;)
+            if (read[j]) mark(source.parent(static_cast<int>(j)));
     }
 
     /** A lane of a batch for target joint j (three rotations, distinct axes i, j, k in product order). */
