@@ -94,9 +94,7 @@ bool SkinnedMeshInstance::claimFrame(unsigned frame, bool bufferFilled)
 osg::StateSet* SkinnedMeshInstance::preparePalette(unsigned frame, const SkinningProgramKey& programKey,
                                                    const Skin& skin)
 {
-    // The palette's layout does not depend on the profile: cameras of both kinds share it.
-    SkinningProgramKey key = programKey;
-    key.profile = SkinningProfile::Compatibility;
+    const SkinningProgramKey key = paletteLayoutOf(programKey);
     std::lock_guard<std::mutex> lock(_cullMutex);
     std::unique_ptr<SkinPaletteBuffer>& palette = _palettes[frame % 2];
     const bool keyChanged = key < _paletteKey || _paletteKey < key;
