@@ -368,9 +368,13 @@ TEST(OsgAnimationImport, OsgsColladaCharactersMoveAsOsgAnimationMovesThem)
 
 TEST(OsgAnimationImport, MatrixChannelsTurnRigidlyBetweenKeysWhereOsgAnimationShrinks)
 {
-    // The first clip of library_animation_clips.dae turns its bones fast between keys, all in matrix channels: osgAnimation's element-wise interpolation moves the joints below along chords, the import
-    // (like Assimp's Collada reader, which decomposes such keys) along arcs. At the keys they agree; between them the
-    // difference stays within what the chords explain (docs/import.md).
+    // The first clip of library_animation_clips.dae turns its bones fast between keys, all in matrix channels.
+    // osgdb_dae makes them osgAnimation MatrixLinearChannels, which blend the keys element by element:
+    // M(u) = (1 - u) M0 + u M1 = R(u) P(u), a rotation times a stretch that shortens what lies below. The import keeps
+    // R(u) and the translation (osgAnimation's own sampler, resampled within 1e-5 of the height) and cannot keep P(u)
+    // (no animated scale in the DOF model), so the joints below move along arcs where osgAnimation's move along
+    // chords. At the keys they agree; between them the difference is more than the 1e-3 target, and within what the
+    // chords explain (docs/import.md).
     osg::ref_ptr<osg::Node> scene = readScene(assimpModels("Collada/library_animation_clips.dae"));
     ASSERT_TRUE(scene);
     const Measured measured = measureAgainstOsgAnimation(*scene, 0);
