@@ -74,7 +74,9 @@ std::string variantDefines(const SkinningProgramKey& key)
     out << "#define OSGACTOR_PALETTE_BUFFER " << (key.palette == SkinPaletteStorage::TextureBuffer ? 1 : 0) << "\n";
     out << "#define OSGACTOR_PALETTE_VECTORS " << kMaxUniformPaletteVectors << "\n";
     out << "#define OSGACTOR_PALETTE_STRIDE " << paletteStride(key) << "\n";
-    out << "#define OSGACTOR_LIGHTS " << static_cast<unsigned>(key.lights) << "\n";
+    out << "#define OSGACTOR_LIGHTS_ON bool[8](";
+    for (unsigned i = 0; i < 8; ++i) out << (i ? ", " : "") << ((key.lights >> i) & 1u ? "true" : "false");
+    out << ")\n";
     out << "#define OSGACTOR_FIXED_FUNCTION_OUTPUTS " << (key.fragmentProgram ? 1 : 0) << "\n";
     out << "#define OSGACTOR_EYE_LINEAR_UNITS " << static_cast<unsigned>(key.eyeLinearTexGenUnits) << "\n";
     return out.str();

@@ -1,6 +1,6 @@
-// Fixed-function lighting of one vertex, from the compatibility profile's built-in state: the lights of
-// OSGACTOR_LIGHTS (a bit per light, 1 << i for GL_LIGHTi: those the state in effect where the mesh draws turns on,
-// as OpenGL lights a rigid mesh there) and the front material (OpenGL 2.1, section 2.14.1), with no local viewer and
+// Fixed-function lighting of one vertex, from the compatibility profile's built-in state: the lights that
+// OSGACTOR_LIGHTS_ON marks (eight booleans, one per GL_LIGHTi: those the state in effect where the mesh draws turns
+// on, as OpenGL lights a rigid mesh there) and the front material (OpenGL 2.1, section 2.14.1), with no local viewer and
 // one-sided lighting, as OSG's default state has it; a light with w = 0 is directional, otherwise positional with its
 // attenuation and spot cone. The result is clamped to [0, 1] and its alpha is the material's diffuse alpha, as fixed
 // function's are.
@@ -39,31 +39,10 @@ vec4 osgActor_light(int i, vec3 eyeNormal, vec4 eyePosition)
 
 vec4 osgActor_lighting(vec3 eyeNormal, vec4 eyePosition)
 {
+    const bool lit[8] = OSGACTOR_LIGHTS_ON;
     vec4 colour = gl_FrontLightModelProduct.sceneColor;
-#if OSGACTOR_LIGHTS & 1
-    colour += osgActor_light(0, eyeNormal, eyePosition);
-#endif
-#if OSGACTOR_LIGHTS & 2
-    colour += osgActor_light(1, eyeNormal, eyePosition);
-#endif
-#if OSGACTOR_LIGHTS & 4
-    colour += osgActor_light(2, eyeNormal, eyePosition);
-#endif
-#if OSGACTOR_LIGHTS & 8
-    colour += osgActor_light(3, eyeNormal, eyePosition);
-#endif
-#if OSGACTOR_LIGHTS & 16
-    colour += osgActor_light(4, eyeNormal, eyePosition);
-#endif
-#if OSGACTOR_LIGHTS & 32
-    colour += osgActor_light(5, eyeNormal, eyePosition);
-#endif
-#if OSGACTOR_LIGHTS & 64
-    colour += osgActor_light(6, eyeNormal, eyePosition);
-#endif
-#if OSGACTOR_LIGHTS & 128
-    colour += osgActor_light(7, eyeNormal, eyePosition);
-#endif
+    for (int i = 0; i < 8; ++i)
+        if (lit[i]) colour += osgActor_light(i, eyeNormal, eyePosition);
     colour = clamp(colour, 0.0, 1.0);
     colour.a = gl_FrontMaterial.diffuse.a;
     return colour;

@@ -9,7 +9,7 @@
 //   OSGACTOR_PALETTE_BUFFER      1: the palette in a texture buffer; 0: in a uniform array of
 //                                OSGACTOR_PALETTE_VECTORS vec4s
 //   OSGACTOR_PALETTE_STRIDE      vec4 rows per joint in the palette
-//   OSGACTOR_LIGHTS              compatibility profile: a bit per light to light with (1 << i for GL_LIGHTi)
+//   OSGACTOR_LIGHTS_ON           compatibility profile: bool[8](...), whether to light with GL_LIGHT0 .. GL_LIGHT7
 //   OSGACTOR_FIXED_FUNCTION_OUTPUTS  compatibility profile, 1: also write what fixed function's vertex stage writes
 //                                for a fragment shader of someone else's (osgShadow's, for one) linked with this one:
 //                                gl_FrontColor, gl_TexCoord[0] and the eye-linear texture coordinates of the units in

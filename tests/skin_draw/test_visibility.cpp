@@ -122,6 +122,31 @@ std::vector<float> skinnedContentOf(const FrameDriver::CulledLeaf& leaf, Skinned
                    : std::vector<float>();
 }
 
+/** A second camera on a scene whose cull comes late: it culls the frame its stamp holds, which seeFrame() sets to the
+  * frame a driver is at, after that driver has gone on. */
+class LateCamera
+{
+public:
+    explicit LateCamera(osg::Node* scene) : _driver(scene), _stamp(new osg::FrameStamp)
+    {
+        _driver.sceneView().setFrameStamp(_stamp.get());
+        lookAtCesiumMan(_driver);
+    }
+    void seeFrame(const FrameDriver& driver) { _stamp->setFrameNumber(driver.getFrameNumber()); }
+    /** Its cull of that frame, and the one leaf it drew. */
+    FrameDriver::CulledLeaf cull()
+    {
+        _driver.cull();
+        const std::vector<FrameDriver::CulledLeaf> leaves = _driver.culledLeaves();
+        EXPECT_EQ(leaves.size(), 1u);
+        return leaves.empty() ? FrameDriver::CulledLeaf{nullptr, {}, false} : leaves[0];
+    }
+
+private:
+    FrameDriver _driver;
+    osg::ref_ptr<osg::FrameStamp> _stamp;
+};
+
 } // namespace
 
 TEST(SkinnedMeshVisibility, ACullOfAnOlderFrameThanOneAlreadySkinnedNeitherSkinsAgainNorRewritesThatFramesBuffer)
@@ -132,14 +157,11 @@ TEST(SkinnedMeshVisibility, ACullOfAnOlderFrameThanOneAlreadySkinnedNeitherSkins
     {
         const RiggedModelActor read = readCesiumMan(path);
         FrameDriver driver(read.sceneNode.get());
-        FrameDriver lateCamera(read.sceneNode.get());
-        osg::ref_ptr<osg::FrameStamp> frameOne = new osg::FrameStamp;
-        lateCamera.sceneView().setFrameStamp(frameOne.get());
+        LateCamera lateCamera(read.sceneNode.get());
         lookAtCesiumMan(driver);
-        lookAtCesiumMan(lateCamera);
 
         driver.frame(1 / 30.0);
-        frameOne->setFrameNumber(driver.getFrameNumber());
+        lateCamera.seeFrame(driver);
         ASSERT_EQ(driver.culledLeaves().size(), 1u);
         const FrameDriver::CulledLeaf first = driver.culledLeaves()[0];
         const std::vector<float> firstContent = skinnedContentOf(first, path);
@@ -147,9 +169,8 @@ TEST(SkinnedMeshVisibility, ACullOfAnOlderFrameThanOneAlreadySkinnedNeitherSkins
         driver.frame(10 / 30.0);
         ASSERT_NE(skinnedContentOf(driver.culledLeaves()[0], path), firstContent) << "the pose must move for the test";
 
-        lateCamera.cull();
-        ASSERT_EQ(lateCamera.culledLeaves().size(), 1u);
-        const FrameDriver::CulledLeaf late = lateCamera.culledLeaves()[0];
+        const FrameDriver::CulledLeaf late = lateCamera.cull();
+        ASSERT_TRUE(late.drawable);
         EXPECT_EQ(late.drawable, first.drawable) << pathName(path);
         EXPECT_EQ(paletteOf(late), paletteOf(first)) << pathName(path);
         EXPECT_EQ(skinnedContentOf(late, path), firstContent) << pathName(path) << ": frame 1's buffer was rewritten";
@@ -172,19 +193,15 @@ TEST(SkinnedMeshVisibility, ACullOfAnOlderFrameOnAPathThatFrameDidNotUseStillDra
     // of frame 1's parity yet, so it is skinned (from the current matrices) rather than drawn unskinned.
     const RiggedModelActor read = readCesiumMan(SkinnedMesh::GPU_SKINNING);
     FrameDriver driver(read.sceneNode.get());
-    FrameDriver lateCamera(read.sceneNode.get());
-    osg::ref_ptr<osg::FrameStamp> frameOne = new osg::FrameStamp;
-    lateCamera.sceneView().setFrameStamp(frameOne.get());
+    LateCamera lateCamera(read.sceneNode.get());
     lookAtCesiumMan(driver);
-    lookAtCesiumMan(lateCamera);
     driver.frame(1 / 30.0);
-    frameOne->setFrameNumber(driver.getFrameNumber());
+    lateCamera.seeFrame(driver);
     setSkinningPath(*read.actor, SkinnedMesh::CPU_SKINNING);
     driver.frame(10 / 30.0);
     const std::vector<float> current = skinnedContentOf(driver.culledLeaves()[0], SkinnedMesh::CPU_SKINNING);
-    lateCamera.cull();
-    ASSERT_EQ(lateCamera.culledLeaves().size(), 1u);
-    const FrameDriver::CulledLeaf late = lateCamera.culledLeaves()[0];
+    const FrameDriver::CulledLeaf late = lateCamera.cull();
+    ASSERT_TRUE(late.drawable);
     EXPECT_NE(late.drawable, driver.culledLeaves()[0].drawable);
     EXPECT_EQ(skinnedContentOf(late, SkinnedMesh::CPU_SKINNING), current);
     const SkinnedMesh::Statistics statistics = read.skinnedMeshes[0]->getStatistics(*read.actor);
