@@ -55,7 +55,10 @@ struct DrawState
     {
         const osg::StateSet::ModeList& modes = stateSet.getModeList();
         inheritMode(modes, GL_LIGHTING, lighting);
-        for (unsigned i = 0; i < kMaxLights; ++i) inheritMode(modes, GL_LIGHT0 + i, lights[i]);
+        // GL_LIGHT0 .. GL_LIGHT7 are consecutive: one search, then a walk (this runs per actor and camera).
+        for (auto mode = modes.lower_bound(GL_LIGHT0); mode != modes.end() && mode->first < GL_LIGHT0 + kMaxLights;
+             ++mode)
+            lights[mode->first - GL_LIGHT0].set(mode->second);
         const osg::StateSet::TextureModeList& textureModes = stateSet.getTextureModeList();
         for (unsigned unit = 0; unit < kMaxTexGenUnits && unit < textureModes.size(); ++unit)
             inheritMode(textureModes[unit], GL_TEXTURE_GEN_S, texGen[unit]);
