@@ -25,6 +25,17 @@ void writeQuaternion(const glm::quat& q, float* out)
 
 } // namespace
 
+SkinningProgramKey paletteLayoutOf(const SkinningProgramKey& key)
+{
+    SkinningProgramKey layout;
+    layout.skinning = key.skinning;
+    layout.method = key.method;
+    layout.inverseTranspose = key.inverseTranspose;
+    layout.influences = key.influences;
+    layout.palette = key.palette;
+    return layout;
+}
+
 void writeSkinPaletteRows(const SkinningProgramKey& key, Span<const glm::mat4> matrices,
                           Span<const glm::mat4> normalMatrices, Span<const SkinDualQuaternion> dualQuaternions,
                           float* rows)

@@ -36,6 +36,10 @@ private:
     osg::ref_ptr<osg::Image> _image;     // TextureBuffer
 };
 
+/** The fields of a variant that fix its palette's layout (method, normals, influences, storage), the others at their
+  * defaults: cameras whose programs differ in profile, lights or fragment shaders share one palette. */
+SkinningProgramKey paletteLayoutOf(const SkinningProgramKey& key);
+
 /** The rows of a variant's palette (see SkinnedMesh.vert), per skin joint j from row j * paletteStride(key):
   * linear blend, the first three rows of matrices[j] (and, with inverse-transposed normals, of normalMatrices[j]);
   * dual quaternions, the real part then the dual part of dualQuaternions[j], each (x, y, z, w). rows holds

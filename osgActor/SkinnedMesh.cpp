@@ -1,5 +1,6 @@
 #include <osgActor/SkinnedMesh>
 
+#include "SkinnedMeshDrawState.h"
 #include "SkinnedMeshGeometry.h"
 #include "SkinnedMeshInstance.h"
 
@@ -358,7 +359,8 @@ void SkinnedMesh::cull(osgUtil::CullVisitor& cv, ActorNode& actor)
     osg::Geometry* geometry = nullptr;
     if (path == GPU_SKINNING)
     {
-        const SkinningProgramKey key = getProgramKey(profile);
+        SkinningProgramKey key = getProgramKey(profile);
+        applyDrawState(cv.getCurrentStateGraph(), key); // lit and shaded as a rigid mesh would be here
         states.push(getSkinningProgramStateSet(key));
         states.push(instance->preparePalette(frame, key, *_skin));
         geometry = getBindPoseGeometry(profile);

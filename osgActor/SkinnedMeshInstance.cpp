@@ -74,20 +74,27 @@ void SkinnedMeshInstance::updateMatrices(const Skin& skin, const ActorPose& pose
     ++statistics.matrixUpdates;
 }
 
-bool SkinnedMeshInstance::claimFrame(unsigned frame)
+bool SkinnedMeshInstance::claimFrame(unsigned frame, bool bufferFilled)
 {
-    if (_culledBefore && _lastCullFrame == frame) return false;
-    _culledBefore = true;
-    _lastCullFrame = frame;
-    return true;
+    // Claims move forward only. A cull of a frame older than the last claimed one comes late: a camera that OSG
+    // culls on the draw thread (one added after the viewer's threads started) runs alongside the next frame's update
+    // and cull. It takes its frame's buffer as that frame left it; refilling it would do the frame's work twice and
+    // put the newer pose in the buffer of the older frame. (Frame numbers compare modulo 2^32.)
+    const bool newer = !_culledBefore || static_cast<int>(frame - _lastCullFrame) > 0;
+    if (newer)
+    {
+        _culledBefore = true;
+        _lastCullFrame = frame;
+        return true;
+    }
+    // A buffer made this frame (the path or the palette's layout changed) or by a late cull holds nothing yet.
+    return !bufferFilled;
 }
 
 osg::StateSet* SkinnedMeshInstance::preparePalette(unsigned frame, const SkinningProgramKey& programKey,
                                                    const Skin& skin)
 {
-    // The palette's layout does not depend on the profile: cameras of both kinds share it.
-    SkinningProgramKey key = programKey;
-    key.profile = SkinningProfile::Compatibility;
+    const SkinningProgramKey key = paletteLayoutOf(programKey);
     std::lock_guard<std::mutex> lock(_cullMutex);
     std::unique_ptr<SkinPaletteBuffer>& palette = _palettes[frame % 2];
     const bool keyChanged = key < _paletteKey || _paletteKey < key;
@@ -97,10 +104,10 @@ osg::StateSet* SkinnedMeshInstance::preparePalette(unsigned frame, const Skinnin
         _palettes[0].reset();
         _palettes[1].reset();
         _paletteKey = key;
-        _culledBefore = false;
     }
+    const bool filled = palette != nullptr;
     if (!palette) palette.reset(new SkinPaletteBuffer(key, skin.getNumJoints(), skin.getBindScale()));
-    if (claimFrame(frame))
+    if (claimFrame(frame, filled))
     {
         palette->write(_matrices, _normalMatrices, _dualQuaternions);
         ++statistics.paletteUploads;
@@ -114,14 +121,14 @@ osg::Geometry* SkinnedMeshInstance::prepareSkinnedGeometry(unsigned frame, const
     std::lock_guard<std::mutex> lock(_cullMutex);
     const unsigned parity = frame % 2;
     osg::ref_ptr<osg::Geometry>& geometry = _skinnedGeometries[parity];
+    const bool filled = geometry.valid();
     if (!geometry)
     {
         geometry = makeSkinnedOutputGeometry(bindPose);
         _skinnedBounds[parity] = new FixedBoundingBox;
         geometry->setComputeBoundingBoxCallback(_skinnedBounds[parity].get());
-        _culledBefore = false; // a path switched to the CPU: skin into the new buffer now
     }
-    if (claimFrame(frame))
+    if (claimFrame(frame, filled))
     {
         osg::Vec3Array* positions = static_cast<osg::Vec3Array*>(geometry->getVertexArray());
         osg::Vec3Array* normals = static_cast<osg::Vec3Array*>(geometry->getNormalArray());

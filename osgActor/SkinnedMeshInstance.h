@@ -67,8 +67,9 @@ public:
     void releaseGLObjects(osg::State* state) const;
 
 private:
-    /** Whether this frame's work is still to do, claiming it; call with _cullMutex held. */
-    bool claimFrame(unsigned frame);
+    /** Whether this frame's work is still to do, claiming it: the first cull of a frame newer than any claimed yet,
+      * or a cull whose buffer holds nothing yet (bufferFilled false). Call with _cullMutex held. */
+    bool claimFrame(unsigned frame, bool bufferFilled);
 
     osg::observer_ptr<ActorNode> _actor;
     const ActorNode* _actorAddress;

@@ -74,6 +74,11 @@ std::string variantDefines(const SkinningProgramKey& key)
     out << "#define OSGACTOR_PALETTE_BUFFER " << (key.palette == SkinPaletteStorage::TextureBuffer ? 1 : 0) << "\n";
     out << "#define OSGACTOR_PALETTE_VECTORS " << kMaxUniformPaletteVectors << "\n";
     out << "#define OSGACTOR_PALETTE_STRIDE " << paletteStride(key) << "\n";
+    out << "#define OSGACTOR_LIGHTS_ON bool[8](";
+    for (unsigned i = 0; i < 8; ++i) out << (i ? ", " : "") << ((key.lights >> i) & 1u ? "true" : "false");
+    out << ")\n";
+    out << "#define OSGACTOR_FIXED_FUNCTION_OUTPUTS " << (key.fragmentProgram ? 1 : 0) << "\n";
+    out << "#define OSGACTOR_EYE_LINEAR_UNITS " << static_cast<unsigned>(key.eyeLinearTexGenUnits) << "\n";
     return out.str();
 }
 
@@ -83,11 +88,21 @@ SkinningProgramKey canonical(SkinningProgramKey key)
 {
     if (!key.skinning)
     {
-        const SkinningProfile profile = key.profile;
+        const SkinningProgramKey given = key;
         key = SkinningProgramKey();
-        key.profile = profile;
+        key.profile = given.profile;
         key.skinning = false;
+        key.lights = given.lights;
+        key.fragmentProgram = given.fragmentProgram;
+        key.eyeLinearTexGenUnits = given.eyeLinearTexGenUnits;
     }
+    if (key.profile == SkinningProfile::Core)
+    {
+        key.lights = SkinningProgramKey().lights;
+        key.fragmentProgram = nullptr;
+    }
+    if (!key.fragmentProgram) key.eyeLinearTexGenUnits = 0;
+    key.eyeLinearTexGenUnits &= 0xfe; // unit 0's coordinates are the mesh's own
     if (key.influences != 8) key.influences = 4;
     if (key.method == SkinningMethod::DualQuaternion) key.inverseTranspose = false;
     if (key.palette == SkinPaletteStorage::Automatic) key.palette = SkinPaletteStorage::UniformArray;
@@ -111,9 +126,18 @@ SkinAttributeSlots skinAttributeSlots(SkinningProfile profile)
 bool SkinningProgramKey::operator<(const SkinningProgramKey& other) const
 {
     auto tie = [](const SkinningProgramKey& k) {
-        return std::make_tuple(k.profile, k.skinning, k.method, k.inverseTranspose, k.influences, k.palette);
+        return std::make_tuple(k.profile, k.skinning, k.method, k.inverseTranspose, k.influences, k.palette, k.lights,
+                               k.fragmentProgram, k.eyeLinearTexGenUnits);
     };
     return tie(*this) < tie(other);
+}
+
+bool isFragmentOnlyProgram(const osg::Program& program)
+{
+    if (program.getNumShaders() == 0) return false;
+    for (unsigned i = 0; i < program.getNumShaders(); ++i)
+        if (program.getShader(i)->getType() != osg::Shader::FRAGMENT) return false;
+    return true;
 }
 
 unsigned paletteStride(const SkinningProgramKey& key)
@@ -154,10 +178,18 @@ osg::ref_ptr<osg::Program> createSkinningProgram(const SkinningProgramKey& given
              << " influences, " << (key.palette == SkinPaletteStorage::TextureBuffer ? "texture buffer" : "uniforms");
     else
         name << ", no skinning";
+    if (key.fragmentProgram) name << ", with the fragment shaders of '" << key.fragmentProgram->getName() << "'";
     name << ")";
     program->setName(name.str());
     program->addShader(new osg::Shader(osg::Shader::VERTEX, skinningShaderSource(key, osg::Shader::VERTEX)));
-    program->addShader(new osg::Shader(osg::Shader::FRAGMENT, skinningShaderSource(key, osg::Shader::FRAGMENT)));
+    if (key.fragmentProgram)
+    {
+        // The same shader objects: OSG compiles a shader once per context for every program holding it.
+        for (unsigned i = 0; i < key.fragmentProgram->getNumShaders(); ++i)
+            program->addShader(const_cast<osg::Shader*>(key.fragmentProgram->getShader(i)));
+    }
+    else
+        program->addShader(new osg::Shader(osg::Shader::FRAGMENT, skinningShaderSource(key, osg::Shader::FRAGMENT)));
     if (key.skinning)
     {
         const SkinAttributeSlots slots = skinAttributeSlots(key.profile);
@@ -174,8 +206,14 @@ namespace {
   * deletions in OSG's context data, itself a static whose destruction order is unknown. */
 struct ProgramStateSets
 {
+    struct Entry
+    {
+        osg::ref_ptr<osg::StateSet> stateSet;
+        // Kept, so that no other program takes its address (the key's) while the entry lives.
+        osg::ref_ptr<const osg::Program> fragmentProgram;
+    };
     std::mutex mutex;
-    std::map<SkinningProgramKey, osg::ref_ptr<osg::StateSet>> byKey;
+    std::map<SkinningProgramKey, Entry> byKey;
 };
 
 ProgramStateSets& programStateSets()
@@ -190,14 +228,14 @@ void releaseSkinningProgramsGLObjects(osg::State* state)
 {
     ProgramStateSets& sets = programStateSets();
     std::lock_guard<std::mutex> lock(sets.mutex);
-    for (auto& entry : sets.byKey) entry.second->releaseGLObjects(state);
+    for (auto& entry : sets.byKey) entry.second.stateSet->releaseGLObjects(state);
 }
 
 void resizeSkinningProgramsGLObjectBuffers(unsigned maxSize)
 {
     ProgramStateSets& sets = programStateSets();
     std::lock_guard<std::mutex> lock(sets.mutex);
-    for (auto& entry : sets.byKey) entry.second->resizeGLObjectBuffers(maxSize);
+    for (auto& entry : sets.byKey) entry.second.stateSet->resizeGLObjectBuffers(maxSize);
 }
 
 osg::StateSet* getSkinningProgramStateSet(const SkinningProgramKey& given)
@@ -205,9 +243,11 @@ osg::StateSet* getSkinningProgramStateSet(const SkinningProgramKey& given)
     ProgramStateSets& sets = programStateSets();
     const SkinningProgramKey key = canonical(given);
     std::lock_guard<std::mutex> lock(sets.mutex);
-    osg::ref_ptr<osg::StateSet>& stateSet = sets.byKey[key];
+    ProgramStateSets::Entry& entry = sets.byKey[key];
+    osg::ref_ptr<osg::StateSet>& stateSet = entry.stateSet;
     if (!stateSet)
     {
+        entry.fragmentProgram = key.fragmentProgram;
         stateSet = new osg::StateSet;
         stateSet->setAttribute(createSkinningProgram(key).get());
         if (key.skinning && key.palette == SkinPaletteStorage::TextureBuffer)

@@ -9,6 +9,11 @@
 //   OSGACTOR_PALETTE_BUFFER      1: the palette in a texture buffer; 0: in a uniform array of
 //                                OSGACTOR_PALETTE_VECTORS vec4s
 //   OSGACTOR_PALETTE_STRIDE      vec4 rows per joint in the palette
+//   OSGACTOR_LIGHTS_ON           compatibility profile: bool[8](...), whether to light with GL_LIGHT0 .. GL_LIGHT7
+//   OSGACTOR_FIXED_FUNCTION_OUTPUTS  compatibility profile, 1: also write what fixed function's vertex stage writes
+//                                for a fragment shader of someone else's (osgShadow's, for one) linked with this one:
+//                                gl_FrontColor, gl_TexCoord[0] and the eye-linear texture coordinates of the units in
+//                                OSGACTOR_EYE_LINEAR_UNITS (a bit per unit), each through its texture matrix
 //
 // The palette holds, per skin joint j, OSGACTOR_PALETTE_STRIDE rows from row j * stride:
 //   linear blend:  rows 0..2 the first three rows of the skinning matrix (model x inverse bind: bind space to model
@@ -16,10 +21,10 @@
 //                  transpose;
 //   dual quaternion: row 0 the unit dual quaternion's real part (x, y, z, w), row 1 its dual part.
 //
-// Lighting is what OpenGL's fixed function computes per vertex for the material and light 0 (the headlight OSG's
-// viewers set up), so that a skinned mesh looks like a rigid one of the same material: OSGACTOR_LIGHTING() is the
-// compatibility profile's built-in light and material state, or uniforms with the headlight's values in the core
-// profile.
+// Lighting is what OpenGL's fixed function computes per vertex for the material and the lights on where the mesh
+// draws, so that a skinned mesh looks like a rigid one of the same material: osgActor_lighting() reads the
+// compatibility profile's built-in light and material state, or, in the core profile, uniforms with the headlight's
+// values (light 0 of OSG's viewers).
 
 #if OSGACTOR_SKINNING
 #if OSGACTOR_PALETTE_BUFFER
@@ -134,6 +139,17 @@ osgActor_SkinnedVertex osgActor_skin(vec3 bindPosition, vec3 bindNormal)
 }
 #endif
 
+#if OSGACTOR_FIXED_FUNCTION_OUTPUTS
+/** Texture unit i's coordinates as fixed function's eye-linear texture generation makes them (OpenGL 2.1, section
+  * 2.11.4: the eye planes as the TexGen set them, already in eye space), then its texture matrix. */
+vec4 osgActor_eyeLinear(int i, vec4 eyePosition)
+{
+    vec4 generated = vec4(dot(gl_EyePlaneS[i], eyePosition), dot(gl_EyePlaneT[i], eyePosition),
+                          dot(gl_EyePlaneR[i], eyePosition), dot(gl_EyePlaneQ[i], eyePosition));
+    return gl_TextureMatrix[i] * generated;
+}
+#endif
+
 /** The model-space position of the vertex (model units), for transform feedback (tests capture it). */
 OSGACTOR_VARYING_OUT vec3 osgActor_modelPosition;
 OSGACTOR_VARYING_OUT vec4 osgActor_colour;
@@ -156,4 +172,29 @@ void main()
     vec3 eyeNormal = normalize(OSGACTOR_NORMAL_MATRIX * normal);
     osgActor_colour = osgActor_lighting(eyeNormal, eyePosition);
     osgActor_texCoord = OSGACTOR_TEXCOORD0.xy;
+#if OSGACTOR_FIXED_FUNCTION_OUTPUTS
+    gl_FrontColor = osgActor_colour;
+    gl_TexCoord[0] = gl_TextureMatrix[0] * OSGACTOR_TEXCOORD0;
+#if OSGACTOR_EYE_LINEAR_UNITS & 2
+    gl_TexCoord[1] = osgActor_eyeLinear(1, eyePosition);
+#endif
+#if OSGACTOR_EYE_LINEAR_UNITS & 4
+    gl_TexCoord[2] = osgActor_eyeLinear(2, eyePosition);
+#endif
+#if OSGACTOR_EYE_LINEAR_UNITS & 8
+    gl_TexCoord[3] = osgActor_eyeLinear(3, eyePosition);
+#endif
+#if OSGACTOR_EYE_LINEAR_UNITS & 16
+    gl_TexCoord[4] = osgActor_eyeLinear(4, eyePosition);
+#endif
+#if OSGACTOR_EYE_LINEAR_UNITS & 32
+    gl_TexCoord[5] = osgActor_eyeLinear(5, eyePosition);
+#endif
+#if OSGACTOR_EYE_LINEAR_UNITS & 64
+    gl_TexCoord[6] = osgActor_eyeLinear(6, eyePosition);
+#endif
+#if OSGACTOR_EYE_LINEAR_UNITS & 128
+    gl_TexCoord[7] = osgActor_eyeLinear(7, eyePosition);
+#endif
+#endif
 }

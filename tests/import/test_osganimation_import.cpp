@@ -12,6 +12,7 @@
 #include <osgActor/OsgAnimationImport>
 #include <osgActor/import/RiggedModelFile>
 
+#include <osg/MatrixTransform>
 #include <osg/ShapeDrawable>
 #include <osgDB/ReadFile>
 #include <osgDB/WriteFile>
@@ -55,9 +56,31 @@ struct Measured
     double skinned = 0.0;
 };
 
+/** A node's world position (the root's space) in osgAnimation's pose with every transform above it made rigid: its
+  * matrix's translation and the rotation of its linear part's polar decomposition (osg::Matrixd::decompose, OSG's
+  * own), the stretch left out. Where osgAnimation blends matrix keys element by element, that is the motion without
+  * the blend's shrink. */
+glm::dvec3 positionWithoutStretch(const osg::Node& node)
+{
+    const osg::NodePath path = node.getParentalNodePaths()[0];
+    osg::Matrixd world;
+    for (const osg::Node* above : path)
+    {
+        const osg::MatrixTransform* transform = dynamic_cast<const osg::MatrixTransform*>(above);
+        if (!transform) continue;
+        osg::Vec3d translation, scale;
+        osg::Quat rotation, scaleOrientation;
+        transform->getMatrix().decompose(translation, rotation, scale, scaleOrientation);
+        world = osg::Matrixd::rotate(rotation) * osg::Matrixd::translate(translation) * world;
+    }
+    const osg::Vec3d p = world.getTrans();
+    return glm::dvec3(p.x(), p.y(), p.z());
+}
+
 /** Converts the scene, plays its animation a in osgAnimation, and compares: joint positions at the key times and
-  * between, skinned vertices at the key times. */
-Measured measureAgainstOsgAnimation(osg::Node& scene, unsigned a)
+  * between (as osgAnimation has them, or with the stretch of its transforms left out: positionWithoutStretch()),
+  * skinned vertices at the key times. */
+Measured measureAgainstOsgAnimation(osg::Node& scene, unsigned a, bool withoutStretch = false)
 {
     Measured measured;
     std::vector<const osg::Node*> sources;
@@ -86,7 +109,8 @@ Measured measureAgainstOsgAnimation(osg::Node& scene, unsigned a)
     double posed = -1.0;
     measured.fidelity = measureClip(actor, *clip, times, height, [&](unsigned j, double t, glm::dvec3& position) {
         if (t != posed) playback.update(posed = t);
-        position = OsgAnimationPlayback::position(*sources[actor.jointNodes[j]]);
+        const osg::Node& node = *sources[actor.jointNodes[j]];
+        position = withoutStretch ? positionWithoutStretch(node) : OsgAnimationPlayback::position(node);
         return true;
     });
     for (double t : times)
@@ -368,9 +392,13 @@ TEST(OsgAnimationImport, OsgsColladaCharactersMoveAsOsgAnimationMovesThem)
 
 TEST(OsgAnimationImport, MatrixChannelsTurnRigidlyBetweenKeysWhereOsgAnimationShrinks)
 {
-    // The first clip of library_animation_clips.dae turns its bones fast between keys, all in matrix channels: osgAnimation's element-wise interpolation moves the joints below along chords, the import
-    // (like Assimp's Collada reader, which decomposes such keys) along arcs. At the keys they agree; between them the
-    // difference stays within what the chords explain (docs/import.md).
+    // The first clip of library_animation_clips.dae turns its bones fast between keys, all in matrix channels.
+    // osgdb_dae makes them osgAnimation MatrixLinearChannels, which blend the keys element by element:
+    // M(u) = (1 - u) M0 + u M1 = R(u) P(u), a rotation times a stretch that shortens what lies below. The import keeps
+    // R(u) and the translation (osgAnimation's own sampler, resampled within 1e-5 of the height) and cannot keep P(u)
+    // (no animated scale in the DOF model), so the joints below move along arcs where osgAnimation's move along
+    // chords. At the keys they agree; between them the difference is more than the 1e-3 target, and within what the
+    // chords explain (docs/import.md).
     osg::ref_ptr<osg::Node> scene = readScene(assimpModels("Collada/library_animation_clips.dae"));
     ASSERT_TRUE(scene);
     const Measured measured = measureAgainstOsgAnimation(*scene, 0);
@@ -384,6 +412,22 @@ TEST(OsgAnimationImport, MatrixChannelsTurnRigidlyBetweenKeysWhereOsgAnimationSh
     std::cout << "library_animation_clips.dae through osgdb_dae, clip 0: at keys " << fidelity.atKeys / fidelity.height
               << " of the height, between keys " << fidelity.betweenKeys / fidelity.height
               << " (osgAnimation's chords explain up to " << bound / fidelity.height << ")\n";
+}
+
+TEST(OsgAnimationImport, BetweenMatrixKeysTheImportIsOsgAnimationsMotionWithTheBlendsStretchLeftOut)
+{
+    // What the difference above is, exactly: osgAnimation's own pose with every transform made rigid (translation and
+    // polar rotation, by OSG's decompose) is what the import plays, between keys as at them, to the 1e-5 its
+    // resampling keeps. So the 1e-3 target is missed by the stretch alone, not by the resampling.
+    osg::ref_ptr<osg::Node> scene = readScene(assimpModels("Collada/library_animation_clips.dae"));
+    ASSERT_TRUE(scene);
+    const Fidelity fidelity = measureAgainstOsgAnimation(*scene, 0, true).fidelity;
+    ASSERT_GT(fidelity.comparisons, 0u);
+    std::cout << "library_animation_clips.dae through osgdb_dae, clip 0, osgAnimation's stretch left out: at keys "
+              << fidelity.atKeys / fidelity.height << " of the height, between keys "
+              << fidelity.betweenKeys / fidelity.height << "\n";
+    EXPECT_LE(fidelity.atKeys, 1e-5 * fidelity.height);
+    EXPECT_LE(fidelity.betweenKeys, 1e-5 * fidelity.height);
 }
 
 // --- files ---

@@ -1,15 +1,18 @@
 /* osgViewer with a multi-threaded threading model (argv[1]: DrawThreadPerContext, CullDrawThreadPerContext or
- * CullThreadPerCameraDrawThreadPerContext) drawing skinned Cesium Men through two cameras (a slave beside the master,
- * so that two cull threads meet the same meshes in one frame): every actor a shallow copy of one (they share one
- * SkinnedMesh), half of them skinned on the CPU, all updated by an ActorGroup on worker threads while the previous
- * frame is drawn; the main thread turns actors' paths between frames. Run under xvfb-run by ctest and under
- * ThreadSanitizer by scripts/test-sanitizers.sh. Exit status 0 after the frames (and every actor's mesh skinned or
- * uploaded once per frame it was seen), 1 otherwise. */
+ * CullThreadPerCameraDrawThreadPerContext) drawing skinned Cesium Men through two cameras (a slave beside the master:
+ * under CullThreadPerCamera... two cull threads meet the same meshes in one frame): every actor a shallow copy of one
+ * (they share one SkinnedMesh), half of them skinned on the CPU, all updated by an ActorGroup on worker threads
+ * while the previous frame is drawn; the main thread turns actors' paths between frames. The slave is added before
+ * the viewer starts its threads, so that each camera is culled where the model says (a camera added later is culled
+ * on the draw thread, alongside the next frame's update). Run under xvfb-run by ctest and under ThreadSanitizer by
+ * scripts/test-sanitizers.sh. Exit status 0 after the frames (and every actor's mesh skinned or uploaded once per
+ * frame it was seen), 1 otherwise. */
 #include "ViewerThreadingModel"
 
 #include <osgActor/ActorGroup>
 #include <osgActor/RiggedModelActor>
 
+#include <osgViewer/Renderer>
 #include <osgViewer/Viewer>
 
 #include <cstdlib>
@@ -44,13 +47,32 @@ int main(int argc, char** argv)
     }
 
     osgViewer::Viewer viewer;
-    if (!test::startViewer(viewer, model, actors.get())) return 1;
+    viewer.setThreadingModel(model);
+    viewer.setUpViewInWindow(0, 0, 320, 240);
+    viewer.setSceneData(actors.get());
     // A second camera on the same window: its own cull (on its own thread with CullThreadPerCamera...).
     osg::ref_ptr<osg::Camera> slave = new osg::Camera;
     slave->setGraphicsContext(viewer.getCamera()->getGraphicsContext());
     slave->setViewport(new osg::Viewport(0, 0, 160, 120));
     slave->setClearMask(GL_DEPTH_BUFFER_BIT);
     viewer.addSlave(slave.get(), osg::Matrixd::scale(0.5, 0.5, 1.0), osg::Matrixd());
+    viewer.realize();
+    if (!viewer.isRealized())
+    {
+        std::cerr << "the viewer did not start (no display?)\n";
+        return 1;
+    }
+    // Only CullDrawThreadPerContext culls on the graphics thread, after the previous frame's draw.
+    const bool graphicsThreadCulls = model == osgViewer::ViewerBase::CullDrawThreadPerContext;
+    for (osg::Camera* camera : {viewer.getCamera(), slave.get()})
+    {
+        const osgViewer::Renderer* renderer = dynamic_cast<const osgViewer::Renderer*>(camera->getRenderer());
+        if (!renderer || renderer->getGraphicsThreadDoesCull() != graphicsThreadCulls)
+        {
+            std::cerr << "a camera is not culled where " << modelName << " culls\n";
+            return 1;
+        }
+    }
     viewer.getCamera()->setViewMatrixAsLookAt(osg::Vec3d(1.2, -5.0, 1.5), osg::Vec3d(1.2, 0.8, 0.6),
                                               osg::Vec3d(0, 0, 1));
     for (int frame = 0; frame < frames && !viewer.done(); ++frame)

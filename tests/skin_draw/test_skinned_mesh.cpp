@@ -5,6 +5,7 @@
 #include <osgActor/core/ActorDefinitionBuilder>
 
 #include <osg/Geode>
+#include <osg/Program>
 #include <osg/State>
 #include <osgUtil/IntersectionVisitor>
 #include <osgUtil/LineSegmentIntersector>
@@ -186,6 +187,80 @@ TEST(SkinnedMesh, ChoosesTheProgramVariantOfItsSkin)
     core.profile = SkinningProfile::Compatibility;
     EXPECT_EQ(skinningShaderSource(core, osg::Shader::FRAGMENT).rfind("#version 150 compatibility\n", 0), 0u);
     EXPECT_EQ(getSkinningProgramStateSet(core), getSkinningProgramStateSet(core));
+}
+
+namespace {
+
+/** The program the GPU path drew Cesium Man with in the driver's last cull. */
+const osg::Program* programDrawn(const FrameDriver& driver)
+{
+    const std::vector<FrameDriver::CulledLeaf> leaves = driver.culledLeaves();
+    EXPECT_EQ(leaves.size(), 1u);
+    const osg::Program* found = nullptr;
+    if (leaves.empty()) return found;
+    for (const osg::StateSet* stateSet : leaves[0].stateSets) // outermost first: the last one holding a program wins
+        if (const osg::Program* program = dynamic_cast<const osg::Program*>(
+                stateSet->getAttribute(osg::StateAttribute::PROGRAM)))
+            found = program;
+    return found;
+}
+
+std::string vertexSourceOf(const osg::Program& program)
+{
+    for (unsigned i = 0; i < program.getNumShaders(); ++i)
+        if (program.getShader(i)->getType() == osg::Shader::VERTEX) return program.getShader(i)->getShaderSource();
+    return std::string();
+}
+
+} // namespace
+
+TEST(SkinnedMesh, LightsWithTheLightsTheStateTurnsOnAndTakesTheFragmentShadersOfAFragmentOnlyProgram)
+{
+    const RiggedModelActor read = readCesiumMan(SkinnedMesh::GPU_SKINNING);
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    scene->addChild(read.sceneNode.get());
+    FrameDriver driver(scene.get());
+    driver.lookAt(osg::Vec3d(0, -5, 0.8), osg::Vec3d(0, 0, 0.8), osg::Vec3d(0, 0, 1));
+
+    // The scene view's headlight alone: light 0.
+    driver.frame(0.1);
+    const osg::Program* headlit = programDrawn(driver);
+    ASSERT_TRUE(headlit);
+    EXPECT_NE(vertexSourceOf(*headlit).find("#define OSGACTOR_LIGHTS_ON bool[8](true, false, false"),
+              std::string::npos);
+
+    // Light 2 turned on below, light 0 turned off with OVERRIDE above the actor's own state, which turns it back on
+    // (not PROTECTED: the override holds), and osgShadow-like fragment shaders over everything.
+    osg::StateSet* state = scene->getOrCreateStateSet();
+    state->setMode(GL_LIGHT2, osg::StateAttribute::ON);
+    state->setMode(GL_LIGHT0, osg::StateAttribute::OFF | osg::StateAttribute::OVERRIDE);
+    read.sceneNode->getOrCreateStateSet()->setMode(GL_LIGHT0, osg::StateAttribute::ON);
+    state->setTextureMode(1, GL_TEXTURE_GEN_S, osg::StateAttribute::ON);
+    osg::ref_ptr<osg::Program> shadowLike = new osg::Program;
+    osg::ref_ptr<osg::Shader> fragment =
+        new osg::Shader(osg::Shader::FRAGMENT, "void main() { gl_FragColor = gl_Color * gl_TexCoord[1].q; }\n");
+    shadowLike->addShader(fragment.get());
+    state->setAttribute(shadowLike.get());
+    driver.frame(0.2);
+    const osg::Program* composed = programDrawn(driver);
+    ASSERT_TRUE(composed);
+    const std::string source = vertexSourceOf(*composed);
+    EXPECT_NE(source.find("#define OSGACTOR_LIGHTS_ON bool[8](false, false, true, false"), std::string::npos);
+    EXPECT_NE(source.find("#define OSGACTOR_FIXED_FUNCTION_OUTPUTS 1"), std::string::npos);
+    EXPECT_NE(source.find("#define OSGACTOR_EYE_LINEAR_UNITS 2"), std::string::npos);
+    ASSERT_EQ(composed->getNumShaders(), 2u);
+    EXPECT_TRUE(composed->getShader(0) == fragment.get() || composed->getShader(1) == fragment.get())
+        << "the fragment-only program's own shader object";
+
+    // A program with a vertex shader of its own is not composed with: the skinning program replaces it.
+    shadowLike->addShader(new osg::Shader(osg::Shader::VERTEX, "void main() { gl_Position = ftransform(); }\n"));
+    driver.frame(0.3);
+    const osg::Program* own = programDrawn(driver);
+    ASSERT_TRUE(own);
+    EXPECT_NE(vertexSourceOf(*own).find("#define OSGACTOR_FIXED_FUNCTION_OUTPUTS 0"), std::string::npos);
+    EXPECT_NE(own, shadowLike.get());
+    // The palette is one for all of these programs: filled once per frame.
+    EXPECT_EQ(read.skinnedMeshes[0]->getStatistics(*read.actor).paletteUploads, 3u);
 }
 
 TEST(SkinnedMesh, PutsItsInfluencesInSlotsNoArrayOfTheMeshAliases)

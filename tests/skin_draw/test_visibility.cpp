@@ -105,6 +105,110 @@ TEST(SkinnedMeshVisibility, AFrameIsSkinnedOnceWhateverTheNumberOfCameras)
     }
 }
 
+namespace {
+
+/** What a leaf draws that changes with the pose: the CPU path's skinned positions or the GPU path's palette. */
+std::vector<float> skinnedContentOf(const FrameDriver::CulledLeaf& leaf, SkinnedMesh::SkinningPath path)
+{
+    if (path == SkinnedMesh::CPU_SKINNING)
+    {
+        const osg::Vec3Array& positions = *static_cast<const osg::Vec3Array*>(leaf.drawable->asGeometry()->getVertexArray());
+        std::vector<float> coordinates;
+        for (const osg::Vec3f& p : positions) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+        return coordinates;
+    }
+    const osg::Uniform* palette = paletteOf(leaf)->getUniform("osgActor_palette");
+    return palette ? std::vector<float>(palette->getFloatArray()->begin(), palette->getFloatArray()->end())
+                   : std::vector<float>();
+}
+
+/** A second camera on a scene whose cull comes late: it culls the frame its stamp holds, which seeFrame() sets to the
+  * frame a driver is at, after that driver has gone on. */
+class LateCamera
+{
+public:
+    explicit LateCamera(osg::Node* scene) : _driver(scene), _stamp(new osg::FrameStamp)
+    {
+        _driver.sceneView().setFrameStamp(_stamp.get());
+        lookAtCesiumMan(_driver);
+    }
+    void seeFrame(const FrameDriver& driver) { _stamp->setFrameNumber(driver.getFrameNumber()); }
+    /** Its cull of that frame, and the one leaf it drew. */
+    FrameDriver::CulledLeaf cull()
+    {
+        _driver.cull();
+        const std::vector<FrameDriver::CulledLeaf> leaves = _driver.culledLeaves();
+        EXPECT_EQ(leaves.size(), 1u);
+        return leaves.empty() ? FrameDriver::CulledLeaf{nullptr, {}, false} : leaves[0];
+    }
+
+private:
+    FrameDriver _driver;
+    osg::ref_ptr<osg::FrameStamp> _stamp;
+};
+
+} // namespace
+
+TEST(SkinnedMeshVisibility, ACullOfAnOlderFrameThanOneAlreadySkinnedNeitherSkinsAgainNorRewritesThatFramesBuffer)
+{
+    // osgViewer culls a camera added after its threads started on the draw thread: under DrawThreadPerContext the
+    // cull of frame 1 for that camera can come after the main thread has updated and culled frame 2.
+    for (const SkinnedMesh::SkinningPath path : {SkinnedMesh::GPU_SKINNING, SkinnedMesh::CPU_SKINNING})
+    {
+        const RiggedModelActor read = readCesiumMan(path);
+        FrameDriver driver(read.sceneNode.get());
+        LateCamera lateCamera(read.sceneNode.get());
+        lookAtCesiumMan(driver);
+
+        driver.frame(1 / 30.0);
+        lateCamera.seeFrame(driver);
+        ASSERT_EQ(driver.culledLeaves().size(), 1u);
+        const FrameDriver::CulledLeaf first = driver.culledLeaves()[0];
+        const std::vector<float> firstContent = skinnedContentOf(first, path);
+        ASSERT_FALSE(firstContent.empty());
+        driver.frame(10 / 30.0);
+        ASSERT_NE(skinnedContentOf(driver.culledLeaves()[0], path), firstContent) << "the pose must move for the test";
+
+        const FrameDriver::CulledLeaf late = lateCamera.cull();
+        ASSERT_TRUE(late.drawable);
+        EXPECT_EQ(late.drawable, first.drawable) << pathName(path);
+        EXPECT_EQ(paletteOf(late), paletteOf(first)) << pathName(path);
+        EXPECT_EQ(skinnedContentOf(late, path), firstContent) << pathName(path) << ": frame 1's buffer was rewritten";
+        const SkinnedMesh::Statistics statistics = read.skinnedMeshes[0]->getStatistics(*read.actor);
+        EXPECT_EQ(statistics.matrixUpdates, 2u);
+        EXPECT_EQ(statistics.cpuSkinnings + statistics.paletteUploads, 2u) << pathName(path);
+
+        // The next frame is skinned as usual.
+        driver.frame(11 / 30.0);
+        EXPECT_EQ(read.skinnedMeshes[0]->getStatistics(*read.actor).cpuSkinnings +
+                      read.skinnedMeshes[0]->getStatistics(*read.actor).paletteUploads,
+                  3u)
+            << pathName(path);
+    }
+}
+
+TEST(SkinnedMeshVisibility, ACullOfAnOlderFrameOnAPathThatFrameDidNotUseStillDrawsASkinnedBuffer)
+{
+    // Frame 1 on the GPU path, frame 2 switched to the CPU path, then a late cull of frame 1: there is no CPU buffer
+    // of frame 1's parity yet, so it is skinned (from the current matrices) rather than drawn unskinned.
+    const RiggedModelActor read = readCesiumMan(SkinnedMesh::GPU_SKINNING);
+    FrameDriver driver(read.sceneNode.get());
+    LateCamera lateCamera(read.sceneNode.get());
+    lookAtCesiumMan(driver);
+    driver.frame(1 / 30.0);
+    lateCamera.seeFrame(driver);
+    setSkinningPath(*read.actor, SkinnedMesh::CPU_SKINNING);
+    driver.frame(10 / 30.0);
+    const std::vector<float> current = skinnedContentOf(driver.culledLeaves()[0], SkinnedMesh::CPU_SKINNING);
+    const FrameDriver::CulledLeaf late = lateCamera.cull();
+    ASSERT_TRUE(late.drawable);
+    EXPECT_NE(late.drawable, driver.culledLeaves()[0].drawable);
+    EXPECT_EQ(skinnedContentOf(late, SkinnedMesh::CPU_SKINNING), current);
+    const SkinnedMesh::Statistics statistics = read.skinnedMeshes[0]->getStatistics(*read.actor);
+    EXPECT_EQ(statistics.paletteUploads, 1u);
+    EXPECT_EQ(statistics.cpuSkinnings, 2u);
+}
+
 TEST(SkinnedMeshVisibility, FramesAlternateBetweenTwoBuffersAndNothingIsDynamic)
 {
     for (const SkinnedMesh::SkinningPath path : {SkinnedMesh::GPU_SKINNING, SkinnedMesh::CPU_SKINNING})
