@@ -152,10 +152,14 @@ TEST(SkinFiles, AnActorOfARiggedModelIsWrittenWithItsSkinsByReferenceAndReadsBac
         // The DOFs and the definition go through 12 significant digits.
         EXPECT_LT(maxDistance(*expected, *actual), 1e-6 * box.radius()) << "t = " << t;
         // The poses differ, so the comparison is of deformed meshes.
-        if (previous) EXPECT_GT(maxDistance(*expected, *previous), 1e-3 * box.radius()) << "t = " << t;
+        if (previous)
+        {
+            EXPECT_GT(maxDistance(*expected, *previous), 1e-3 * box.radius()) << "t = " << t;
+        }
         previous = expected;
     }
 }
+
 TEST(SkinFiles, ASkinFileNamedRelativelyIsFoundNextToTheActorFile)
 {
     const RiggedModelActor original = readCesiumMan();
