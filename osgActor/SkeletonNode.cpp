@@ -1,4 +1,5 @@
 #include <osgActor/SkeletonNode>
+#include <osgActor/ActorNode>
 
 #include <osgUtil/IntersectionVisitor>
 
@@ -24,6 +25,50 @@ SkeletonNode::SkeletonNode(const SkeletonNode& node, const osg::CopyOp& copyop)
       _boundCoversRotations(node._boundCoversRotations), _ballOffCentre(node._ballOffCentre),
       _jointCentre(node._jointCentre)
 {
+}
+
+void SkeletonNode::setHidden(bool hidden)
+{
+    if (hidden == _hidden) return;
+    _hidden = hidden;
+    dirtyActorCullPlans();
+}
+
+bool SkeletonNode::addChild(osg::Node* child)
+{
+    const bool added = osg::MatrixTransform::addChild(child);
+    if (added) dirtyActorCullPlans();
+    return added;
+}
+
+bool SkeletonNode::insertChild(unsigned int index, osg::Node* child)
+{
+    const bool inserted = osg::MatrixTransform::insertChild(index, child);
+    if (inserted) dirtyActorCullPlans();
+    return inserted;
+}
+
+bool SkeletonNode::removeChildren(unsigned int pos, unsigned int numChildrenToRemove)
+{
+    const bool removed = osg::MatrixTransform::removeChildren(pos, numChildrenToRemove);
+    if (removed) dirtyActorCullPlans();
+    return removed;
+}
+
+bool SkeletonNode::setChild(unsigned int i, osg::Node* node)
+{
+    const bool set = osg::MatrixTransform::setChild(i, node);
+    if (set) dirtyActorCullPlans();
+    return set;
+}
+
+void SkeletonNode::dirtyActorCullPlans()
+{
+    for (osg::Group* parent : _parents)
+    {
+        if (ActorNode* actor = dynamic_cast<ActorNode*>(parent)) actor->dirtyCullPlan();
+        else if (SkeletonNode* joint = dynamic_cast<SkeletonNode*>(parent)) joint->dirtyActorCullPlans();
+    }
 }
 
 void SkeletonNode::traverse(osg::NodeVisitor& nv)
