@@ -50,6 +50,24 @@ Object* ActorCullState::Pool<Object>::acquire()
 
 // --- ActorCull ---
 
+namespace {
+
+/** modelView = local * parent (OSG's row-vector order): what MatrixTransform::computeLocalToWorldMatrix() computes
+  * for a relative frame, the call the visitor makes (osg::Matrixd::preMult), term for term and in the same order,
+  * so the bits are the same; inline, into other memory than its inputs (so the compiler may take two columns at
+  * once), and without preMult's temporary copy. The file is compiled without contracting products and sums into
+  * fused multiply-adds, as OSG is. */
+inline void composeModelView(const double* __restrict local, const double* __restrict parent,
+                             double* __restrict modelView)
+{
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            modelView[row * 4 + col] = local[row * 4 + 0] * parent[0 * 4 + col] + local[row * 4 + 1] * parent[1 * 4 + col] +
+                                       local[row * 4 + 2] * parent[2 * 4 + col] + local[row * 4 + 3] * parent[3 * 4 + col];
+}
+
+} // namespace
+
 bool ActorCull::canCullAsOne(osgUtil::CullVisitor& cv)
 {
     if (typeid(cv) != typeid(osgUtil::CullVisitor)) return false;
@@ -64,15 +82,20 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
       _modelViews(nullptr), _open(), _numOpen(0)
 {
-    if (!_state._plan || _state._planVersion != versions.plan || !_state._plan->isCurrent())
+    const ActorCullState::Key key = keyNow();
+    const bool planKept = _state._plan && _state._planVersion == versions.plan;
+    bool replayable = planKept && _state._replayable && _state._versions == versions && _state._key == key;
+    // The joints' matrices and bounds are read after the plan is checked: ask for them now, with the flags the
+    // check reads, so that all the fetches overlap.
+    if (planKept && !replayable) _state._plan->prefetchJoints();
+    if (!planKept || !_state._plan->isCurrent())
     {
         _state._plan = new ActorCullPlan(actor);
         _state._planVersion = versions.plan;
-        _state._replayable = false;
+        replayable = false;
     }
     _plan = _state._plan.get();
-    const ActorCullState::Key key = keyNow();
-    if (_state._replayable && _state._versions == versions && _state._key == key)
+    if (replayable)
     {
         replay();
         return;
@@ -198,16 +221,10 @@ void ActorCull::computeModelViews()
     const std::vector<ActorCullPlan::Joint>& joints = _plan->getJoints();
     std::vector<osg::Matrixd>& matrices = _modelViews->matrices;
     matrices.resize(joints.size() + 1);
-    // The joints' matrices have left the caches since the update wrote them: fetch them all, then compose.
-    for (const ActorCullPlan::Joint& joint : joints) prefetchForRead(joint.node->getMatrix().ptr(), sizeof(osg::Matrixd));
     matrices[0] = *_cv.getModelViewMatrix();
     for (std::size_t j = 0; j < joints.size(); ++j)
-    {
-        // What MatrixTransform::computeLocalToWorldMatrix() does for a relative frame, the call the visitor makes.
-        osg::Matrixd& modelView = matrices[j + 1];
-        modelView = matrices[static_cast<std::size_t>(joints[j].parent + 1)];
-        modelView.preMult(joints[j].node->getMatrix());
-    }
+        composeModelView(joints[j].node->getMatrix().ptr(),
+                         matrices[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), matrices[j + 1].ptr());
 }
 
 void ActorCull::addDrawable(const Step& step)

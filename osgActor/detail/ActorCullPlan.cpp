@@ -29,6 +29,19 @@ struct NodeFlags : osg::Node
         const osg::Node::NodeMask osg::Node::*const mask = &NodeFlags::_nodeMask;
         return &(node.*mask);
     }
+    static const void* boundAddress(const osg::Node& node)
+    {
+        const osg::BoundingSphere osg::Node::*const bound = &NodeFlags::_boundingSphere;
+        return &(node.*bound);
+    }
+    /** Node::isCullingActive() but for its bound's validity, which reads the bound (two more cache lines of a
+      * skeleton node); the cull tests validity where it uses the bound. */
+    static bool cullingActive(const osg::Node& node)
+    {
+        const bool osg::Node::*const active = &NodeFlags::_cullingActive;
+        const unsigned int osg::Node::*const disabled = &NodeFlags::_numChildrenWithCullingDisabled;
+        return node.*active && node.*disabled == 0;
+    }
 };
 
 } // namespace
@@ -54,7 +67,7 @@ ActorCullPlan::Step& ActorCullPlan::addStep(Kind kind, osg::Node& node, int join
     Step step;
     step.kind = kind;
     step.pathNeeded = false;
-    step.cullingActive = node.isCullingActive();
+    step.cullingActive = NodeFlags::cullingActive(node);
     step.stateSet = node.getStateSet();
     step.batchable = node.getDataVariance() != osg::Object::DYNAMIC &&
                      dataVarianceOf(step.stateSet) != osg::Object::DYNAMIC;
@@ -80,7 +93,7 @@ void ActorCullPlan::addCheck(Kind kind, osg::Node& node)
     check.stateSet = node.getStateSet();
     check.cullCallback = node.getCullCallback();
     check.mask = node.getNodeMask();
-    check.cullingActive = node.isCullingActive();
+    check.cullingActive = NodeFlags::cullingActive(node);
     const osg::Transform* transform = node.asTransform();
     check.referenceFrame =
         static_cast<unsigned char>(transform ? transform->getReferenceFrame() : osg::Transform::RELATIVE_RF);
@@ -162,6 +175,17 @@ void ActorCullPlan::notePathNeeded()
     for (unsigned index : _open) _steps[index].pathNeeded = true;
 }
 
+void ActorCullPlan::prefetchJoints() const
+{
+    for (const Joint& joint : _joints)
+    {
+        const SkeletonNode& node = *joint.node;
+        prefetchForRead(NodeFlags::maskAddress(node), 1);
+        prefetchForRead(node.getMatrix().ptr(), sizeof(osg::Matrixd));
+        prefetchForRead(NodeFlags::boundAddress(node), sizeof(osg::BoundingSphere) + sizeof(bool));
+    }
+}
+
 bool ActorCullPlan::isCurrent() const
 {
     // Every node's flags fetched first, then compared: the fetches overlap rather than wait one after the other.
@@ -177,7 +201,7 @@ bool ActorCullPlan::isUnchanged(const NodeCheck& check) const
 {
     const osg::Node& node = *check.node;
     if (node.getNodeMask() != check.mask || node.getStateSet() != check.stateSet ||
-        node.getCullCallback() != check.cullCallback || node.isCullingActive() != check.cullingActive)
+        node.getCullCallback() != check.cullCallback || NodeFlags::cullingActive(node) != check.cullingActive)
         return false;
     switch (check.kind)
     {

@@ -35,6 +35,9 @@ public:
 
     /** Whether nothing the plan decided from that OSG does not report has changed since it was made. */
     bool isCurrent() const;
+    /** Asks the processor for what a cull of the planned joints reads (their flags, matrices and bounds), so that
+      * the fetches overlap: with many actors the nodes have left the caches since the update. */
+    void prefetchJoints() const;
 
     /** What the cull does at one step, in the visitor's order. A JOINT or GEODE step opens a subtree that ends
       * at step end (exclusive, its closing step end - 1). */
@@ -54,6 +57,7 @@ public:
         /** The subtree holds an ORDINARY step: the node must be on the visitor's node path, which cull
           * callbacks below may read. */
         bool pathNeeded;
+        /** Culling is on at the node (Node::isCullingActive() but for its bound's validity, tested where used). */
         bool cullingActive;
         /** DRAWABLE: neither it nor its state set is DYNAMIC, so it may share a batch's leaf. */
         bool batchable;
