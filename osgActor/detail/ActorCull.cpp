@@ -23,6 +23,7 @@ bool ActorCullState::Key::operator==(const Key& other) const
            std::memcmp(projection.ptr(), other.projection.ptr(), sizeof(osg::Matrixd)) == 0 &&
            std::memcmp(viewport, other.viewport, sizeof viewport) == 0 && traversalMask == other.traversalMask &&
            nodeMaskOverride == other.nodeMaskOverride && cullingMask == other.cullingMask &&
+           cullingMode == other.cullingMode &&
            std::memcmp(&smallFeaturePixelSize, &other.smallFeaturePixelSize, sizeof(float)) == 0 &&
            computeNearFar == other.computeNearFar && binNumber == other.binNumber &&
            binSortMode == other.binSortMode;
@@ -114,6 +115,13 @@ ActorCullState::Key ActorCull::keyNow() const
     ActorCullState::Key key;
     key.actorModelView = *_cv.getModelViewMatrix();
     key.projection = *_cv.getProjectionMatrix();
+    key.cullingMode = _cv.getCullingMode();
+    // With near and far computed, the viewer clamps the camera's projection to them after each cull (SceneView does
+    // it in place, CullVisitor::clampProjectionMatrix() rewriting the third column): that column changes from frame
+    // to frame by a rounding. It enters no leaf while the near and far planes are not culled: the pixel-size vector
+    // and the frustum's sides are made of the other columns.
+    if ((key.cullingMode & (osg::CullSettings::NEAR_PLANE_CULLING | osg::CullSettings::FAR_PLANE_CULLING)) == 0)
+        for (int row = 0; row < 4; ++row) key.projection(row, 2) = 0.0;
     if (const osg::Viewport* viewport = _cv.getViewport())
     {
         key.viewport[0] = viewport->x();

@@ -81,7 +81,8 @@ private:
         double viewport[4] = {};
         unsigned traversalMask = 0;
         unsigned nodeMaskOverride = 0;
-        unsigned cullingMask = 0;
+        unsigned cullingMask = 0;   // the current culling set's
+        unsigned cullingMode = 0;   // the visitor's, which made the projection's frustum
         float smallFeaturePixelSize = 0.0f;
         int computeNearFar = 0;
         int binNumber = 0;
