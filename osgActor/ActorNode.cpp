@@ -134,33 +134,25 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
 
 ActorNode::~ActorNode() = default;
 
-bool ActorNode::addChild(osg::Node* child)
+bool ActorNode::reportEdit(bool edited)
 {
-    const bool added = osg::MatrixTransform::addChild(child);
-    if (added) dirtyCullPlan();
-    return added;
+    if (edited) dirtyCullPlan();
+    return edited;
 }
+
+bool ActorNode::addChild(osg::Node* child) { return reportEdit(osg::MatrixTransform::addChild(child)); }
 
 bool ActorNode::insertChild(unsigned int index, osg::Node* child)
 {
-    const bool inserted = osg::MatrixTransform::insertChild(index, child);
-    if (inserted) dirtyCullPlan();
-    return inserted;
+    return reportEdit(osg::MatrixTransform::insertChild(index, child));
 }
 
 bool ActorNode::removeChildren(unsigned int pos, unsigned int numChildrenToRemove)
 {
-    const bool removed = osg::MatrixTransform::removeChildren(pos, numChildrenToRemove);
-    if (removed) dirtyCullPlan();
-    return removed;
+    return reportEdit(osg::MatrixTransform::removeChildren(pos, numChildrenToRemove));
 }
 
-bool ActorNode::setChild(unsigned int i, osg::Node* node)
-{
-    const bool set = osg::MatrixTransform::setChild(i, node);
-    if (set) dirtyCullPlan();
-    return set;
-}
+bool ActorNode::setChild(unsigned int i, osg::Node* node) { return reportEdit(osg::MatrixTransform::setChild(i, node)); }
 
 osg::BoundingSphere ActorNode::computeBound() const
 {

@@ -34,32 +34,27 @@ void SkeletonNode::setHidden(bool hidden)
     dirtyActorCullPlans();
 }
 
-bool SkeletonNode::addChild(osg::Node* child)
+bool SkeletonNode::reportEdit(bool edited)
 {
-    const bool added = osg::MatrixTransform::addChild(child);
-    if (added) dirtyActorCullPlans();
-    return added;
+    if (edited) dirtyActorCullPlans();
+    return edited;
 }
+
+bool SkeletonNode::addChild(osg::Node* child) { return reportEdit(osg::MatrixTransform::addChild(child)); }
 
 bool SkeletonNode::insertChild(unsigned int index, osg::Node* child)
 {
-    const bool inserted = osg::MatrixTransform::insertChild(index, child);
-    if (inserted) dirtyActorCullPlans();
-    return inserted;
+    return reportEdit(osg::MatrixTransform::insertChild(index, child));
 }
 
 bool SkeletonNode::removeChildren(unsigned int pos, unsigned int numChildrenToRemove)
 {
-    const bool removed = osg::MatrixTransform::removeChildren(pos, numChildrenToRemove);
-    if (removed) dirtyActorCullPlans();
-    return removed;
+    return reportEdit(osg::MatrixTransform::removeChildren(pos, numChildrenToRemove));
 }
 
 bool SkeletonNode::setChild(unsigned int i, osg::Node* node)
 {
-    const bool set = osg::MatrixTransform::setChild(i, node);
-    if (set) dirtyActorCullPlans();
-    return set;
+    return reportEdit(osg::MatrixTransform::setChild(i, node));
 }
 
 void SkeletonNode::dirtyActorCullPlans()
