@@ -251,10 +251,14 @@ void ActorNode::buildSkeletonNodes()
     {
         osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def->getJointName(j));
         const int parent = def->getParent(j);
-        if (parent == kNoParent) addChild(node.get());
-        else _skeletonNodes[static_cast<unsigned>(parent)]->addChild(node.get());
+        // osg::Group's own addChild(): the skeleton node's would report each edit up its chain to this actor, a walk
+        // as deep as the joint; the plan is dirtied once below.
+        osg::Group& group = parent == kNoParent ? static_cast<osg::Group&>(*this)
+                                                : *_skeletonNodes[static_cast<unsigned>(parent)];
+        group.osg::Group::addChild(node.get());
         _skeletonNodes.push_back(node);
     }
+    dirtyCullPlan();
     bindLocalMatricesToNodes();
 }
 
