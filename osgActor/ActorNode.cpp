@@ -101,7 +101,8 @@ ActorNode::ActorNode()
     : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _transformMatricesDirty(true),
       _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false),
       _boundMode(BOUND_COVERS_ROTATIONS), _numUpdatesRun(0), _lastFrameNumber(kNoFrame), _cullMode(CULL_AS_ONE),
-      _numUpdatesSkipped(0), _lodPhase(nextLodPhase()), _lastSeen(0)
+      _numUpdatesSkipped(0), _lodPhase(nextLodPhase()), _lastSeen(0), _cullState(new detail::ActorCullState),
+      _cullPlanVersion(0), _poseVersion(0), _boundVersion(0)
 {
     setDataVariance(osg::Object::DYNAMIC);
     setUpdateCallback(new ActorUpdateCallback);
@@ -121,12 +122,42 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
       _actorMatrixWritten(actor._actorMatrixWritten),
       _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame),
       _cullMode(actor._cullMode), _updatePolicy(actor._updatePolicy), _numUpdatesSkipped(0),
-      _lodPhase(nextLodPhase()), _lastSeen(0), _definitionObject(actor._definitionObject), _clipLibraryObject(actor._clipLibraryObject)
+      _lodPhase(nextLodPhase()), _lastSeen(0), _cullState(new detail::ActorCullState), _cullPlanVersion(0),
+      _poseVersion(0), _boundVersion(0), _definitionObject(actor._definitionObject),
+      _clipLibraryObject(actor._clipLibraryObject)
 {
     for (const ControllerPtr& controller : actor._controllers)
         if (controller) _controllers.push_back(controller->cloneController());
     _ikChains = actor._ikChains; // immutable: shared
     rebindSkeletonNodes();
+}
+
+ActorNode::~ActorNode() = default;
+
+bool ActorNode::reportEdit(bool edited)
+{
+    if (edited) dirtyCullPlan();
+    return edited;
+}
+
+bool ActorNode::addChild(osg::Node* child) { return reportEdit(osg::MatrixTransform::addChild(child)); }
+
+bool ActorNode::insertChild(unsigned int index, osg::Node* child)
+{
+    return reportEdit(osg::MatrixTransform::insertChild(index, child));
+}
+
+bool ActorNode::removeChildren(unsigned int pos, unsigned int numChildrenToRemove)
+{
+    return reportEdit(osg::MatrixTransform::removeChildren(pos, numChildrenToRemove));
+}
+
+bool ActorNode::setChild(unsigned int i, osg::Node* node) { return reportEdit(osg::MatrixTransform::setChild(i, node)); }
+
+osg::BoundingSphere ActorNode::computeBound() const
+{
+    _boundVersion.fetch_add(1, std::memory_order_relaxed);
+    return osg::MatrixTransform::computeBound();
 }
 
 void ActorNode::setDefinition(ActorDefinitionPtr definition)
@@ -220,10 +251,14 @@ void ActorNode::buildSkeletonNodes()
     {
         osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def->getJointName(j));
         const int parent = def->getParent(j);
-        if (parent == kNoParent) addChild(node.get());
-        else _skeletonNodes[static_cast<unsigned>(parent)]->addChild(node.get());
+        // osg::Group's own addChild(): the skeleton node's would report each edit up its chain to this actor, a walk
+        // as deep as the joint; the plan is dirtied once below.
+        osg::Group& group = parent == kNoParent ? static_cast<osg::Group&>(*this)
+                                                : *_skeletonNodes[static_cast<unsigned>(parent)];
+        group.osg::Group::addChild(node.get());
         _skeletonNodes.push_back(node);
     }
+    dirtyCullPlan();
     bindLocalMatricesToNodes();
 }
 
@@ -617,15 +652,19 @@ void ActorNode::traverse(osg::NodeVisitor& nv)
     // The visitor found our bound visible to come here.
     if (_updatePolicy.onlyWhenSeen) noteSeen(nv);
     osgUtil::CullVisitor* cv = nv.asCullVisitor();
-    if (_cullMode == CULL_AS_ONE && cv && detail::ActorCull::canCullAsOne(*cv))
+    if (_cullMode == CULL_AS_ONE && cv && detail::ActorCull::canCullAsOne(*cv) && _cullState->tryAcquire())
     {
-        // The walk reads every skeleton node (its mask, children, state, matrix): with many actors they have left
-        // the caches since the update, so fetch them all at once and let the fetches overlap.
-        for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes)
-            detail::prefetchForRead(node.get(), sizeof(detail::PlacedSkeletonNode));
-        detail::ActorCull(*cv).cullChildren(*this);
+        // The bound computed (the visitor did unless culling is off here): a change below recomputes it.
+        getBound();
+        detail::ActorCullState::Versions versions;
+        versions.plan = _cullPlanVersion.load(std::memory_order_relaxed);
+        versions.pose = _poseVersion;
+        versions.bound = _boundVersion.load(std::memory_order_relaxed);
+        detail::ActorCull(*cv, *_cullState, *this, versions);
+        _cullState->release();
     }
     else
+        // Another visitor's cull, or one of another thread culling this actor for another camera at this moment.
         osg::MatrixTransform::traverse(nv);
 }
 
@@ -669,7 +708,11 @@ void ActorNode::writeJointMatrices()
         writeDirtyingBounds(parents, nodes, joint);
         dirtied = true;
     });
-    if (dirtied) _boundsToPropagate = true;
+    if (dirtied)
+    {
+        _boundsToPropagate = true;
+        ++_poseVersion;
+    }
 }
 
 void ActorNode::writeJointMatricesKeepingBalls()
@@ -678,8 +721,10 @@ void ActorNode::writeJointMatricesKeepingBalls()
     const osg::ref_ptr<SkeletonNode>* nodes = _skeletonNodes.data();
     const std::size_t numNodes = _skeletonNodes.size();
     bool dirtied = false;
+    bool written = false;
     _pose.consumeChangedLocals([&](unsigned joint, double*) {
         if (joint >= numNodes) return;
+        written = true;
         // A ball that holds every rotation of the joint does not change as it turns: no bound to dirty, here or
         // above. (The flag shares a cache line with the inverse's flag, which is written anyway.)
         SkeletonNode& node = *nodes[joint];
@@ -689,6 +734,7 @@ void ActorNode::writeJointMatricesKeepingBalls()
         dirtied = true;
     });
     if (dirtied) _boundsToPropagate = true;
+    if (written) ++_poseVersion; // the cull composes the joints' matrices afresh
 }
 
 void ActorNode::writeActorMatrix()

@@ -1,4 +1,5 @@
 #include <osgActor/SkeletonNode>
+#include <osgActor/ActorNode>
 
 #include <osgUtil/IntersectionVisitor>
 
@@ -24,6 +25,45 @@ SkeletonNode::SkeletonNode(const SkeletonNode& node, const osg::CopyOp& copyop)
       _boundCoversRotations(node._boundCoversRotations), _ballOffCentre(node._ballOffCentre),
       _jointCentre(node._jointCentre)
 {
+}
+
+void SkeletonNode::setHidden(bool hidden)
+{
+    if (hidden == _hidden) return;
+    _hidden = hidden;
+    dirtyActorCullPlans();
+}
+
+bool SkeletonNode::reportEdit(bool edited)
+{
+    if (edited) dirtyActorCullPlans();
+    return edited;
+}
+
+bool SkeletonNode::addChild(osg::Node* child) { return reportEdit(osg::MatrixTransform::addChild(child)); }
+
+bool SkeletonNode::insertChild(unsigned int index, osg::Node* child)
+{
+    return reportEdit(osg::MatrixTransform::insertChild(index, child));
+}
+
+bool SkeletonNode::removeChildren(unsigned int pos, unsigned int numChildrenToRemove)
+{
+    return reportEdit(osg::MatrixTransform::removeChildren(pos, numChildrenToRemove));
+}
+
+bool SkeletonNode::setChild(unsigned int i, osg::Node* node)
+{
+    return reportEdit(osg::MatrixTransform::setChild(i, node));
+}
+
+void SkeletonNode::dirtyActorCullPlans()
+{
+    for (osg::Group* parent : _parents)
+    {
+        if (ActorNode* actor = dynamic_cast<ActorNode*>(parent)) actor->dirtyCullPlan();
+        else if (SkeletonNode* joint = dynamic_cast<SkeletonNode*>(parent)) joint->dirtyActorCullPlans();
+    }
 }
 
 void SkeletonNode::traverse(osg::NodeVisitor& nv)

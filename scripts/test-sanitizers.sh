@@ -50,7 +50,7 @@ tsan() {
     # Any report makes the program exit with 66 at the end (TSan's exitcode), which fails this script.
     export TSAN_OPTIONS="suppressions=$supp/tsan.supp:second_deadlock_stack=1:history_size=4"
     export OSG_NOTIFY_LEVEL=WARN
-    "$build/bin/osgactor_node_tests" --gtest_filter='WorkerPool.*:ActorGroup.*:UpdatePolicy.*:CullAsOne.*'
+    "$build/bin/osgactor_node_tests" --gtest_filter='WorkerPool.*:ActorGroup.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*'
     OSGACTOR_SOAK_FRAMES=400 "$build/bin/osgactor_soak_test"
     local model
     for model in DrawThreadPerContext CullDrawThreadPerContext; do

@@ -186,6 +186,11 @@ void SummaryReporter::writeSummary()
         for (const char* system : {"osgActor_all", "osgActor_all_nodebynode", "osgActor_all_follow", "osgActor_quarter",
                                    "osgActor_idle", "osgAnimation", "plainOSG"})
         {
+            // A system without results in this mode (the node-by-node cull has no update of its own) gets no block:
+            // gnuplot does not count an empty one, and the curves after it would take the wrong blocks.
+            bool any = false;
+            for (const Result& r : _results) any = any || (r.mode == mode && r.system == system);
+            if (!any) continue;
             data << "# " << mode << " " << system << "\n";
             for (const Result& r : _results)
                 if (r.mode == mode && r.system == system) data << r.n << ' ' << r.value << '\n';

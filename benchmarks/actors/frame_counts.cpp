@@ -1,10 +1,11 @@
 // The update traversal of N osgActor humanoids, every joint moving (osgactorbench's update/osgActor_all scene and
-// frame loop), for instruction and cache-miss counts under callgrind, which are repeatable where wall-clock time on a
+// frame loop), or the update and the cull (its update_cull/osgActor_all; idle: update_cull/osgActor_idle), for instruction and cache-miss counts under callgrind, which are repeatable where wall-clock time on a
 // shared machine is not. The warm-up frames (the players bind their channels on the first) run uninstrumented; the
 // measured frames run between callgrind's client requests, so
 //     valgrind --tool=callgrind --instr-atstart=no --cache-sim=yes --LL=1048576,16,64 build/bin/osgactor_frame_counts
 // counts those frames only (outside valgrind the requests do nothing). Arguments: actors (1000), measured frames
-// (20), and "follow" for bounds that follow the pose (the default covers rotations). Divide the counts by
+// (20), then any of "follow" for bounds that follow the pose (the default covers rotations), "cull" for the cull
+// too, "idle" for actors without a controller. Divide the counts by
 // actors x frames x 31 joints for figures per joint and frame (docs/performance.md).
 #include "FrameLoop"
 #include "PeerScenes"
@@ -19,15 +20,22 @@ int main(int argc, char** argv)
 {
     const unsigned numActors = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 1000u;
     const unsigned numFrames = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 20u;
-    const bool follow = argc > 3 && std::strcmp(argv[3], "follow") == 0;
+    bool follow = false, cull = false, idle = false;
+    for (int i = 3; i < argc; ++i)
+    {
+        follow = follow || std::strcmp(argv[i], "follow") == 0;
+        cull = cull || std::strcmp(argv[i], "cull") == 0;
+        idle = idle || std::strcmp(argv[i], "idle") == 0;
+    }
     if (numActors == 0 || numFrames == 0)
     {
-        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle]\n", argv[0]);
         return 1;
     }
     osg::ref_ptr<osg::Group> scene = bench::makeOsgActorScene(
-        numActors, bench::Motion::All, 0, follow ? bench::Bounds::FollowPose : bench::Bounds::CoverRotations);
-    bench::FrameLoop loop(scene.get(), false);
+        numActors, idle ? bench::Motion::Idle : bench::Motion::All, 0,
+        follow ? bench::Bounds::FollowPose : bench::Bounds::CoverRotations);
+    bench::FrameLoop loop(scene.get(), cull);
     for (int i = 0; i < 10; ++i) loop.frame();
     CALLGRIND_ZERO_STATS;
     CALLGRIND_START_INSTRUMENTATION;

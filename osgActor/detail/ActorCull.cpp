@@ -1,38 +1,71 @@
 #include <osgActor/detail/ActorCull.h>
-#include <osgActor/detail/PlacedSkeletonNode.h>
+#include <osgActor/detail/Prefetch.h>
 
-#include <osg/Geometry>
 #include <osg/Math>
-#include <osg/ShapeDrawable>
 
+#include <cstring>
 #include <typeinfo>
 
 namespace osgActor {
 namespace detail {
 
-namespace {
+// --- ActorCullState ---
 
-/** A point's depth in front of the eye, as the cull visitor computes it for the render graph's depth sorting (its
-  * own function is private to it): minus the eye-space z. */
-float eyeDepth(const osg::Vec3& point, const osg::Matrixd& modelView)
+ActorCullState::ActorCullState() : _planVersion(0), _replayable(false)
 {
-    using Value = osgUtil::CullVisitor::value_type;
-    return static_cast<float>(-(static_cast<Value>(point[0]) * modelView(0, 2) +
-                                static_cast<Value>(point[1]) * modelView(1, 2) +
-                                static_cast<Value>(point[2]) * modelView(2, 2) + modelView(3, 2)));
+    _busy.clear();
 }
 
-/** The cull visitor's pool of model-view matrices (matrices the render graph holds until the frame is drawn, reused
-  * once it lets go of them): osg::CullStack::createOrReuseMatrix() is protected, and a pointer to it formed in a
-  * class derived from CullStack may be called on any CullStack. Never instantiated. */
-struct MatrixPool : osg::CullStack
+bool ActorCullState::Key::operator==(const Key& other) const
 {
-    static osg::RefMatrix* createOrReuse(osg::CullStack& stack, const osg::Matrix& value)
+    // Bit for bit: the calls kept are those of these very matrices (a -0 is not a 0 to the products made from it).
+    return std::memcmp(actorModelView.ptr(), other.actorModelView.ptr(), sizeof(osg::Matrixd)) == 0 &&
+           std::memcmp(projection.ptr(), other.projection.ptr(), sizeof(osg::Matrixd)) == 0 &&
+           std::memcmp(viewport, other.viewport, sizeof viewport) == 0 && traversalMask == other.traversalMask &&
+           nodeMaskOverride == other.nodeMaskOverride && cullingMask == other.cullingMask &&
+           cullingMode == other.cullingMode &&
+           std::memcmp(&smallFeaturePixelSize, &other.smallFeaturePixelSize, sizeof(float)) == 0 &&
+           computeNearFar == other.computeNearFar && binNumber == other.binNumber &&
+           binSortMode == other.binSortMode;
+}
+
+template <class Object>
+Object* ActorCullState::Pool<Object>::acquire()
+{
+    // Free: held by nothing but the pool. Taken in turn, so that in the steady state the next one is free at once
+    // even while the render graph of a frame being drawn on another thread holds the previous frame's.
+    const std::size_t count = objects.size();
+    for (std::size_t k = 0; k < count; ++k)
     {
-        osg::RefMatrix* (osg::CullStack::*const create)(const osg::Matrix&) = &MatrixPool::createOrReuseMatrix;
-        return (stack.*create)(value);
+        const std::size_t i = next + k < count ? next + k : next + k - count;
+        if (objects[i]->referenceCount() == 1)
+        {
+            next = i + 1 < count ? i + 1 : 0;
+            return objects[i].get();
+        }
     }
-};
+    objects.push_back(new Object);
+    next = 0;
+    return objects.back().get();
+}
+
+// --- ActorCull ---
+
+namespace {
+
+/** modelView = local * parent (OSG's row-vector order): what MatrixTransform::computeLocalToWorldMatrix() computes
+  * for a relative frame, the call the visitor makes (osg::Matrixd::preMult), term for term and in the same order,
+  * so the bits are the same; inline, into other memory than its inputs (so the compiler may take two columns at
+  * once), and without preMult's temporary copy. The file is compiled without contracting products and sums into
+  * fused multiply-adds, as OSG is. */
+inline void composeModelView(const double* __restrict local, const double* __restrict parent,
+                             double* __restrict modelView)
+{
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col)
+            modelView[row * 4 + col] = local[row * 4 + 0] * parent[0 * 4 + col] + local[row * 4 + 1] * parent[1 * 4 + col] +
+                                       local[row * 4 + 2] * parent[2 * 4 + col] + local[row * 4 + 3] * parent[3 * 4 + col];
+}
 
 } // namespace
 
@@ -42,147 +75,264 @@ bool ActorCull::canCullAsOne(osgUtil::CullVisitor& cv)
     return cv.getOccluderList().empty() && cv.getCurrentCullingSet().getStateFrustumList().empty();
 }
 
-ActorCull::ActorCull(osgUtil::CullVisitor& cv)
-    : _cv(cv),
+ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
+                     const ActorCullState::Versions& versions)
+    : _cv(cv), _state(state), _plan(nullptr),
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
-      _open(), _numOpen(0)
+      _modelViews(nullptr), _open(), _numOpen(0)
 {
-}
-
-void ActorCull::cullChildren(osg::Group& actor)
-{
-    // The actor's own frame is on the visitor's stacks already (it pushed actor_m on its way in).
-    JointFrame frame;
-    frame.modelView = *_cv.getModelViewMatrix();
-    frame.leafMatrix = _cv.getModelViewMatrix();
-    frame.pixelSizeVector = _cv.getCurrentCullingSet().getPixelSizeVector();
-    frame.hasPixelSizeVector = true;
-    frame.pushed = true;
-    for (unsigned i = 0; i < actor.getNumChildren(); ++i) cullChild(*actor.getChild(i), frame);
-}
-
-bool ActorCull::isPlainJoint(const SkeletonNode& joint)
-{
-    return isPlain(joint) && !joint.getHidden() && joint.getReferenceFrame() == osg::Transform::RELATIVE_RF;
-}
-
-bool ActorCull::isPlainDrawable(const osg::Drawable& drawable)
-{
-    const std::type_info& type = typeid(drawable);
-    return isPlain(drawable) && (type == typeid(osg::Geometry) || type == typeid(osg::ShapeDrawable));
-}
-
-void ActorCull::cullChild(osg::Node& child, JointFrame& frame)
-{
-    if (!_cv.validNodeMask(child)) return; // as Node::accept() would
-    // Exact classes only: a subclass may traverse, cull or draw in its own way.
-    const std::type_info& type = typeid(child);
-    if (type == typeid(PlacedSkeletonNode) || type == typeid(SkeletonNode))
+    const ActorCullState::Key key = keyNow();
+    const bool planKept = _state._plan && _state._planVersion == versions.plan;
+    bool replayable = planKept && _state._replayable && _state._versions == versions && _state._key == key;
+    // The joints' matrices and bounds are read after the plan is checked: ask for them now, with the flags the
+    // check reads, so that all the fetches overlap.
+    if (planKept && !replayable) _state._plan->prefetchJoints();
+    if (!planKept || !_state._plan->isCurrent())
     {
-        SkeletonNode& joint = static_cast<SkeletonNode&>(child);
-        if (isPlainJoint(joint))
-        {
-            cullJoint(joint, frame);
-            return;
-        }
+        _state._plan = new ActorCullPlan(actor);
+        _state._planVersion = versions.plan;
+        replayable = false;
     }
-    else if (type == typeid(osg::Geode) && isPlain(child))
+    _plan = _state._plan.get();
+    if (replayable)
     {
-        cullGeode(static_cast<osg::Geode&>(child), frame);
+        replay();
         return;
     }
-    traverseOrdinarily(child, frame);
+    _state._calls.clear();
+    _state._keptModelViews = nullptr; // free for the pool again once the render graph lets go of it
+    cull();
+    _state._keptModelViews = _modelViews;
+    _state._key = key;
+    _state._versions = versions;
+    _state._replayable = true;
 }
 
-void ActorCull::cullJoint(SkeletonNode& joint, JointFrame& parent)
+ActorCullState::Key ActorCull::keyNow() const
 {
-    // The visitor tests the node's sphere in the parent's frame; a small feature is culled with its subtree.
-    if (_smallFeatureCulling && joint.isCullingActive() && isSmallFeature(joint.getBound(), parent)) return;
-    JointFrame frame;
-    frame.modelView = parent.modelView;
-    joint.computeLocalToWorldMatrix(frame.modelView, &_cv); // what CullVisitor::apply(osg::Transform&) calls
-    frame.leafMatrix = nullptr;
-    frame.hasPixelSizeVector = false;
-    frame.pushed = false;
-    // Cull callbacks and user nodes below may read the node path: keep it as the ordinary traversal does.
-    _cv.pushOntoNodePath(&joint);
-    osg::StateSet* state = joint.getStateSet();
-    if (state) _cv.pushStateSet(state);
-    for (unsigned i = 0; i < joint.getNumChildren(); ++i) cullChild(*joint.getChild(i), frame);
-    if (state) _cv.popStateSet();
-    _cv.popFromNodePath();
-    if (frame.pushed) _cv.popModelViewMatrix();
-}
-
-void ActorCull::cullGeode(osg::Geode& geode, JointFrame& frame)
-{
-    if (_smallFeatureCulling && geode.isCullingActive() && isSmallFeature(geode.getBound(), frame)) return;
-    _cv.pushOntoNodePath(&geode);
-    osg::StateSet* state = geode.getStateSet();
-    if (state) _cv.pushStateSet(state);
-    for (unsigned i = 0; i < geode.getNumChildren(); ++i)
+    ActorCullState::Key key;
+    key.actorModelView = *_cv.getModelViewMatrix();
+    key.projection = *_cv.getProjectionMatrix();
+    key.cullingMode = _cv.getCullingMode();
+    // With near and far computed, the viewer clamps the camera's projection to them after each cull (SceneView does
+    // it in place, CullVisitor::clampProjectionMatrix() rewriting the third column): that column changes from frame
+    // to frame by a rounding. It enters no leaf while the near and far planes are not culled: the pixel-size vector
+    // and the frustum's sides are made of the other columns.
+    if ((key.cullingMode & (osg::CullSettings::NEAR_PLANE_CULLING | osg::CullSettings::FAR_PLANE_CULLING)) == 0)
+        for (int row = 0; row < 4; ++row) key.projection(row, 2) = 0.0;
+    if (const osg::Viewport* viewport = _cv.getViewport())
     {
-        osg::Node& child = *geode.getChild(i);
-        osg::Drawable* drawable = child.asDrawable();
-        if (drawable && isPlainDrawable(*drawable))
-        {
-            if (_cv.validNodeMask(*drawable)) addDrawable(*drawable, frame);
-        }
-        else
-            traverseOrdinarily(child, frame);
+        key.viewport[0] = viewport->x();
+        key.viewport[1] = viewport->y();
+        key.viewport[2] = viewport->width();
+        key.viewport[3] = viewport->height();
     }
-    if (state) _cv.popStateSet();
-    _cv.popFromNodePath();
+    key.traversalMask = _cv.getTraversalMask();
+    key.nodeMaskOverride = _cv.getNodeMaskOverride();
+    key.cullingMask = _cv.getCurrentCullingSet().getCullingMask();
+    key.smallFeaturePixelSize = _cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize();
+    key.computeNearFar = _cv.getComputeNearFarMode();
+    key.binNumber = _cv.getCurrentRenderBin()->getBinNum();
+    key.binSortMode = _cv.getCurrentRenderBin()->getSortMode();
+    return key;
 }
 
-void ActorCull::addDrawable(osg::Drawable& drawable, JointFrame& frame)
+void ActorCull::replay()
+{
+    for (const Call& c : _state._calls)
+    {
+        switch (c.kind)
+        {
+        case Call::PUSH_STATE: _cv.pushStateSet(static_cast<osg::StateSet*>(c.object)); break;
+        case Call::POP_STATE: _cv.popStateSet(); break;
+        case Call::PUSH_PATH: _cv.pushOntoNodePath(static_cast<osg::Node*>(c.object)); break;
+        case Call::POP_PATH: _cv.popFromNodePath(); break;
+        case Call::ADD_LEAF: _cv.addDrawableAndDepth(static_cast<osg::Drawable*>(c.object), c.matrix, c.depth); break;
+        case Call::NEAR_FAR: _cv.updateCalculatedNearFar(*c.modelView, *static_cast<osg::Drawable*>(c.object), true); break;
+        case Call::TRAVERSE:
+            if (c.matrix) _cv.pushModelViewMatrix(c.matrix, osg::Transform::RELATIVE_RF);
+            static_cast<osg::Node*>(c.object)->accept(_cv);
+            if (c.matrix) _cv.popModelViewMatrix();
+            break;
+        }
+    }
+}
+
+void ActorCull::cull()
+{
+    const std::size_t numFrames = _plan->getJoints().size() + 1;
+    _state._leafMatrices.assign(numFrames, nullptr);
+    _state._hasPixelSizeVector.assign(numFrames, 0);
+    _state._pixelSizeVectors.resize(numFrames);
+    _state._pixelSizeVectors[0] = _cv.getCurrentCullingSet().getPixelSizeVector();
+    _state._hasPixelSizeVector[0] = 1;
+    computeModelViews();
+
+    const std::vector<Step>& steps = _plan->getSteps();
+    const std::vector<ActorCullPlan::Joint>& joints = _plan->getJoints();
+    const unsigned traversalMask = _cv.getTraversalMask(), maskOverride = _cv.getNodeMaskOverride();
+    for (std::size_t i = 0; i < steps.size();)
+    {
+        const Step& step = steps[i];
+        // As Node::accept() would: a node the visitor's mask rules out is skipped with its subtree.
+        const bool masked = (step.kind == ActorCullPlan::JOINT || step.kind == ActorCullPlan::GEODE ||
+                             step.kind == ActorCullPlan::DRAWABLE) &&
+                            (traversalMask & (maskOverride | step.mask)) == 0;
+        switch (step.kind)
+        {
+        case ActorCullPlan::JOINT:
+        case ActorCullPlan::GEODE:
+        {
+            // The visitor tests the node's sphere in the frame the node is in; a small feature is culled with its
+            // subtree.
+            const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(joints[step.joint].parent + 1)
+                                                                      : unsigned(step.joint + 1);
+            if (masked ||
+                (_smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame)))
+            {
+                i = step.end;
+                continue;
+            }
+            // Cull callbacks and user nodes below may read the node path: kept as the ordinary traversal keeps it.
+            if (step.pathNeeded)
+            {
+                _cv.pushOntoNodePath(step.node);
+                call(Call::PUSH_PATH, step.node);
+            }
+            if (step.stateSet) wantState(step.stateSet);
+            break;
+        }
+        case ActorCullPlan::END_JOINT:
+        case ActorCullPlan::END_GEODE:
+            if (step.stateSet) unwantState();
+            if (step.pathNeeded)
+            {
+                _cv.popFromNodePath();
+                call(Call::POP_PATH, nullptr);
+            }
+            break;
+        case ActorCullPlan::DRAWABLE:
+            if (!masked) addDrawable(step);
+            break;
+        case ActorCullPlan::ORDINARY: traverseOrdinarily(step); break;
+        }
+        ++i;
+    }
+    applyWantedStates(); // pops what is left
+}
+
+void ActorCull::computeModelViews()
+{
+    _modelViews = _state._modelViews.acquire();
+    const std::vector<ActorCullPlan::Joint>& joints = _plan->getJoints();
+    std::vector<osg::Matrixd>& matrices = _modelViews->matrices;
+    matrices.resize(joints.size() + 1);
+    matrices[0] = *_cv.getModelViewMatrix();
+    for (std::size_t j = 0; j < joints.size(); ++j)
+        composeModelView(joints[j].node->getMatrix().ptr(),
+                         matrices[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), matrices[j + 1].ptr());
+}
+
+void ActorCull::addDrawable(const Step& step)
 {
     // What CullVisitor::apply(osg::Drawable&) does for a drawable without a cull callback, with the
     // frustum test kept where it changes the image: near and far planes computed from what is drawn.
+    osg::Drawable& drawable = *step.node->asDrawable();
+    const unsigned frame = static_cast<unsigned>(step.joint + 1);
+    const osg::Matrixd& modelView = _modelViews->matrices[frame];
     const osg::BoundingBox& box = drawable.getBoundingBox();
     if (_computeNearFar && box.valid())
     {
-        if (_frustumCulling && drawable.isCullingActive() && isOutsideFrustum(box, frame.modelView)) return;
+        if (_frustumCulling && step.cullingActive && isOutsideFrustum(box, modelView)) return;
         // The visitor takes the box's nearest and farthest corners along the view in the frame of the matrix it last
         // pushed, which here is the actor's, not the joint's: its billboard form finds them from the matrix given,
         // with the same arithmetic pushModelViewMatrix() uses, so the planes are those of the ordinary traversal.
-        if (!_cv.updateCalculatedNearFar(frame.modelView, drawable, true)) return;
+        if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
+        call(Call::NEAR_FAR, &drawable, nullptr, 0.0f, &modelView);
     }
-    const float depth = box.valid() ? eyeDepth(box.center(), frame.modelView) : 0.0f;
+    const float depth = box.valid() ? eyeDepth(box.center(), modelView) : 0.0f;
     if (osg::isNaN(depth)) return; // the visitor drops it too (with a notice)
-    osg::StateSet* state = drawable.getStateSet();
-    if (state) _cv.pushStateSet(state);
+    if (step.stateSet) wantState(step.stateSet);
+    applyWantedStates();
     osgUtil::StateGraph* graph = _cv.getCurrentStateGraph();
     // Batched where the bin draws its state graphs' leaves in the order they came: a bin sorted by state. Dynamic
     // drawables keep a leaf of their own, which tells a viewer drawing on another thread to wait for them.
-    const bool batchable = _cv.getCurrentRenderBin()->getSortMode() == osgUtil::RenderBin::SORT_BY_STATE &&
-                           drawable.getDataVariance() != osg::Object::DYNAMIC &&
-                           !(state && state->getDataVariance() == osg::Object::DYNAMIC);
+    const bool batchable =
+        step.batchable && _cv.getCurrentRenderBin()->getSortMode() == osgUtil::RenderBin::SORT_BY_STATE;
     JointDrawBatch* batch = batchable ? openBatch(graph) : nullptr;
     if (batch)
-        batch->add(drawable, frame.modelView, depth);
+        batch->add(drawable, frame);
     else
     {
-        if (!frame.leafMatrix) frame.leafMatrix = MatrixPool::createOrReuse(_cv, frame.modelView);
+        osg::RefMatrix* matrix = leafMatrix(frame);
         if (batchable)
         {
             // The batch's leaf carries the first drawable's matrix, so the state graph's state is applied under the
             // matrix it would be applied under without the batch.
-            batch = JointDrawBatch::acquire();
-            batch->add(drawable, frame.modelView, depth);
-            _cv.addDrawableAndDepth(batch, frame.leafMatrix, depth);
+            batch = _state._batches.acquire();
+            batch->reset(_plan, _modelViews);
+            batch->add(drawable, frame);
+            _cv.addDrawableAndDepth(batch, matrix, depth);
+            call(Call::ADD_LEAF, batch, matrix, depth);
             if (_numOpen == kMaxOpenBatches) closeBatch(_open[0].graph);
             _open[_numOpen++] = {graph, batch};
         }
         else
         {
             closeBatch(graph);
-            _cv.addDrawableAndDepth(&drawable, frame.leafMatrix, depth);
+            _cv.addDrawableAndDepth(&drawable, matrix, depth);
+            call(Call::ADD_LEAF, &drawable, matrix, depth);
         }
     }
-    if (state) _cv.popStateSet();
+    if (step.stateSet) unwantState();
+}
+
+void ActorCull::traverseOrdinarily(const Step& step)
+{
+    _numOpen = 0; // the traversal may add leaves to any state graph: no batch may take drawables after them
+    applyWantedStates();
+    // The actor's own frame is on the visitor's stacks already (it pushed actor_m on its way in).
+    osg::RefMatrix* matrix = step.joint < 0 ? nullptr : leafMatrix(static_cast<unsigned>(step.joint + 1));
+    call(Call::TRAVERSE, step.node, matrix);
+    if (matrix) _cv.pushModelViewMatrix(matrix, osg::Transform::RELATIVE_RF);
+    step.node->accept(_cv);
+    if (matrix) _cv.popModelViewMatrix();
+}
+
+void ActorCull::applyWantedStates()
+{
+    std::vector<osg::StateSet*>& wanted = _state._wantedStates;
+    std::vector<osg::StateSet*>& applied = _state._appliedStates;
+    std::size_t common = 0;
+    while (common < wanted.size() && common < applied.size() && wanted[common] == applied[common]) ++common;
+    while (applied.size() > common)
+    {
+        _cv.popStateSet();
+        call(Call::POP_STATE, nullptr);
+        applied.pop_back();
+    }
+    while (applied.size() < wanted.size())
+    {
+        osg::StateSet* state = wanted[applied.size()];
+        _cv.pushStateSet(state);
+        call(Call::PUSH_STATE, state);
+        applied.push_back(state);
+    }
+}
+
+osg::RefMatrix* ActorCull::leafMatrix(unsigned frame)
+{
+    // The actor's own matrix too is one of the actor's (not the visitor's, which it reuses for other matrices):
+    // the calls kept for the next frame give the render graph the same matrix again.
+    osg::RefMatrix*& matrix = _state._leafMatrices[frame];
+    if (!matrix)
+    {
+        matrix = _state._matrices.acquire();
+        matrix->set(_modelViews->matrices[frame]);
+    }
+    return matrix;
 }
 
 JointDrawBatch* ActorCull::openBatch(osgUtil::StateGraph* graph) const
@@ -202,31 +352,19 @@ void ActorCull::closeBatch(osgUtil::StateGraph* graph)
         }
 }
 
-void ActorCull::traverseOrdinarily(osg::Node& node, JointFrame& frame)
-{
-    _numOpen = 0; // the traversal may add leaves to any state graph: no batch may take drawables after them
-    if (!frame.pushed)
-    {
-        if (!frame.leafMatrix) frame.leafMatrix = MatrixPool::createOrReuse(_cv, frame.modelView);
-        _cv.pushModelViewMatrix(frame.leafMatrix, osg::Transform::RELATIVE_RF);
-        frame.pushed = true;
-    }
-    node.accept(_cv);
-}
-
-bool ActorCull::isSmallFeature(const osg::BoundingSphere& bound, JointFrame& frame)
+bool ActorCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame)
 {
     if (!bound.valid()) return false; // the visitor never tests it (the node is not culling-active)
-    if (!frame.hasPixelSizeVector)
+    if (!_state._hasPixelSizeVector[frame])
     {
         // As osg::CullStack::pushCullingSet() makes it for this matrix.
-        frame.pixelSizeVector = osg::CullingSet::computePixelSizeVector(*_cv.getViewport(),
-                                                                        *_cv.getProjectionMatrix(), frame.modelView);
-        frame.hasPixelSizeVector = true;
+        _state._pixelSizeVectors[frame] = osg::CullingSet::computePixelSizeVector(
+            *_cv.getViewport(), *_cv.getProjectionMatrix(), _modelViews->matrices[frame]);
+        _state._hasPixelSizeVector[frame] = 1;
     }
     // osg::CullingSet::isCulled(const BoundingSphere&)'s small-feature test, term for term.
-    return ((bound.center() * frame.pixelSizeVector) * _cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()) >
-           bound.radius();
+    return ((bound.center() * _state._pixelSizeVectors[frame]) *
+            _cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()) > bound.radius();
 }
 
 bool ActorCull::isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView) const

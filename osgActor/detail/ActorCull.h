@@ -3,35 +3,132 @@
 // osgUtil::CullVisitor, walking an actor node by node, pushes and pops a model-view matrix and a culling set (its
 // frustum's planes transformed into the node's frame) at every skeleton node and tests every node's, geode's and
 // drawable's bound against them: most of a crowd's frame. The visitor has already tested the actor's bound once,
-// on its way into the actor, and pushed actor_m; ActorCull then goes through the actor's subtree itself, in the
-// order the visitor would, and:
-//  - at a "plain" skeleton node (an osgActor::SkeletonNode of its own class, no cull callback, not hidden, a
-//    relative reference frame, a node mask the visitor accepts) computes the joint's model-view matrix in eye
-//    space with the very call the visitor makes (MatrixTransform::computeLocalToWorldMatrix, so the bits are the
-//    same) and pushes no matrix and no culling set;
-//  - hands a plain geode's plain drawables (an osg::Geode and drawables without cull callbacks) straight to the
-//    render graph (CullVisitor::addDrawableAndDepth) with that matrix and the depth the visitor computes; state
-//    sets on the joint, the geode or the drawable are pushed as the visitor pushes them (pushStateSet), so the
-//    drawables land in the same state graphs and render bins;
+// on its way into the actor, and pushed actor_m; ActorCull then follows the actor's cull plan (ActorCullPlan: the
+// plain skeleton nodes, geodes and drawables below it, and the subtrees that need the ordinary traversal, in the
+// order the visitor would meet them) and:
+//  - computes every planned joint's model-view matrix in eye space in one pass, parents first, with the very
+//    product the visitor makes (osg::Matrixd::preMult, as MatrixTransform::computeLocalToWorldMatrix does, so the
+//    bits are the same), and pushes no matrix and no culling set;
+//  - hands the plain drawables straight to the render graph, an actor's drawables of one state graph in one render
+//    leaf (JointDrawBatch), with the depth the visitor computes; state sets on the way are pushed as the visitor
+//    pushes them, when a drawable needs them, so the drawables land in the same state graphs and render bins;
 //  - gives everything else (cull callbacks, hidden joints, LOD and switch nodes, a user's nodes, other classes)
-//    the ordinary traversal, with the joint's model-view matrix pushed first, so it sees what it would see below
-//    the joint.
-// What may change the image is culled as the visitor culls it: small features (the same pixel-size test with the
-// same pixel-size vector), and, while the visitor computes near and far planes from what it draws, each drawable's
-// box against the frustum (in eye space: all eight corners outside one plane, the visitor's test, in another frame)
-// before it counts for near and far. What only saves work is skipped: spheres against the frustum, so a drawable
-// outside the view may reach the render graph, where OpenGL clips it, and the statistics count it.
+//    the ordinary traversal, with the joint's model-view matrix pushed, so it sees what it would see below the
+//    joint, the node path included.
+// What may change the image is culled as the visitor culls it: node masks, small features (the same pixel-size test
+// with the same pixel-size vector), and, while the visitor computes near and far planes from what it draws, each
+// drawable's box against the frustum (in eye space: all eight corners outside one plane, the visitor's test, in
+// another frame) before it counts for near and far. What only saves work is skipped: spheres against the frustum,
+// so a drawable outside the view may reach the render graph, where OpenGL clips it, and the statistics count it.
+//
+// What a cull did to the visitor (state sets pushed and popped, leaves added, subtrees traversed) is kept as a
+// list of calls. When the actor is culled again with nothing it depends on changed (the same plan, no joint
+// matrix written, no bound below recomputed, the same model-view matrix on entry, the same projection, viewport
+// and culling settings: an idle actor before a still camera), the calls are made again with the same leaves and
+// matrices, which were only read since: no joint is read but for the flags the plan compares.
 #ifndef OSGACTOR_DETAIL_ACTORCULL_H
 #define OSGACTOR_DETAIL_ACTORCULL_H 1
 
-#include <osgActor/SkeletonNode>
+#include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/JointDrawBatch.h>
 
-#include <osg/Geode>
+#include <osg/Matrixd>
 #include <osgUtil/CullVisitor>
+
+#include <atomic>
+#include <vector>
 
 namespace osgActor {
 namespace detail {
+
+/** What one actor keeps from one cull to the next: its plan, the calls of its last cull, and the batches and
+  * matrices those calls gave the render graph. One cull visitor at a time (tryAcquire()). */
+class ActorCullState : public osg::Referenced
+{
+public:
+    ActorCullState();
+
+    /** Claims the state for one cull; false while another thread culls the actor (it then takes the ordinary
+      * traversal). */
+    bool tryAcquire() { return !_busy.test_and_set(std::memory_order_acquire); }
+    void release() { _busy.clear(std::memory_order_release); }
+
+    /** Whether the last cull kept its calls for the given versions (ActorNode's counters of plan-changing edits,
+      * joint-matrix writes and bound recomputations); whether it would be replayed also needs the same visitor
+      * settings (ActorCull). */
+    struct Versions
+    {
+        unsigned plan = 0;
+        unsigned pose = 0;
+        unsigned bound = 0;
+        bool operator==(const Versions& other) const
+        {
+            return plan == other.plan && pose == other.pose && bound == other.bound;
+        }
+    };
+
+protected:
+    ~ActorCullState() override = default;
+
+private:
+    friend class ActorCull;
+
+    /** What the calls depend on beyond the actor: the visitor's settings and where it enters the actor. */
+    struct Key
+    {
+        osg::Matrixd actorModelView;
+        osg::Matrixd projection;
+        double viewport[4] = {};
+        unsigned traversalMask = 0;
+        unsigned nodeMaskOverride = 0;
+        unsigned cullingMask = 0;   // the current culling set's
+        unsigned cullingMode = 0;   // the visitor's, which made the projection's frustum
+        float smallFeaturePixelSize = 0.0f;
+        int computeNearFar = 0;
+        int binNumber = 0;
+        int binSortMode = 0;
+        bool operator==(const Key& other) const;
+    };
+    /** One call the cull made to the visitor. */
+    struct Call
+    {
+        enum Kind : unsigned char { PUSH_STATE, POP_STATE, PUSH_PATH, POP_PATH, ADD_LEAF, NEAR_FAR, TRAVERSE };
+        Kind kind;
+        float depth;                 // ADD_LEAF
+        osg::Referenced* object;     // the state set, node or drawable
+        osg::RefMatrix* matrix;      // ADD_LEAF, TRAVERSE (null: the actor's own, on the stack already)
+        const osg::Matrixd* modelView; // NEAR_FAR
+    };
+
+    /** Objects the render graph holds until drawn: one with no other holder than this state is free to change. */
+    template <class Object>
+    struct Pool
+    {
+        std::vector<osg::ref_ptr<Object>> objects;
+        std::size_t next = 0;
+        Object* acquire();
+    };
+
+    std::atomic_flag _busy;
+    osg::ref_ptr<ActorCullPlan> _plan;
+    unsigned _planVersion;
+    bool _replayable;
+    Versions _versions;
+    Key _key;
+    std::vector<Call> _calls;
+    Pool<JointModelViews> _modelViews;
+    Pool<JointDrawBatch> _batches;
+    Pool<osg::RefMatrix> _matrices;
+    /** The matrices the kept calls refer to. */
+    osg::ref_ptr<JointModelViews> _keptModelViews;
+    // A cull's working space, kept so that a frame allocates nothing. Per frame (the actor's, then each planned
+    // joint's): its matrix for the render graph, or null; its pixel-size vector, valid where the flag says.
+    std::vector<osg::RefMatrix*> _leafMatrices;
+    std::vector<osg::Vec4> _pixelSizeVectors;
+    std::vector<unsigned char> _hasPixelSizeVector;
+    std::vector<osg::StateSet*> _wantedStates;
+    std::vector<osg::StateSet*> _appliedStates;
+};
 
 class ActorCull
 {
@@ -40,47 +137,53 @@ public:
       * occluders or state frustums in the current culling set (they need each drawable's box in its own frame). */
     static bool canCullAsOne(osgUtil::CullVisitor& cv);
 
-    explicit ActorCull(osgUtil::CullVisitor& cv);
-
-    /** Culls the children of the actor node the visitor is in now (its model-view matrix on top of the stack). */
-    void cullChildren(osg::Group& actor);
+    /** Culls the children of the actor node the visitor is in now (its model-view matrix on top of the stack),
+      * with the state the caller acquired. versions: the actor's counters now. */
+    ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
+              const ActorCullState::Versions& versions);
 
 private:
-    /** A joint's eye-space frame as the walk through the actor holds it. */
-    struct JointFrame
-    {
-        osg::Matrixd modelView;           // the joint's frame to eye space (OSG's row-vector order)
-        osg::RefMatrix* leafMatrix;       // modelView in the visitor's pool, made at the first drawable; or null
-        osg::Vec4 pixelSizeVector;        // the culling set's, for modelView; valid when hasPixelSizeVector
-        bool hasPixelSizeVector;
-        bool pushed;                      // modelView is on the visitor's stacks (the actor's own frame always is)
-    };
+    using Step = ActorCullPlan::Step;
+    using Call = ActorCullState::Call;
 
-    void cullChild(osg::Node& child, JointFrame& frame);
-    void cullJoint(SkeletonNode& joint, JointFrame& parent);
-    void cullGeode(osg::Geode& geode, JointFrame& frame);
-    void addDrawable(osg::Drawable& drawable, JointFrame& frame);
-    /** The ordinary traversal of a node below the joint, with the joint's frame pushed as the visitor would. */
-    void traverseOrdinarily(osg::Node& node, JointFrame& frame);
-    /** Whether the visitor would cull a sphere in the joint's frame as a small feature. */
-    bool isSmallFeature(const osg::BoundingSphere& bound, JointFrame& frame);
-    /** Whether a box in the joint's frame lies wholly outside one plane of the view frustum. */
+    ActorCullState::Key keyNow() const;
+    void replay();
+    /** The plan followed afresh, every call kept for the next frame. */
+    void cull();
+    void computeModelViews();
+    void addDrawable(const Step& step);
+    void traverseOrdinarily(const Step& step);
+    /** Whether the visitor would cull a sphere in the frame as a small feature. */
+    bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
+    /** Whether a box in a frame lies wholly outside one plane of the view frustum. */
     bool isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView) const;
-    static bool isPlainJoint(const SkeletonNode& joint);
-    /** No cull callback: the visitor would do nothing else at the node than push its state set. */
-    static bool isPlain(const osg::Node& node) { return !node.getCullCallback(); }
-    /** A drawable the visitor would only add to the render graph: no cull callback, and of a class known not to cull
-      * in its own way (a subclass such as SkinnedMesh overrides accept() to skin or upload before it is drawn). */
-    static bool isPlainDrawable(const osg::Drawable& drawable);
+    /** The frame's model-view matrix as the render graph holds it, made at its first use this cull. */
+    osg::RefMatrix* leafMatrix(unsigned frame);
+
+    // The state sets wanted on the visitor's stack, pushed and popped only when a leaf or a traversal needs them:
+    // the geodes under an actor's joints mostly carry one state set, and a pop followed by a push of the same
+    // set leaves the visitor where it was.
+    void wantState(osg::StateSet* state) { _state._wantedStates.push_back(state); }
+    void unwantState() { _state._wantedStates.pop_back(); }
+    void applyWantedStates();
+
+    void call(Call::Kind kind, osg::Referenced* object, osg::RefMatrix* matrix = nullptr, float depth = 0.0f,
+              const osg::Matrixd* modelView = nullptr)
+    {
+        _state._calls.push_back({kind, depth, object, matrix, modelView});
+    }
 
     /** The batch open for the current state graph, or null. */
     JointDrawBatch* openBatch(osgUtil::StateGraph* graph) const;
     void closeBatch(osgUtil::StateGraph* graph);
 
     osgUtil::CullVisitor& _cv;
+    ActorCullState& _state;
+    const ActorCullPlan* _plan;
     bool _smallFeatureCulling;
     bool _computeNearFar;
     bool _frustumCulling;
+    JointModelViews* _modelViews;
     /** The batches this actor is filling, by state graph: a drawable goes into its graph's open batch, which is
       * closed when anything else may land in that graph (a drawable that is not batched, an ordinary traversal),
       * so the graph's leaves keep the order the ordinary traversal gives them. */

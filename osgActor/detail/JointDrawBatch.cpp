@@ -1,9 +1,18 @@
 #include <osgActor/detail/JointDrawBatch.h>
 
 #include <osg/State>
+#include <osgUtil/CullVisitor>
 
 namespace osgActor {
 namespace detail {
+
+float eyeDepth(const osg::Vec3& point, const osg::Matrixd& modelView)
+{
+    using Value = osgUtil::CullVisitor::value_type;
+    return static_cast<float>(-(static_cast<Value>(point[0]) * modelView(0, 2) +
+                                static_cast<Value>(point[1]) * modelView(1, 2) +
+                                static_cast<Value>(point[2]) * modelView(2, 2) + modelView(3, 2)));
+}
 
 JointDrawBatch::JointDrawBatch()
 {
@@ -14,35 +23,21 @@ JointDrawBatch::JointDrawBatch()
     setCullingActive(false);
 }
 
-JointDrawBatch* JointDrawBatch::acquire()
+void JointDrawBatch::reset(const osg::Referenced* keepAlive, const JointModelViews* modelViews)
 {
-    // Batches are let go of in the order they were taken, a frame or two later: looking on from the last one taken
-    // finds a free one at once in the steady state. A few looks, then a new batch, so that a growing crowd does not
-    // look through all the busy ones each time.
-    constexpr std::size_t kLooks = 8;
-    thread_local std::vector<osg::ref_ptr<JointDrawBatch>> pool;
-    thread_local std::size_t next = 0;
-    for (std::size_t k = 0; k < kLooks && k < pool.size(); ++k)
-    {
-        const std::size_t i = (next + k) % pool.size();
-        if (pool[i]->referenceCount() == 1)
-        {
-            next = i + 1;
-            pool[i]->_entries.clear();
-            return pool[i].get();
-        }
-    }
-    pool.push_back(new JointDrawBatch);
-    return pool.back().get();
+    _entries.clear();
+    _keepAlive = keepAlive;
+    _modelViews = modelViews;
 }
 
 void JointDrawBatch::drawImplementation(osg::RenderInfo& renderInfo) const
 {
     osg::State& state = *renderInfo.getState();
     const bool uniforms = state.getUseModelViewAndProjectionUniforms();
+    const osg::Matrixd* matrices = _modelViews->matrices.data();
     for (const Entry& entry : _entries)
     {
-        state.applyModelViewMatrix(entry.modelView);
+        state.applyModelViewMatrix(matrices[entry.frame]);
         if (uniforms) state.applyModelViewAndProjectionUniformsIfRequired();
         entry.drawable->draw(renderInfo);
     }

@@ -2,7 +2,7 @@
 // render leaf (ActorCull). OSG's render graph costs a render leaf per drawable per frame (pooled, but each one
 // referenced, linked into its state graph and reset again), most of a crowd's cull once the traversal itself is
 // gone; the actor's drawables in one state graph of a bin sorted by state are drawn one after the other anyway,
-// so one leaf draws them all, each with its own model-view matrix, as consecutive leaves would.
+// so one leaf draws them all, each with its joint's model-view matrix, as consecutive leaves would.
 #ifndef OSGACTOR_DETAIL_JOINTDRAWBATCH_H
 #define OSGACTOR_DETAIL_JOINTDRAWBATCH_H 1
 
@@ -14,24 +14,41 @@
 namespace osgActor {
 namespace detail {
 
+/** A point's depth in front of the eye, as the cull visitor computes it for the render graph's depth sorting (its
+  * own function is private to it): minus the eye-space z. */
+float eyeDepth(const osg::Vec3& point, const osg::Matrixd& modelView);
+
+/** The eye-space frames of one actor for one cull: the actor's own (index 0) and each planned joint's (index
+  * joint + 1), OSG's row-vector order. Shared by the batches that draw with them, and written only while nothing
+  * else holds them (the cull asks referenceCount()), so a frame still being drawn keeps its matrices. */
+class JointModelViews : public osg::Referenced
+{
+public:
+    std::vector<osg::Matrixd> matrices;
+
+protected:
+    ~JointModelViews() override = default;
+};
+
 class JointDrawBatch : public osg::Drawable
 {
 public:
     JointDrawBatch();
 
-    /** A batch from this thread's pool, empty: one whose render leaf the cull visitor has let go of (it holds it
-      * until it culls again with the same render stage, after that stage was drawn), else a new one. */
-    static JointDrawBatch* acquire();
+    /** Empties the batch for the given matrices; keepAlive holds the drawables it will be given (the actor's cull
+      * plan), as a render leaf keeps its drawable until drawn. */
+    void reset(const osg::Referenced* keepAlive, const JointModelViews* modelViews);
+    /** frame: the index of the drawable's frame in the matrices. */
+    void add(const osg::Drawable& drawable, unsigned frame) { _entries.push_back({&drawable, frame}); }
 
-    /** depth: the drawable's as the cull visitor computes it (tests compare it; a bin sorted by state ignores it). */
-    void add(osg::Drawable& drawable, const osg::Matrixd& modelView, float depth)
-    {
-        _entries.push_back({&drawable, modelView, depth});
-    }
     unsigned getNumEntries() const { return static_cast<unsigned>(_entries.size()); }
-    const osg::Drawable* getEntryDrawable(unsigned i) const { return _entries[i].drawable.get(); }
-    const osg::Matrixd& getEntryModelView(unsigned i) const { return _entries[i].modelView; }
-    float getEntryDepth(unsigned i) const { return _entries[i].depth; }
+    const osg::Drawable* getEntryDrawable(unsigned i) const { return _entries[i].drawable; }
+    const osg::Matrixd& getEntryModelView(unsigned i) const { return _modelViews->matrices[_entries[i].frame]; }
+    /** The drawable's depth as the cull visitor computes it (tests compare it; a bin sorted by state ignores it). */
+    float getEntryDepth(unsigned i) const
+    {
+        return eyeDepth(_entries[i].drawable->getBoundingBox().center(), getEntryModelView(i));
+    }
 
     /** Each drawable with its model-view matrix, as RenderLeaf::render() draws consecutive leaves of one state
       * graph: the matrix applied (and OSG's matrix uniforms where the state uses them), then the drawable. */
@@ -48,11 +65,12 @@ protected:
 private:
     struct Entry
     {
-        osg::ref_ptr<osg::Drawable> drawable; // kept alive until drawn, as a render leaf keeps its drawable
-        osg::Matrixd modelView;
-        float depth;
+        const osg::Drawable* drawable;
+        unsigned frame;
     };
     std::vector<Entry> _entries;
+    osg::ref_ptr<const osg::Referenced> _keepAlive;
+    osg::ref_ptr<const JointModelViews> _modelViews;
 };
 
 } // namespace detail

@@ -1,0 +1,233 @@
+#include <osgActor/detail/ActorCullPlan.h>
+#include <osgActor/detail/PlacedSkeletonNode.h>
+#include <osgActor/detail/Prefetch.h>
+
+#include <osg/Geometry>
+#include <osg/ShapeDrawable>
+
+#include <typeinfo>
+
+namespace osgActor {
+namespace detail {
+
+namespace {
+
+/** No cull callback: the visitor would do nothing else at the node than push its state set. */
+bool hasNoCullCallback(const osg::Node& node) { return !node.getCullCallback(); }
+
+osg::Object::DataVariance dataVarianceOf(const osg::StateSet* state)
+{
+    return state ? state->getDataVariance() : osg::Object::UNSPECIFIED;
+}
+
+/** The address of a node's mask, for prefetching: osg::Node's flags the plan compares share its cache line.
+  * Never instantiated; a pointer to a protected member formed in a derived class may be used on any node. */
+struct NodeFlags : osg::Node
+{
+    static const void* maskAddress(const osg::Node& node)
+    {
+        const osg::Node::NodeMask osg::Node::*const mask = &NodeFlags::_nodeMask;
+        return &(node.*mask);
+    }
+    static const void* boundAddress(const osg::Node& node)
+    {
+        const osg::BoundingSphere osg::Node::*const bound = &NodeFlags::_boundingSphere;
+        return &(node.*bound);
+    }
+    /** Node::isCullingActive() but for its bound's validity, which reads the bound (two more cache lines of a
+      * skeleton node); the cull tests validity where it uses the bound. */
+    static bool cullingActive(const osg::Node& node)
+    {
+        const bool osg::Node::*const active = &NodeFlags::_cullingActive;
+        const unsigned int osg::Node::*const disabled = &NodeFlags::_numChildrenWithCullingDisabled;
+        return node.*active && node.*disabled == 0;
+    }
+};
+
+} // namespace
+
+ActorCullPlan::ActorCullPlan(osg::Group& actor)
+{
+    for (unsigned i = 0; i < actor.getNumChildren(); ++i) addChild(*actor.getChild(i), -1);
+}
+
+bool ActorCullPlan::isPlainJoint(const SkeletonNode& joint)
+{
+    return hasNoCullCallback(joint) && !joint.getHidden() && joint.getReferenceFrame() == osg::Transform::RELATIVE_RF;
+}
+
+bool ActorCullPlan::isPlainDrawable(const osg::Drawable& drawable)
+{
+    const std::type_info& type = typeid(drawable);
+    return hasNoCullCallback(drawable) && (type == typeid(osg::Geometry) || type == typeid(osg::ShapeDrawable));
+}
+
+ActorCullPlan::Step& ActorCullPlan::addStep(Kind kind, osg::Node& node, int joint)
+{
+    Step step;
+    step.kind = kind;
+    step.pathNeeded = false;
+    step.cullingActive = NodeFlags::cullingActive(node);
+    step.stateSet = node.getStateSet();
+    step.batchable = node.getDataVariance() != osg::Object::DYNAMIC &&
+                     dataVarianceOf(step.stateSet) != osg::Object::DYNAMIC;
+    step.joint = joint;
+    step.end = 0;
+    step.mask = node.getNodeMask();
+    step.node = &node;
+    _steps.push_back(step);
+    if (kind == JOINT || kind == GEODE || kind == DRAWABLE)
+    {
+        _held.push_back(&node);
+        addCheck(kind, node);
+    }
+    return _steps.back();
+}
+
+void ActorCullPlan::addCheck(Kind kind, osg::Node& node)
+{
+    for (const NodeCheck& check : _checks)
+        if (check.node == &node) return;
+    NodeCheck check;
+    check.node = &node;
+    check.stateSet = node.getStateSet();
+    check.cullCallback = node.getCullCallback();
+    check.mask = node.getNodeMask();
+    check.cullingActive = NodeFlags::cullingActive(node);
+    const osg::Transform* transform = node.asTransform();
+    check.referenceFrame =
+        static_cast<unsigned char>(transform ? transform->getReferenceFrame() : osg::Transform::RELATIVE_RF);
+    check.dataVariance = static_cast<unsigned char>(node.getDataVariance());
+    check.kind = kind;
+    check.firstChild = static_cast<unsigned>(_geodeChildren.size());
+    check.numChildren = 0;
+    if (kind == GEODE)
+    {
+        const osg::Group& geode = *node.asGroup();
+        check.numChildren = geode.getNumChildren();
+        for (unsigned i = 0; i < geode.getNumChildren(); ++i) _geodeChildren.push_back(geode.getChild(i));
+    }
+    _checks.push_back(check);
+    addStateCheck(check.stateSet);
+}
+
+void ActorCullPlan::addStateCheck(const osg::StateSet* state)
+{
+    if (!state) return;
+    for (const StateCheck& check : _stateChecks)
+        if (check.stateSet == state) return;
+    _stateChecks.push_back({state, state->getRenderBinMode(), state->getBinNumber(), state->getBinName(),
+                            state->getNestRenderBins(), state->getDataVariance()});
+}
+
+void ActorCullPlan::addChild(osg::Node& child, int joint)
+{
+    // Exact classes only: a subclass may traverse, cull or draw in its own way.
+    const std::type_info& type = typeid(child);
+    if ((type == typeid(PlacedSkeletonNode) || type == typeid(SkeletonNode)) &&
+        isPlainJoint(static_cast<SkeletonNode&>(child)))
+        addJoint(static_cast<SkeletonNode&>(child), joint);
+    else if (type == typeid(osg::Geode) && hasNoCullCallback(child))
+        addGeode(static_cast<osg::Geode&>(child), joint);
+    else
+        addOrdinary(child, joint);
+}
+
+void ActorCullPlan::addJoint(SkeletonNode& node, int parent)
+{
+    const int joint = static_cast<int>(_joints.size());
+    _joints.push_back({&node, parent});
+    const unsigned index = static_cast<unsigned>(_steps.size());
+    addStep(JOINT, node, joint);
+    _open.push_back(index);
+    for (unsigned i = 0; i < node.getNumChildren(); ++i) addChild(*node.getChild(i), joint);
+    _open.pop_back();
+    addStep(END_JOINT, node, joint).pathNeeded = _steps[index].pathNeeded;
+    _steps[index].end = static_cast<unsigned>(_steps.size());
+}
+
+void ActorCullPlan::addGeode(osg::Geode& geode, int joint)
+{
+    const unsigned index = static_cast<unsigned>(_steps.size());
+    addStep(GEODE, geode, joint);
+    _open.push_back(index);
+    for (unsigned i = 0; i < geode.getNumChildren(); ++i)
+    {
+        osg::Node& child = *geode.getChild(i);
+        osg::Drawable* drawable = child.asDrawable();
+        if (drawable && isPlainDrawable(*drawable)) addStep(DRAWABLE, *drawable, joint);
+        else addOrdinary(child, joint);
+    }
+    _open.pop_back();
+    addStep(END_GEODE, geode, joint).pathNeeded = _steps[index].pathNeeded;
+    _steps[index].end = static_cast<unsigned>(_steps.size());
+}
+
+void ActorCullPlan::addOrdinary(osg::Node& node, int joint)
+{
+    _held.push_back(&node);
+    addStep(ORDINARY, node, joint);
+    notePathNeeded();
+}
+
+void ActorCullPlan::notePathNeeded()
+{
+    for (unsigned index : _open) _steps[index].pathNeeded = true;
+}
+
+void ActorCullPlan::prefetchJoints() const
+{
+    for (const Joint& joint : _joints)
+    {
+        const SkeletonNode& node = *joint.node;
+        prefetchForRead(NodeFlags::maskAddress(node), 1);
+        prefetchForRead(node.getMatrix().ptr(), sizeof(osg::Matrixd));
+        prefetchForRead(NodeFlags::boundAddress(node), sizeof(osg::BoundingSphere) + sizeof(bool));
+    }
+}
+
+bool ActorCullPlan::isCurrent() const
+{
+    // Every node's flags fetched first, then compared: the fetches overlap rather than wait one after the other.
+    for (const NodeCheck& check : _checks) prefetchForRead(NodeFlags::maskAddress(*check.node), 1);
+    for (const NodeCheck& check : _checks)
+        if (!isUnchanged(check)) return false;
+    for (const StateCheck& check : _stateChecks)
+        if (!isUnchanged(check)) return false;
+    return true;
+}
+
+bool ActorCullPlan::isUnchanged(const NodeCheck& check) const
+{
+    const osg::Node& node = *check.node;
+    if (node.getNodeMask() != check.mask || node.getStateSet() != check.stateSet ||
+        node.getCullCallback() != check.cullCallback || NodeFlags::cullingActive(node) != check.cullingActive)
+        return false;
+    switch (check.kind)
+    {
+    case JOINT:
+        // Its class and children are the actor's to watch; its reference frame is the one flag osg::Transform
+        // keeps in the same cache line as the node's.
+        return static_cast<const SkeletonNode&>(node).getReferenceFrame() == check.referenceFrame;
+    case GEODE:
+    {
+        const osg::Group& geode = static_cast<const osg::Group&>(node);
+        if (geode.getNumChildren() != check.numChildren) return false;
+        for (unsigned i = 0; i < check.numChildren; ++i)
+            if (geode.getChild(i) != _geodeChildren[check.firstChild + i]) return false;
+        return true;
+    }
+    default: return node.getDataVariance() == check.dataVariance;
+    }
+}
+
+bool ActorCullPlan::isUnchanged(const StateCheck& check)
+{
+    const osg::StateSet& state = *check.stateSet;
+    return state.getDataVariance() == check.dataVariance && state.getRenderBinMode() == check.binMode &&
+           state.getBinNumber() == check.binNumber && state.getNestRenderBins() == check.nestRenderBins &&
+           state.getBinName() == check.binName;
+}
+
+} // namespace detail
+} // namespace osgActor

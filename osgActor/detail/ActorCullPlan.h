@@ -1,0 +1,140 @@
+// Internal to the library (not installed, NOT API): what the cull of one actor goes through, found once and kept
+// (issue 28). ActorCull used to find it every frame, reading every skeleton node's class, children, flags and matrix
+// (most of a crowd's frame, since 31,000 nodes do not stay in the caches from one frame to the next). The plan
+// lists, in the order the cull visitor would meet them, the actor's plain skeleton nodes, the plain geodes below
+// them, their plain drawables, and the subtrees that need the ordinary traversal, with what the cull decided from.
+//
+// It stays true while nothing it decided from changes:
+//  - children added, removed or replaced below the actor or a skeleton node, and a joint hidden or shown: both
+//    classes tell their actor (ActorNode::dirtyCullPlan()), so the plan never reads their children or hidden flags;
+//  - node masks, state sets, cull callbacks and culling flags, which OSG changes without telling anyone, and the
+//    children of geodes, which are the user's: isCurrent() compares them, every frame, with what the plan saw.
+//    On a skeleton node they share one cache line (osg::Node's and osg::Group's members next to each other).
+// A subtree handed to the ordinary traversal is not looked into: the visitor finds what is below it every frame.
+#ifndef OSGACTOR_DETAIL_ACTORCULLPLAN_H
+#define OSGACTOR_DETAIL_ACTORCULLPLAN_H 1
+
+#include <osgActor/SkeletonNode>
+
+#include <osg/Drawable>
+#include <osg/Geode>
+#include <osg/Referenced>
+#include <osg/ref_ptr>
+
+#include <string>
+#include <vector>
+
+namespace osgActor {
+namespace detail {
+
+class ActorCullPlan : public osg::Referenced
+{
+public:
+    /** The plan of the actor's children as they are now. */
+    explicit ActorCullPlan(osg::Group& actor);
+
+    /** Whether nothing the plan decided from that OSG does not report has changed since it was made. */
+    bool isCurrent() const;
+    /** Asks the processor for what a cull of the planned joints reads (their flags, matrices and bounds), so that
+      * the fetches overlap: with many actors the nodes have left the caches since the update. */
+    void prefetchJoints() const;
+
+    /** What the cull does at one step, in the visitor's order. A JOINT or GEODE step opens a subtree that ends
+      * at step end (exclusive, its closing step end - 1). */
+    enum Kind : unsigned char
+    {
+        JOINT,      // a plain skeleton node: its frame is joints[joint]
+        END_JOINT,
+        GEODE,      // a plain osg::Geode in the frame of joint (-1: the actor's)
+        END_GEODE,
+        DRAWABLE,   // a plain drawable of the geode it is in, in the frame of joint
+        ORDINARY    // a node the visitor traverses itself, with the frame of joint pushed
+    };
+    /** Small: every step is read at every cull of every actor. */
+    struct Step
+    {
+        Kind kind;
+        /** The subtree holds an ORDINARY step: the node must be on the visitor's node path, which cull
+          * callbacks below may read. */
+        bool pathNeeded;
+        /** Culling is on at the node (Node::isCullingActive() but for its bound's validity, tested where used). */
+        bool cullingActive;
+        /** DRAWABLE: neither it nor its state set is DYNAMIC, so it may share a batch's leaf. */
+        bool batchable;
+        int joint;              // the frame the step's node is in (for JOINT: its own)
+        unsigned end;           // JOINT and GEODE: the step after the subtree's end
+        osg::Node::NodeMask mask;
+        osg::Node* node;        // kept alive by the plan
+        osg::StateSet* stateSet;
+    };
+    /** A plain skeleton node: its matrix (local, the parent joint's frame) composes the frames below it. */
+    struct Joint
+    {
+        SkeletonNode* node;
+        int parent; // index into joints; -1: the actor's frame
+    };
+
+    const std::vector<Step>& getSteps() const { return _steps; }
+    const std::vector<Joint>& getJoints() const { return _joints; }
+    /** The drawable classes whose drawing the plan may batch: no cull callback, and a class known not to cull in
+      * its own way (a subclass such as SkinnedMesh overrides accept() to skin or upload before it is drawn). */
+    static bool isPlainDrawable(const osg::Drawable& drawable);
+
+protected:
+    ~ActorCullPlan() override = default;
+
+private:
+    /** What the plan decided from at one node (each node once, however many times the plan meets it: a geode may
+      * hang below every joint), as the plan saw it. */
+    struct NodeCheck
+    {
+        const osg::Node* node;
+        const osg::StateSet* stateSet;
+        const osg::Callback* cullCallback;
+        osg::Node::NodeMask mask;
+        bool cullingActive;
+        unsigned char referenceFrame; // skeleton nodes
+        unsigned char dataVariance;   // drawables
+        unsigned char kind;           // JOINT, GEODE or DRAWABLE
+        unsigned firstChild, numChildren; // geodes: their children in _geodeChildren
+    };
+    /** What decides batching in a state set (each once), which OSG lets change in place: its render bin and its
+      * data variance. */
+    struct StateCheck
+    {
+        osg::ref_ptr<const osg::StateSet> stateSet; // held: it is read at every check
+        osg::StateSet::RenderBinMode binMode;
+        int binNumber;
+        std::string binName;
+        bool nestRenderBins;
+        osg::Object::DataVariance dataVariance;
+    };
+
+    void addChild(osg::Node& child, int joint);
+    void addJoint(SkeletonNode& node, int parent);
+    void addGeode(osg::Geode& geode, int joint);
+    void addOrdinary(osg::Node& node, int joint);
+    Step& addStep(Kind kind, osg::Node& node, int joint);
+    void addCheck(Kind kind, osg::Node& node);
+    void addStateCheck(const osg::StateSet* state);
+    static bool isPlainJoint(const SkeletonNode& joint);
+    /** Marks the steps open above the newest one as needing the node path. */
+    void notePathNeeded();
+    bool isUnchanged(const NodeCheck& check) const;
+    static bool isUnchanged(const StateCheck& check);
+
+    std::vector<Step> _steps;
+    std::vector<Joint> _joints;
+    std::vector<NodeCheck> _checks;
+    std::vector<StateCheck> _stateChecks;
+    /** Each checked geode's children when planned, in order: consecutive runs, one per geode. */
+    std::vector<const osg::Node*> _geodeChildren;
+    /** Every node a step names, held so that none of them is freed while the plan is kept. */
+    std::vector<osg::ref_ptr<osg::Node>> _held;
+    std::vector<unsigned> _open; // while planning: the JOINT and GEODE steps whose subtree is being planned
+};
+
+} // namespace detail
+} // namespace osgActor
+
+#endif

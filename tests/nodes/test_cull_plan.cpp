@@ -1,0 +1,297 @@
+// The actor culled as one keeps a plan of what hangs below its joints and, while nothing changed, replays its last
+// cull (osgActor/detail/ActorCullPlan.h, ActorCull.h): every edit a user can make between two frames (children
+// added, removed or replaced; masks, state sets, render bins, cull callbacks; hiding; a joint's matrix set by hand; a
+// pose; the camera) gives the render graph the ordinary traversal gives, leaf by leaf, and an actor that did not
+// change gives the very leaves of its previous frame.
+#include "CullProbe"
+#include "NodeTestUtil"
+#include "render/TestFigure.h"
+
+#include <osgActor/ActorNode>
+#include <osgActor/detail/SkeletonNodeAccess.h>
+
+#include <osg/Geometry>
+#include <osg/ShapeDrawable>
+#include <osgUtil/CullVisitor>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+/** Three test figures in a row, seen from the front, their poses apart. */
+struct Scene
+{
+    osg::ref_ptr<osg::Group> root = new osg::Group;
+    std::vector<osg::ref_ptr<ActorNode>> actors;
+    CullProbe probe{root.get()};
+    unsigned frame = 0;
+
+    Scene()
+    {
+        for (unsigned a = 0; a < 3; ++a)
+        {
+            osg::ref_ptr<ActorNode> actor = makeTestFigure();
+            actor->setPreTranslation(osg::Vec3d(1.1 * a, 0.2 * a, 0.0));
+            actor->setDof("l_shoulder.ry", -0.3 * a);
+            actor->setDof("r_knee.rx", 0.2 * a);
+            actor->update(nullptr);
+            actors.push_back(actor);
+            root->addChild(actor.get());
+        }
+        probe.lookAt(osg::Vec3d(1.1, -6.0, 1.5), osg::Vec3d(1.1, 0.0, 0.9));
+    }
+    ActorNode& first() { return *actors.front(); }
+
+    void setCullMode(ActorNode::CullMode mode)
+    {
+        for (osg::ref_ptr<ActorNode>& actor : actors) actor->setCullMode(mode);
+    }
+
+    /** Culls as one, then node by node with the same camera, and expects the same render graph; returns the leaves
+      * culled as one. */
+    std::vector<CulledLeaf> cullExpectingTheOrdinaryGraph()
+    {
+        const std::vector<CulledLeaf> asOne = probe.cull(++frame);
+        const double asOneNear = probe.calculatedNear(), asOneFar = probe.calculatedFar();
+        setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        const std::vector<CulledLeaf> ordinary = probe.cull(++frame);
+        setCullMode(ActorNode::CULL_AS_ONE);
+        EXPECT_EQ(asOneNear, probe.calculatedNear());
+        EXPECT_EQ(asOneFar, probe.calculatedFar());
+        EXPECT_EQ(asOne.size(), ordinary.size());
+        for (std::size_t i = 0; i < asOne.size() && i < ordinary.size(); ++i)
+            EXPECT_TRUE(asOne[i] == ordinary[i]) << "leaf " << i;
+        return asOne;
+    }
+
+    /** The render leaves' drawables as the render graph holds them (an actor's batches, not their entries). */
+    std::set<const osg::Drawable*> leafDrawables()
+    {
+        std::set<const osg::Drawable*> drawables;
+        collect(*probe.sceneView().getRenderStage(), drawables);
+        return drawables;
+    }
+
+private:
+    static void collect(const osgUtil::RenderBin& bin, std::set<const osg::Drawable*>& drawables)
+    {
+        for (const auto& nested : bin.getRenderBinList()) collect(*nested.second, drawables);
+        for (const osgUtil::RenderLeaf* leaf : bin.getRenderLeafList()) drawables.insert(leaf->_drawable.get());
+        for (const osgUtil::StateGraph* graph : bin.getStateGraphList())
+            for (const osg::ref_ptr<osgUtil::RenderLeaf>& leaf : graph->_leaves) drawables.insert(leaf->_drawable.get());
+    }
+};
+
+const CulledLeaf* find(const std::vector<CulledLeaf>& leaves, const osg::Drawable* drawable)
+{
+    for (const CulledLeaf& leaf : leaves)
+        if (leaf.drawable == drawable) return &leaf;
+    return nullptr;
+}
+
+bool contains(const std::vector<CulledLeaf>& leaves, const osg::Drawable* drawable)
+{
+    return find(leaves, drawable) != nullptr;
+}
+
+class CountingCullCallback : public osg::NodeCallback
+{
+public:
+    void operator()(osg::Node* node, osg::NodeVisitor* nv) override
+    {
+        ++calls;
+        traverse(node, nv);
+    }
+    unsigned calls = 0;
+};
+
+} // namespace
+
+TEST(CullPlan, AnUnchangedActorBeforeAStillCameraGivesTheLeavesOfItsPreviousFrame)
+{
+    Scene scene;
+    scene.cullExpectingTheOrdinaryGraph();
+    scene.probe.cull(++scene.frame);
+    const std::set<const osg::Drawable*> before = scene.leafDrawables();
+    const std::vector<CulledLeaf> kept = scene.probe.cull(++scene.frame);
+    EXPECT_EQ(scene.leafDrawables(), before); // the same batches
+    std::size_t numBatched = 0;
+    for (const CulledLeaf& leaf : kept) numBatched += leaf.batched;
+    EXPECT_GT(numBatched, kept.size() / 2); // the test can fail: the actors' drawables are batched
+    // The kept leaves were not computed again: a joint matrix written behind OSG's back (no setMatrix(), no pose,
+    // so nothing dirtied) does not show in them, and shows once something the cull watches changes.
+    ActorNode& actor = scene.first();
+    const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
+    detail::SkeletonNodeAccess::matrixStorage(*actor.getSkeletonNode("head"))[12] += 0.25; // x of the translation
+    const std::vector<CulledLeaf> replayed = scene.probe.cull(++scene.frame);
+    ASSERT_EQ(replayed.size(), kept.size());
+    for (std::size_t i = 0; i < kept.size(); ++i) EXPECT_TRUE(replayed[i] == kept[i]) << "leaf " << i;
+    scene.probe.lookAt(osg::Vec3d(1.1, -6.5, 1.5), osg::Vec3d(1.1, 0.0, 0.9)); // the camera moved
+    const std::vector<CulledLeaf> afresh = scene.cullExpectingTheOrdinaryGraph();
+    // Seen from there without the write, the head would be where it was, to the eye's side.
+    const CulledLeaf* keptHead = find(kept, head);
+    const CulledLeaf* afreshHead = find(afresh, head);
+    ASSERT_TRUE(keptHead && afreshHead);
+    EXPECT_GT(std::abs(afreshHead->modelView[12] - keptHead->modelView[12]), 0.2);
+}
+
+TEST(CullPlan, AMovedCameraOrAPoseChangeIsCulledAfresh)
+{
+    Scene scene;
+    scene.cullExpectingTheOrdinaryGraph();
+    scene.probe.lookAt(osg::Vec3d(0.5, -5.0, 2.0), osg::Vec3d(1.1, 0.0, 0.9));
+    scene.cullExpectingTheOrdinaryGraph();
+    scene.first().setDof("l_elbow.rx", -1.2);
+    scene.first().update(nullptr);
+    scene.cullExpectingTheOrdinaryGraph();
+    // An actor moved in the scene (its pre-transform) moves against the eye.
+    scene.actors[1]->setPreTranslation(osg::Vec3d(1.3, 0.5, 0.0));
+    scene.actors[1]->update(nullptr);
+    scene.cullExpectingTheOrdinaryGraph();
+}
+
+TEST(CullPlan, AJointMatrixSetByHandIsSeen)
+{
+    Scene scene;
+    scene.cullExpectingTheOrdinaryGraph();
+    // Not through the pose: osg::MatrixTransform::setMatrix() on a skeleton node, as a user may.
+    scene.first().getSkeletonNode("head")->setMatrix(osg::Matrix::translate(0.3, 0.0, 0.4));
+    const std::vector<CulledLeaf> leaves = scene.cullExpectingTheOrdinaryGraph();
+    EXPECT_FALSE(leaves.empty());
+}
+
+TEST(CullPlan, ChildrenAddedRemovedOrReplacedBelowJointsAndGeodesAreSeen)
+{
+    Scene scene;
+    scene.cullExpectingTheOrdinaryGraph();
+    ActorNode& actor = scene.first();
+    osg::ref_ptr<osg::Geode> added = makeBox(osg::Vec3(0.0f, -0.2f, 0.0f), 0.1f);
+    actor.getSkeletonNode("chest")->addChild(added.get());
+    EXPECT_TRUE(contains(scene.cullExpectingTheOrdinaryGraph(), added->getDrawable(0)));
+    // A drawable added to a geode already planned (osg::Geode is not the actor's to watch).
+    osg::ref_ptr<osg::ShapeDrawable> second = new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(0.0f, -0.3f, 0.0f), 0.05f));
+    added->addDrawable(second.get());
+    EXPECT_TRUE(contains(scene.cullExpectingTheOrdinaryGraph(), second.get()));
+    // Replaced in place: the geode's count of children stays the same.
+    osg::ref_ptr<osg::ShapeDrawable> third = new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(0.1f, -0.3f, 0.0f), 0.05f));
+    added->setDrawable(1, third.get());
+    std::vector<CulledLeaf> leaves = scene.cullExpectingTheOrdinaryGraph();
+    EXPECT_TRUE(contains(leaves, third.get()));
+    EXPECT_FALSE(contains(leaves, second.get()));
+    // Replaced in place below a joint, then removed.
+    osg::ref_ptr<osg::Geode> replacement = makeBox(osg::Vec3(0.0f, -0.25f, 0.1f), 0.08f);
+    actor.getSkeletonNode("chest")->replaceChild(added.get(), replacement.get());
+    leaves = scene.cullExpectingTheOrdinaryGraph();
+    EXPECT_TRUE(contains(leaves, replacement->getDrawable(0)));
+    EXPECT_FALSE(contains(leaves, added->getDrawable(0)));
+    actor.getSkeletonNode("chest")->removeChild(replacement.get());
+    EXPECT_FALSE(contains(scene.cullExpectingTheOrdinaryGraph(), replacement->getDrawable(0)));
+    // Right below the actor node.
+    osg::ref_ptr<osg::Geode> onActor = makeBox(osg::Vec3(0.4f, 0.0f, 1.0f), 0.1f);
+    actor.addChild(onActor.get());
+    EXPECT_TRUE(contains(scene.cullExpectingTheOrdinaryGraph(), onActor->getDrawable(0)));
+}
+
+TEST(CullPlan, HidingAndShowingAJointIsSeen)
+{
+    Scene scene;
+    ActorNode& actor = scene.first();
+    osg::Geode* arm = actor.getSkeletonNode("l_elbow")->getChild(0)->asGeode();
+    ASSERT_NE(arm, nullptr);
+    EXPECT_TRUE(contains(scene.cullExpectingTheOrdinaryGraph(), arm->getDrawable(0)));
+    actor.getSkeletonNode("l_shoulder")->setHidden(true);
+    EXPECT_FALSE(contains(scene.cullExpectingTheOrdinaryGraph(), arm->getDrawable(0)));
+    actor.getSkeletonNode("l_shoulder")->setHidden(false);
+    EXPECT_TRUE(contains(scene.cullExpectingTheOrdinaryGraph(), arm->getDrawable(0)));
+}
+
+TEST(CullPlan, NodeMasksChangedInPlaceAreSeen)
+{
+    Scene scene;
+    ActorNode& actor = scene.first();
+    osg::Geode* arm = actor.getSkeletonNode("l_elbow")->getChild(0)->asGeode();
+    osg::Geode* head = actor.getSkeletonNode("head")->getChild(0)->asGeode();
+    scene.cullExpectingTheOrdinaryGraph();
+    actor.getSkeletonNode("l_shoulder")->setNodeMask(0); // a joint: its whole subtree
+    EXPECT_FALSE(contains(scene.cullExpectingTheOrdinaryGraph(), arm->getDrawable(0)));
+    head->setNodeMask(0); // a geode
+    EXPECT_FALSE(contains(scene.cullExpectingTheOrdinaryGraph(), head->getDrawable(0)));
+    head->setNodeMask(~0u);
+    head->getDrawable(0)->setNodeMask(0); // a drawable
+    EXPECT_FALSE(contains(scene.cullExpectingTheOrdinaryGraph(), head->getDrawable(0)));
+    actor.getSkeletonNode("l_shoulder")->setNodeMask(~0u);
+    head->getDrawable(0)->setNodeMask(~0u);
+    EXPECT_TRUE(contains(scene.cullExpectingTheOrdinaryGraph(), arm->getDrawable(0)));
+}
+
+TEST(CullPlan, StateSetsAndRenderBinsChangedInPlaceAreSeen)
+{
+    Scene scene;
+    ActorNode& actor = scene.first();
+    scene.cullExpectingTheOrdinaryGraph();
+    // A state set given to a joint and to a drawable: their drawables go to other state graphs.
+    actor.getSkeletonNode("r_hip")->getOrCreateStateSet()->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+    osg::Geode* head = actor.getSkeletonNode("head")->getChild(0)->asGeode();
+    head->getDrawable(0)->getOrCreateStateSet()->setMode(GL_CULL_FACE, osg::StateAttribute::ON);
+    scene.cullExpectingTheOrdinaryGraph();
+    // The head's material's state set, shared with nothing, moved to the depth-sorted bin in place: its drawable
+    // leaves the actor's batch for a leaf of its own.
+    head->getStateSet()->setRenderingHint(osg::StateSet::TRANSPARENT_BIN);
+    const std::vector<CulledLeaf> leaves = scene.cullExpectingTheOrdinaryGraph();
+    bool headBatched = true;
+    for (const CulledLeaf& leaf : leaves)
+        if (leaf.drawable == head->getDrawable(0)) headBatched = leaf.batched;
+    EXPECT_FALSE(headBatched);
+    // And a dynamic drawable gets a leaf of its own too.
+    osg::Geode* knee = actor.getSkeletonNode("l_knee")->getChild(0)->asGeode();
+    knee->getDrawable(0)->setDataVariance(osg::Object::DYNAMIC);
+    const std::vector<CulledLeaf> withDynamic = scene.cullExpectingTheOrdinaryGraph();
+    const CulledLeaf* kneeLeaf = find(withDynamic, knee->getDrawable(0));
+    ASSERT_NE(kneeLeaf, nullptr);
+    EXPECT_FALSE(kneeLeaf->batched);
+}
+
+TEST(CullPlan, CullCallbacksSetInPlaceAreCalled)
+{
+    Scene scene;
+    ActorNode& actor = scene.first();
+    scene.cullExpectingTheOrdinaryGraph();
+    osg::ref_ptr<CountingCullCallback> onJoint = new CountingCullCallback;
+    osg::ref_ptr<CountingCullCallback> onGeode = new CountingCullCallback;
+    actor.getSkeletonNode("r_elbow")->setCullCallback(onJoint.get());
+    actor.getSkeletonNode("head")->getChild(0)->setCullCallback(onGeode.get());
+    scene.cullExpectingTheOrdinaryGraph(); // as one, then node by node: each callback called in both
+    EXPECT_EQ(onJoint->calls, 2u);
+    EXPECT_EQ(onGeode->calls, 2u);
+    // Called at every cull, kept or not.
+    scene.probe.cull(++scene.frame);
+    scene.probe.cull(++scene.frame);
+    EXPECT_EQ(onJoint->calls, 4u);
+    EXPECT_EQ(onGeode->calls, 4u);
+    actor.getSkeletonNode("r_elbow")->setCullCallback(nullptr);
+    scene.cullExpectingTheOrdinaryGraph();
+    EXPECT_EQ(onJoint->calls, 4u);
+}
+
+TEST(CullPlan, TwoCamerasCullingOneActorGetEachTheOrdinaryGraph)
+{
+    Scene scene;
+    CullProbe side(scene.root.get());
+    side.lookAt(osg::Vec3d(-5.0, -1.0, 1.2), osg::Vec3d(1.1, 0.0, 0.9));
+    for (unsigned round = 0; round < 3; ++round)
+    {
+        scene.cullExpectingTheOrdinaryGraph();
+        const std::vector<CulledLeaf> asOne = side.cull(100 + 2 * round);
+        scene.setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        const std::vector<CulledLeaf> ordinary = side.cull(101 + 2 * round);
+        scene.setCullMode(ActorNode::CULL_AS_ONE);
+        ASSERT_EQ(asOne.size(), ordinary.size());
+        for (std::size_t i = 0; i < asOne.size(); ++i) EXPECT_TRUE(asOne[i] == ordinary[i]) << "leaf " << i;
+    }
+}
