@@ -1,0 +1,79 @@
+// Internal to the library (not installed): eight floats as one value, for SkinBoundsJob's groups of eight pieces.
+// GCC and Clang compile their vector extension to one AVX register in the x86-64-v3 clone of OSGACTOR_HOT_PATH and
+// to two SSE registers at the x86-64 baseline; other compilers get the same operations on a plain array.
+#ifndef OSGACTOR_CORE_SKIN_FLOAT8_H
+#define OSGACTOR_CORE_SKIN_FLOAT8_H 1
+
+#include "Float4.h"
+
+#include <cstring>
+
+namespace osgActor {
+namespace skin {
+
+#if defined(__GNUC__) && !defined(__clang__)
+// Every function taking or returning a Float8 is inlined (OSGACTOR_SKIN_INLINE), so GCC's note that a 32-byte vector
+// passed by value has another ABI without AVX concerns no call: off for the file that includes this.
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
+#if defined(__GNUC__) || defined(__clang__)
+typedef float Float8 __attribute__((vector_size(32)));
+
+/** Per lane, a < b ? x : y. */
+OSGACTOR_SKIN_INLINE Float8 selectLess(const Float8& a, const Float8& b, const Float8& x, const Float8& y)
+{
+    return a < b ? x : y;
+}
+#else
+struct Float8
+{
+    float v[8];
+    float& operator[](int i) { return v[i]; }
+    float operator[](int i) const { return v[i]; }
+};
+template <class Op>
+inline Float8 lanewise(const Float8& a, const Float8& b, Op op)
+{
+    Float8 r;
+    for (int i = 0; i < 8; ++i) r[i] = op(a[i], b[i]);
+    return r;
+}
+inline Float8 operator+(const Float8& a, const Float8& b) { return lanewise(a, b, [](float x, float y) { return x + y; }); }
+inline Float8 operator-(const Float8& a, const Float8& b) { return lanewise(a, b, [](float x, float y) { return x - y; }); }
+inline Float8 operator*(const Float8& a, const Float8& b) { return lanewise(a, b, [](float x, float y) { return x * y; }); }
+inline Float8 operator-(const Float8& a) { return lanewise(a, a, [](float x, float) { return -x; }); }
+inline Float8 selectLess(const Float8& a, const Float8& b, const Float8& x, const Float8& y)
+{
+    Float8 r;
+    for (int i = 0; i < 8; ++i) r[i] = a[i] < b[i] ? x[i] : y[i];
+    return r;
+}
+#endif
+
+/** Eight floats from memory with no alignment required. */
+OSGACTOR_SKIN_INLINE Float8 loadFloat8(const float* from)
+{
+    Float8 value;
+    std::memcpy(&value, from, sizeof value);
+    return value;
+}
+
+OSGACTOR_SKIN_INLINE void storeFloat8(float* to, const Float8& value) { std::memcpy(to, &value, sizeof value); }
+
+/** s in every lane. */
+OSGACTOR_SKIN_INLINE Float8 splatFloat8(float s)
+{
+    Float8 value;
+    for (int i = 0; i < 8; ++i) value[i] = s;
+    return value;
+}
+
+OSGACTOR_SKIN_INLINE Float8 min8(const Float8& a, const Float8& b) { return selectLess(b, a, b, a); }
+OSGACTOR_SKIN_INLINE Float8 max8(const Float8& a, const Float8& b) { return selectLess(a, b, b, a); }
+OSGACTOR_SKIN_INLINE Float8 abs8(const Float8& a) { return max8(a, -a); }
+
+} // namespace skin
+} // namespace osgActor
+
+#endif
