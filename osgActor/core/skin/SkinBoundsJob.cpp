@@ -2,6 +2,7 @@
 
 #include "../detail/HotPath.h"
 #include "Float8.h"
+#include "IndexScan.h"
 
 #include <algorithm>
 #include <cmath>
@@ -121,23 +122,31 @@ SkinBoundsJob makeSkinBoundsJob(const Skin& skin)
     return job;
 }
 
+namespace {
+
+/** validate()'s scans, built for x86-64-v3 and the baseline (OSGACTOR_HOT_PATH) as they run every frame: every
+  * piece's joints within the joint list, and every joint of the list and of the groups within the matrices. */
+OSGACTOR_HOT_PATH bool piecesFit(const SkinBoundsJob& job)
+{
+    const std::size_t listed = job.blendSetJoints.size();
+    bool fit = true;
+    for (const SkinBlendSet& set : job.blendSets)
+        fit &= (set.numJoints - 1u < kMaxSkinInfluences) & (set.firstJoint <= listed) &
+               (set.numJoints <= listed - set.firstJoint); // unsigned: wraps past the end, caught by the previous
+    const long long numMatrices = static_cast<long long>(job.matrices.size());
+    fit &= skin::largestIndexOf(job.blendSetJoints.data(), listed) < numMatrices;
+    for (const SkinBlendSetGroup& group : job.blendSetGroups)
+        fit &= skin::largestIndexOf(&group.joints[0][0], kSkinBlendSetGroupJoints * kSkinBlendSetGroupSize) < numMatrices;
+    return fit;
+}
+
+} // namespace
+
 bool SkinBoundsJob::validate() const
 {
     if (bound == nullptr) return false;
     if (blendSetWeights.size() != blendSetJoints.size()) return false;
-    for (const SkinBlendSet& set : blendSets)
-    {
-        if (set.numJoints == 0 || set.numJoints > kMaxSkinInfluences || set.firstJoint > blendSetJoints.size() ||
-            set.numJoints > blendSetJoints.size() - set.firstJoint)
-            return false;
-        for (std::uint32_t i = 0; i < set.numJoints; ++i)
-            if (blendSetJoints[set.firstJoint + i] >= matrices.size()) return false;
-    }
-    for (const SkinBlendSetGroup& group : blendSetGroups)
-        for (const auto& slot : group.joints)
-            for (const std::uint32_t joint : slot)
-                if (joint >= matrices.size()) return false;
-    return true;
+    return piecesFit(*this);
 }
 
 std::vector<SkinBlendSetGroup> groupSkinBlendSets(Span<const SkinBlendSet> sets, Span<const std::uint32_t> setJoints,
@@ -388,7 +397,7 @@ OSGACTOR_HOT_PATH SkinBox computeBound(const SkinBoundsJob& job)
     SkinBox result = grouped ? groupsBound(job.blendSetGroups, matrices.data(), bindReach) : SkinBox();
     for (const SkinBlendSet& set : blendSets)
     {
-        if (set.box.box.isEmpty() || (grouped && set.numJoints <= kSkinBlendSetGroupJoints)) continue;
+        if ((grouped && set.numJoints <= kSkinBlendSetGroupJoints) || set.box.box.isEmpty()) continue;
         bindReach = std::max(bindReach, bindReachOf(set.box));
         SkinBox box;
         if (job.method == SkinningMethod::DualQuaternion)
