@@ -17,6 +17,16 @@ namespace skin {
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 
+// GCC from 12 and Clang shuffle and join vectors with __builtin_shufflevector; elsewhere, lane by lane.
+#if defined(__has_builtin)
+#if __has_builtin(__builtin_shufflevector)
+#define OSGACTOR_SKIN_SHUFFLEVECTOR 1
+#endif
+#endif
+#ifndef OSGACTOR_SKIN_SHUFFLEVECTOR
+#define OSGACTOR_SKIN_SHUFFLEVECTOR 0
+#endif
+
 #if defined(__GNUC__) || defined(__clang__)
 typedef float Float8 __attribute__((vector_size(32)));
 
@@ -67,6 +77,32 @@ OSGACTOR_SKIN_INLINE Float8 splatFloat8(float s)
     Float8 value;
     for (int i = 0; i < 8; ++i) value[i] = s;
     return value;
+}
+
+/** The vector (pick(I0), ..., pick(I7)) where pick(i) is a[i] for i < 8 and b[i - 8] otherwise. */
+template <int I0, int I1, int I2, int I3, int I4, int I5, int I6, int I7>
+OSGACTOR_SKIN_INLINE Float8 shuffle8(const Float8& a, const Float8& b)
+{
+#if OSGACTOR_SKIN_SHUFFLEVECTOR
+    return __builtin_shufflevector(a, b, I0, I1, I2, I3, I4, I5, I6, I7);
+#else
+    const int picks[8] = {I0, I1, I2, I3, I4, I5, I6, I7};
+    Float8 value;
+    for (int i = 0; i < 8; ++i) value[i] = picks[i] < 8 ? a[picks[i]] : b[picks[i] - 8];
+    return value;
+#endif
+}
+
+/** low's four floats, then high's. */
+OSGACTOR_SKIN_INLINE Float8 joinFloat4(const Float4& low, const Float4& high)
+{
+#if OSGACTOR_SKIN_SHUFFLEVECTOR
+    return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
+    Float8 value;
+    for (int i = 0; i < 4; ++i) value[i] = low[i], value[4 + i] = high[i];
+    return value;
+#endif
 }
 
 OSGACTOR_SKIN_INLINE Float8 min8(const Float8& a, const Float8& b) { return selectLess(b, a, b, a); }

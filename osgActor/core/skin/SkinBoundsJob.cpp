@@ -12,9 +12,16 @@ namespace osgActor {
 
 namespace {
 
-/** The margin around the bound, relative to the size of the numbers SkinningJob adds: its float rounding is a small
-  * multiple of 2^-24 of them, far below this. */
+/** The margin around the bound, relative to the size S of the numbers SkinningJob adds (a joint's translation plus
+  * its linear part applied to the farthest bind position). SkinningJob's float rounding is a small multiple of 2^-24
+  * S (a sum of at most 8 weighted products), and so is the bound's own: each side is a few sums of products of
+  * numbers at most 2 S (the differences M_k - M_a) and weights at most 1, done in float on either path, one piece
+  * at a time or eight at once, with or without fused multiply-adds. Together they stay far below this, about 170
+  * times 2^-24. */
 constexpr float kRoundingMargin = 1e-5f;
+
+/** How many pieces a group holds: the lanes of SkinBoundsJob's eight-float vectors. */
+constexpr unsigned kLanes = kSkinBlendSetGroupSize;
 
 OSGACTOR_SKIN_INLINE float largestAbs(const glm::vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
@@ -149,54 +156,47 @@ bool SkinBoundsJob::validate() const
     return piecesFit(*this);
 }
 
+namespace {
+
+/** Writes a piece (with at most kSkinBlendSetGroupJoints joints) into one lane of a group. */
+void putInLane(SkinBlendSetGroup& group, unsigned lane, const SkinBlendSet& set, Span<const std::uint32_t> setJoints,
+               Span<const float> setWeights)
+{
+    const BindFrame frame = bindFrameOf(set.box);
+    for (int r = 0; r < 3; ++r)
+    {
+        group.centre[r][lane] = frame.centre[r];
+        for (int c = 0; c < 3; ++c) group.halfAxes[c][r][lane] = frame.halfAxes[c][r];
+    }
+    const std::uint32_t first = setJoints[set.firstJoint];
+    group.budget[lane] = otherJointsBudget(setWeights[set.firstJoint]);
+    group.joints[0][lane] = first;
+    for (unsigned slot = 1; slot < kSkinBlendSetGroupJoints; ++slot)
+    {
+        // A slot the piece does not use: its first joint again, which may take no weight.
+        const bool used = slot < set.numJoints;
+        group.joints[slot][lane] = used ? setJoints[set.firstJoint + slot] : first;
+        group.caps[slot - 1][lane] = used ? setWeights[set.firstJoint + slot] : 0.0f;
+    }
+    group.bindReach = std::max(group.bindReach, bindReachOf(set.box));
+}
+
+} // namespace
+
 std::vector<SkinBlendSetGroup> groupSkinBlendSets(Span<const SkinBlendSet> sets, Span<const std::uint32_t> setJoints,
                                                   Span<const float> setWeights)
 {
-    constexpr unsigned kLanes = kSkinBlendSetGroupSize;
-    std::vector<SkinBlendSetGroup> groups;
-    unsigned lane = kLanes;
+    std::vector<const SkinBlendSet*> groupable;
     for (const SkinBlendSet& set : sets)
+        if (set.numJoints <= kSkinBlendSetGroupJoints && !set.box.box.isEmpty()) groupable.push_back(&set);
+    std::vector<SkinBlendSetGroup> groups((groupable.size() + kLanes - 1) / kLanes);
+    for (SkinBlendSetGroup& group : groups) group.bindReach = 0.0f;
+    for (std::size_t at = 0; at < groups.size() * kLanes; ++at)
     {
-        if (set.numJoints > kSkinBlendSetGroupJoints || set.box.box.isEmpty()) continue;
-        if (lane == kLanes)
-        {
-            groups.emplace_back();
-            groups.back().bindReach = 0.0f;
-            lane = 0;
-        }
-        SkinBlendSetGroup& group = groups.back();
-        const BindFrame frame = bindFrameOf(set.box);
-        for (int r = 0; r < 3; ++r)
-        {
-            group.centre[r][lane] = frame.centre[r];
-            for (int c = 0; c < 3; ++c) group.halfAxes[c][r][lane] = frame.halfAxes[c][r];
-        }
-        const std::uint32_t first = setJoints[set.firstJoint];
-        group.budget[lane] = otherJointsBudget(setWeights[set.firstJoint]);
-        group.joints[0][lane] = first;
-        for (unsigned slot = 1; slot < kSkinBlendSetGroupJoints; ++slot)
-        {
-            // A slot the piece does not use: its first joint again, which may take no weight.
-            const bool used = slot < set.numJoints;
-            group.joints[slot][lane] = used ? setJoints[set.firstJoint + slot] : first;
-            group.caps[slot - 1][lane] = used ? setWeights[set.firstJoint + slot] : 0.0f;
-        }
-        group.bindReach = std::max(group.bindReach, bindReachOf(set.box));
-        ++lane;
+        // The last group's lanes past the last piece: copies of that group's first.
+        const std::size_t piece = at < groupable.size() ? at : at / kLanes * kLanes;
+        putInLane(groups[at / kLanes], unsigned(at % kLanes), *groupable[piece], setJoints, setWeights);
     }
-    // The last group's lanes left: copies of its first piece.
-    if (!groups.empty())
-        for (SkinBlendSetGroup& group = groups.back(); lane < kLanes; ++lane)
-        {
-            for (int r = 0; r < 3; ++r)
-            {
-                group.centre[r][lane] = group.centre[r][0];
-                for (int c = 0; c < 3; ++c) group.halfAxes[c][r][lane] = group.halfAxes[c][r][0];
-            }
-            group.budget[lane] = group.budget[0];
-            for (unsigned slot = 0; slot < kSkinBlendSetGroupJoints; ++slot) group.joints[slot][lane] = group.joints[slot][0];
-            for (unsigned slot = 1; slot < kSkinBlendSetGroupJoints; ++slot) group.caps[slot - 1][lane] = group.caps[slot - 1][0];
-        }
     return groups;
 }
 
@@ -265,21 +265,33 @@ OSGACTOR_SKIN_INLINE SkinBox linearBlendBoxOf(const SkinBlendSet& set, Span<cons
     return moved;
 }
 
-constexpr unsigned kLanes = kSkinBlendSetGroupSize;
-
 /** A group's skinning matrices, lane by lane: [joint slot][element][lane], the elements the linear part column by
   * column (9), then the translation (3). */
 using GroupMatrices = float[kSkinBlendSetGroupJoints][12][kLanes];
 
+/** Fills out from the matrices of a group's joints, four matrix columns of eight lanes at a time: the columns of
+  * lanes l and l + 4 side by side in one vector, then a transpose within each half (unpacks and shuffles). */
 OSGACTOR_SKIN_INLINE void gatherMatrices(const SkinBlendSetGroup& group, const glm::mat4* matrices, GroupMatrices& out)
 {
+    static_assert(kLanes == 8, "two halves of four lanes");
+    using skin::Float8;
     for (unsigned slot = 0; slot < kSkinBlendSetGroupJoints; ++slot)
-        for (unsigned lane = 0; lane < kLanes; ++lane)
+    {
+        const float* m[kLanes];
+        for (unsigned lane = 0; lane < kLanes; ++lane) m[lane] = &matrices[group.joints[slot][lane]][0][0];
+        for (int c = 0; c < 4; ++c)
         {
-            const glm::mat4& m = matrices[group.joints[slot][lane]];
-            for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 3; ++r) out[slot][3 * c + r][lane] = m[c][r];
+            Float8 v[4]; // rows 0-3 of column c: lane i in the low half, lane i + 4 in the high
+            for (int i = 0; i < 4; ++i) v[i] = skin::joinFloat4(skin::loadFloat4(m[i] + 4 * c), skin::loadFloat4(m[i + 4] + 4 * c));
+            const Float8 rows01Of01 = skin::shuffle8<0, 8, 1, 9, 4, 12, 5, 13>(v[0], v[1]);
+            const Float8 rows23Of01 = skin::shuffle8<2, 10, 3, 11, 6, 14, 7, 15>(v[0], v[1]);
+            const Float8 rows01Of23 = skin::shuffle8<0, 8, 1, 9, 4, 12, 5, 13>(v[2], v[3]);
+            const Float8 rows23Of23 = skin::shuffle8<2, 10, 3, 11, 6, 14, 7, 15>(v[2], v[3]);
+            skin::storeFloat8(out[slot][3 * c], skin::shuffle8<0, 1, 8, 9, 4, 5, 12, 13>(rows01Of01, rows01Of23));
+            skin::storeFloat8(out[slot][3 * c + 1], skin::shuffle8<2, 3, 10, 11, 6, 7, 14, 15>(rows01Of01, rows01Of23));
+            skin::storeFloat8(out[slot][3 * c + 2], skin::shuffle8<0, 1, 8, 9, 4, 5, 12, 13>(rows23Of01, rows23Of23));
         }
+    }
 }
 
 /** Puts two gains (and their weight caps) in decreasing order of gain, lane by lane. */
