@@ -6,6 +6,7 @@
 
 #include "Float4.h"
 
+#include <cmath>
 #include <cstring>
 
 namespace osgActor {
@@ -35,6 +36,13 @@ OSGACTOR_SKIN_INLINE Float8 selectLess(const Float8& a, const Float8& b, const F
 {
     return a < b ? x : y;
 }
+
+/** Per lane, |a|: the sign bit cleared. */
+OSGACTOR_SKIN_INLINE Float8 abs8(const Float8& a)
+{
+    typedef int Int8 __attribute__((vector_size(32)));
+    return reinterpret_cast<Float8>(reinterpret_cast<Int8>(a) & 0x7fffffff);
+}
 #else
 struct Float8
 {
@@ -59,6 +67,7 @@ inline Float8 selectLess(const Float8& a, const Float8& b, const Float8& x, cons
     for (int i = 0; i < 8; ++i) r[i] = a[i] < b[i] ? x[i] : y[i];
     return r;
 }
+inline Float8 abs8(const Float8& a) { return lanewise(a, a, [](float x, float) { return std::abs(x); }); }
 #endif
 
 /** Eight floats from memory with no alignment required. */
@@ -107,7 +116,6 @@ OSGACTOR_SKIN_INLINE Float8 joinFloat4(const Float4& low, const Float4& high)
 
 OSGACTOR_SKIN_INLINE Float8 min8(const Float8& a, const Float8& b) { return selectLess(b, a, b, a); }
 OSGACTOR_SKIN_INLINE Float8 max8(const Float8& a, const Float8& b) { return selectLess(a, b, b, a); }
-OSGACTOR_SKIN_INLINE Float8 abs8(const Float8& a) { return max8(a, -a); }
 
 } // namespace skin
 } // namespace osgActor

@@ -294,29 +294,22 @@ OSGACTOR_SKIN_INLINE void gatherMatrices(const SkinBlendSetGroup& group, const g
     }
 }
 
-/** Puts two gains (and their weight caps) in decreasing order of gain, lane by lane. */
-OSGACTOR_SKIN_INLINE void orderPair(skin::Float8& gainA, skin::Float8& capA, skin::Float8& gainB, skin::Float8& capB)
-{
-    const skin::Float8 gain = skin::max8(gainA, gainB), cap = skin::selectLess(gainA, gainB, capB, capA);
-    capB = skin::selectLess(gainA, gainB, capA, capB);
-    gainB = skin::min8(gainA, gainB);
-    gainA = gain;
-    capA = cap;
-}
-
 /** linearBlendBoxOf()'s fill for three other joints, lane by lane with no branch: the largest sum_k w_k g_k over
-  * 0 <= w_k <= cap_k, sum_k w_k <= budget (gains >= 0), the largest gain filled first. */
+  * 0 <= w_k <= cap_k, sum_k w_k <= budget (gains >= 0). The greedy fill, largest gain first, gives joint k what the
+  * budget leaves once the joints ranked before it (a larger gain, or the same gain and listed first) have their caps,
+  * between 0 and its own cap: so each weight comes from three comparisons, with no sort. */
 OSGACTOR_SKIN_INLINE skin::Float8 greedyFill(const skin::Float8 (&gains)[3], const skin::Float8 (&caps)[3],
                                              const skin::Float8& budget)
 {
-    skin::Float8 g0 = gains[0], g1 = gains[1], g2 = gains[2], c0 = caps[0], c1 = caps[1], c2 = caps[2];
-    orderPair(g0, c0, g1, c1);
-    orderPair(g1, c1, g2, c2);
-    orderPair(g0, c0, g1, c1);
-    const skin::Float8 w0 = skin::min8(budget, c0);
-    const skin::Float8 left = budget - w0; // >= 0: w0 <= budget, and so for the next
-    const skin::Float8 w1 = skin::min8(left, c1);
-    const skin::Float8 w2 = skin::min8(left - w1, c2);
+    using skin::selectLess;
+    const skin::Float8 &g0 = gains[0], &g1 = gains[1], &g2 = gains[2], &c0 = caps[0], &c1 = caps[1], &c2 = caps[2];
+    const skin::Float8 zero = skin::splatFloat8(0.0f);
+    const skin::Float8 before0 = selectLess(g0, g1, c1, zero) + selectLess(g0, g2, c2, zero);
+    const skin::Float8 before1 = selectLess(g0, g1, zero, c0) + selectLess(g1, g2, c2, zero);
+    const skin::Float8 before2 = selectLess(g0, g2, zero, c0) + selectLess(g1, g2, zero, c1);
+    const skin::Float8 w0 = skin::min8(c0, skin::max8(zero, budget - before0));
+    const skin::Float8 w1 = skin::min8(c1, skin::max8(zero, budget - before1));
+    const skin::Float8 w2 = skin::min8(c2, skin::max8(zero, budget - before2));
     return w0 * g0 + w1 * g1 + w2 * g2;
 }
 
