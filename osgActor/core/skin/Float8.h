@@ -12,9 +12,9 @@
 namespace osgActor {
 namespace skin {
 
-#if defined(__GNUC__) && !defined(__clang__)
-// Every function taking or returning a Float8 is inlined (OSGACTOR_SKIN_INLINE), so GCC's note that a 32-byte vector
-// passed by value has another ABI without AVX concerns no call: off for the file that includes this.
+#if defined(__GNUC__) || defined(__clang__)
+// Every function taking or returning a Float8 is inlined (OSGACTOR_SKIN_INLINE), so the compilers' note that a
+// 32-byte vector passed by value has another ABI without AVX concerns no call: off for the file that includes this.
 #pragma GCC diagnostic ignored "-Wpsabi"
 #endif
 
