@@ -91,15 +91,18 @@ void BM_SkinningMatricesJob(benchmark::State& state)
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * bench::kSkinJoints);
 }
 
-/** The bound of a 64-joint, 16384-vertex skin with 4 influences (its pieces moved): once per frame per skin. Argument: 0 linear blend, 1 dual quaternions. */
+/** The bound of a 64-joint, 16384-vertex skin with 4 influences (its pieces moved): once per frame per skin. Argument:
+  * 0 linear blend, 1 dual quaternions, 2 linear blend with every piece moved one at a time (the skin's groups left
+  * out: the path dual quaternions and pieces of more than four joints take), the peer of 0. */
 void BM_SkinBoundsJob(benchmark::State& state)
 {
     const osgActor::SkinningMethod method =
-        state.range(0) != 0 ? osgActor::SkinningMethod::DualQuaternion : osgActor::SkinningMethod::LinearBlend;
+        state.range(0) == 1 ? osgActor::SkinningMethod::DualQuaternion : osgActor::SkinningMethod::LinearBlend;
     const osgActor::SkinPtr skin = bench::makeSkin(16384, 4, method);
     const bench::SkinBenchPose pose;
     osgActor::SkinBox bound;
     osgActor::SkinBoundsJob job = osgActor::makeSkinBoundsJob(*skin);
+    if (state.range(0) == 2) job.blendSetGroups = osgActor::Span<const osgActor::SkinBlendSetGroup>();
     job.matrices = pose.matrices;
     job.bound = &bound;
     for (auto _ : state)
@@ -108,6 +111,9 @@ void BM_SkinBoundsJob(benchmark::State& state)
         benchmark::DoNotOptimize(bound);
     }
     state.counters["pieces"] = static_cast<double>(skin->getBlendSets().size());
+    // The groups the job moves (linear blend only).
+    state.counters["groups"] =
+        method == osgActor::SkinningMethod::LinearBlend ? static_cast<double>(job.blendSetGroups.size()) : 0.0;
 }
 
 /** The console output, then per configuration and size osgActor's vertices per second and, where ozz ran, ozz's
@@ -164,7 +170,7 @@ int main(int argc, char** argv)
     bench::registerOzzSkinning();
 #endif
     benchmark::RegisterBenchmark("frame/skinning_matrices", BM_SkinningMatricesJob)->Arg(0)->Arg(1);
-    benchmark::RegisterBenchmark("frame/bounds", BM_SkinBoundsJob)->Arg(0)->Arg(1);
+    benchmark::RegisterBenchmark("frame/bounds", BM_SkinBoundsJob)->Arg(0)->Arg(2)->Arg(1);
     RateReporter reporter;
     benchmark::RunSpecifiedBenchmarks(&reporter);
     reporter.printSummary();

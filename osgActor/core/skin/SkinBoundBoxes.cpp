@@ -1,4 +1,5 @@
 #include <osgActor/core/skin/SkinBoundBoxes>
+#include <osgActor/core/skin/SkinBoundsJob>
 
 #include <glm/ext/matrix_double3x3.hpp>
 #include <glm/ext/vector_double3.hpp>
@@ -299,6 +300,7 @@ SkinBoundBoxes computeSkinBoundBoxes(const SkinVertices& vertices, Span<const gl
         }
         boxes.sets.push_back(set);
     }
+    boxes.setGroups = groupSkinBlendSets(boxes.sets, boxes.setJoints, boxes.setWeights);
     return boxes;
 }
 

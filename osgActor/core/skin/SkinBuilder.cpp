@@ -347,6 +347,7 @@ SkinBuildResult SkinBuilder::build() const
     skin->_blendSets = std::move(boxes.sets);
     skin->_blendSetJoints = std::move(boxes.setJoints);
     skin->_blendSetWeights = std::move(boxes.setWeights);
+    skin->_blendSetGroups = std::move(boxes.setGroups);
 
     SkinBuildResult result;
     result.skin = skin;

@@ -2,6 +2,7 @@
 
 #include "../detail/HotPath.h"
 #include "Float4.h"
+#include "IndexScan.h"
 
 #include <cmath>
 #include <cstdint>
@@ -250,25 +251,14 @@ OSGACTOR_HOT_PATH void skinDualQuaternion(Attributes attributes, unsigned influe
     skinAny(attributes, influences, group, out, blend);
 }
 
-/** The largest element of a run of indices, or -1 for none: plain loops the compiler vectorises (the baseline has
-  * no unsigned 16- or 32-bit maximum instruction, x86-64-v3 has both). validate() scans every joint and output index
-  * each run, so this is on the hot path too. */
-template <class Index>
-OSGACTOR_SKIN_INLINE long long largestIndexOf(const Index* __restrict indices, std::size_t count)
-{
-    Index largest = 0;
-    for (std::size_t i = 0; i < count; ++i) largest = indices[i] > largest ? indices[i] : largest;
-    return count == 0 ? -1 : static_cast<long long>(largest);
-}
-
 OSGACTOR_HOT_PATH long long largestOf(Span<const std::uint16_t> indices)
 {
-    return largestIndexOf(indices.data(), indices.size());
+    return skin::largestIndexOf(indices.data(), indices.size());
 }
 
 OSGACTOR_HOT_PATH long long largestOf(Span<const std::uint32_t> indices)
 {
-    return largestIndexOf(indices.data(), indices.size());
+    return skin::largestIndexOf(indices.data(), indices.size());
 }
 
 } // namespace
