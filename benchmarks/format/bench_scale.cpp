@@ -9,6 +9,7 @@
  *     OSG_LIBRARY_PATH=build/lib build/bin/osgactor_scale_bench
  *     OSG_LIBRARY_PATH=build/lib OSGACTOR_SCALE_SIZES=30000,100000,300000 build/bin/osgactor_scale_bench
  */
+#include "AllocationCount"
 #include "FrameLoop"
 #include "LargeInputs"
 #include "ResidentPeak"
@@ -88,8 +89,9 @@ osg::ref_ptr<ActorNode> loadActor(const std::string& path)
     return dynamic_cast<ActorNode*>(osgDB::readRefNodeFile(path).get());
 }
 
-/** Times work(setup()) with setup() outside the timing, after one run outside it too that measures the peak resident
-  * memory per item (state.range(0) items) and what the result still holds. work returns what it made, or null (or
+/** Times work(setup()) with setup() outside the timing, after one run outside it too that measures, per item
+  * (state.range(0) items), the peak resident memory, what the result still holds and the heap allocations made; the
+  * timed runs count the minor page faults they take (per item and run). work returns what it made, or null (or
   * false) on failure. */
 template <class Setup, class Work>
 void measure(benchmark::State& state, Setup setup, Work work)
@@ -98,7 +100,9 @@ void measure(benchmark::State& state, Setup setup, Work work)
     {
         auto input = setup();
         ResidentPeak peak;
+        AllocationCount counts;
         auto output = work(input);
+        const double allocations = static_cast<double>(counts.allocations());
         if (!output)
         {
             state.SkipWithError("the operation failed");
@@ -106,19 +110,24 @@ void measure(benchmark::State& state, Setup setup, Work work)
         }
         state.counters[kPeakBytesPerItem] = static_cast<double>(peak.peakBytes()) / items;
         state.counters[kHeldBytesPerItem] = static_cast<double>(peak.heldBytes()) / items;
+        state.counters[kAllocationsPerItem] = allocations / items;
     }
+    double faults = 0.0;
     for (auto _ : state)
     {
         state.PauseTiming();
         auto input = setup();
+        const AllocationCount during;
         state.ResumeTiming();
         auto output = work(input);
-        benchmark::DoNotOptimize(output);
         state.PauseTiming(); // freeing what it made is not part of the operation
+        faults += static_cast<double>(during.minorFaults());
+        benchmark::DoNotOptimize(output);
         output = decltype(output)();
         input = decltype(input)();
         state.ResumeTiming();
     }
+    state.counters[kMinorFaultsPerItem] = faults / static_cast<double>(state.iterations()) / items;
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * state.range(0));
 }
 
