@@ -1,6 +1,8 @@
 #include <osgActor/io/ActorLexer>
 #include <osgActor/io/ActorSyntax>
 
+#include <algorithm>
+#include <iterator>
 #include <ostream>
 
 namespace osgActor {
@@ -14,10 +16,31 @@ constexpr unsigned kMaxDepth = 200;
 class SyntaxParser
 {
 public:
-    SyntaxParser(TextLines& text, const std::string& fileName) : _lexer(text), _fileName(fileName) { advance(); }
+    SyntaxParser(TextLines& text, const std::string& fileName)
+        : _lexer(text), _fileName(fileName), _blocks(kMaxDepth + 1)
+    {
+        advance();
+    }
 
-    /** Statements up to the end of the file (depth 0) or to the brace that closes the current block. */
+    /** Statements up to the end of the file (depth 0) or to the brace that closes the current block, into
+      * statements at their final size: they are gathered in the depth's scratch list first, whose room is kept from
+      * block to block, so that a file of many small blocks (a joint each) does not grow every block's list a
+      * statement at a time. */
     bool parseStatements(std::vector<SyntaxStatement>& statements, unsigned depth, int openLine)
+    {
+        std::vector<SyntaxStatement>& gathered = _blocks[depth];
+        gathered.clear();
+        if (!gatherStatements(gathered, depth, openLine)) return false;
+        statements.reserve(gathered.size());
+        std::move(gathered.begin(), gathered.end(), std::back_inserter(statements));
+        gathered.clear();
+        return true;
+    }
+
+    const std::string& error() const { return _error; }
+
+private:
+    bool gatherStatements(std::vector<SyntaxStatement>& statements, unsigned depth, int openLine)
     {
         for (;;)
         {
@@ -46,19 +69,20 @@ public:
         }
     }
 
-    const std::string& error() const { return _error; }
-
-private:
     bool parseStatement(SyntaxStatement& statement, unsigned depth)
     {
-        statement.keyword = _token.text;
+        statement.keyword = std::move(_token.text);
         statement.line = _token.line;
         advance();
+        // Gathered first, then moved in at their final size (one allocation, not one per doubling).
+        _arguments.clear();
         while (_token.type == TokenType::Word || _token.type == TokenType::String)
         {
-            statement.arguments.push_back(SyntaxArgument{_token.text, _token.type == TokenType::String, _token.line});
+            _arguments.push_back(SyntaxArgument{std::move(_token.text), _token.type == TokenType::String, _token.line});
             advance();
         }
+        statement.arguments.assign(std::make_move_iterator(_arguments.begin()),
+                                   std::make_move_iterator(_arguments.end()));
         if (_token.type == TokenType::Error) return fail(_token.line, _token.text);
         if (_token.type != TokenType::OpenBrace) return true; // a newline, ';', '}' or the end of the file ends it
         if (depth + 1 > kMaxDepth) return fail(_token.line, "blocks are nested too deeply");
@@ -80,7 +104,68 @@ private:
     const std::string& _fileName;
     Token _token;
     std::string _error;
+    std::vector<std::vector<SyntaxStatement>> _blocks; // per depth, the statements of the block being parsed
+    std::vector<SyntaxArgument> _arguments;            // the arguments of the statement being parsed
 };
+
+/** Appends the text in double quotes, with \" and \\ escapes. */
+void appendQuoted(std::string& out, const std::string& text)
+{
+    out += '"';
+    for (const char c : text)
+    {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    out += '"';
+}
+
+/** Writes statements' text into one buffer, handed to the stream a large piece at a time: a file of many short
+  * statements would otherwise go through the stream's formatted output a word at a time. */
+class SyntaxText
+{
+public:
+    explicit SyntaxText(std::ostream& out) : _out(out) {}
+    ~SyntaxText() { flush(); }
+
+    void write(const std::vector<SyntaxStatement>& statements, unsigned indent)
+    {
+        for (const SyntaxStatement& statement : statements)
+        {
+            _text.append(indent * 4, ' ');
+            _text += statement.keyword;
+            for (const SyntaxArgument& argument : statement.arguments)
+            {
+                _text += ' ';
+                if (argument.quoted) appendQuoted(_text, argument.text);
+                else _text += argument.text;
+            }
+            if (statement.hasBlock)
+            {
+                _text += " {\n";
+                write(statement.children, indent + 1);
+                _text.append(indent * 4, ' ');
+                _text += '}';
+            }
+            _text += '\n';
+            if (_text.size() >= kPiece) flush();
+        }
+    }
+
+private:
+    static constexpr std::size_t kPiece = 1 << 16;
+
+    void flush()
+    {
+        _out.write(_text.data(), static_cast<std::streamsize>(_text.size()));
+        _text.clear();
+    }
+
+    std::ostream& _out;
+    std::string _text;
+};
+
+} // namespace
 
 bool needsQuotes(const std::string& name)
 {
@@ -93,8 +178,6 @@ bool needsQuotes(const std::string& name)
     }
     return false;
 }
-
-} // namespace
 
 bool parseSyntax(std::istream& in, const std::string& fileName, std::vector<SyntaxStatement>& statements,
                  std::string& error)
@@ -117,32 +200,14 @@ std::string quoteIfNeeded(const std::string& name) { return needsQuotes(name) ? 
 
 std::string quoted(const std::string& name)
 {
-    std::string text = "\"";
-    for (const char c : name)
-    {
-        if (c == '"' || c == '\\') text.push_back('\\');
-        text.push_back(c);
-    }
-    text.push_back('"');
+    std::string text;
+    appendQuoted(text, name);
     return text;
 }
 
 void writeSyntax(std::ostream& out, const std::vector<SyntaxStatement>& statements, unsigned indent)
 {
-    const std::string margin(indent * 4, ' ');
-    for (const SyntaxStatement& statement : statements)
-    {
-        out << margin << statement.keyword;
-        for (const SyntaxArgument& argument : statement.arguments)
-            out << ' ' << (argument.quoted ? quoted(argument.text) : argument.text);
-        if (statement.hasBlock)
-        {
-            out << " {\n";
-            writeSyntax(out, statement.children, indent + 1);
-            out << margin << '}';
-        }
-        out << '\n';
-    }
+    SyntaxText(out).write(statements, indent);
 }
 
 } // namespace osgActor
