@@ -11,6 +11,8 @@ namespace {
 
 /** Deeper nesting than this is refused rather than risking the stack on a hostile file. */
 constexpr unsigned kMaxDepth = 200;
+/** Blocks of at most this many statements are copied out of the parser's scratch list at their exact size. */
+constexpr std::size_t kSmallBlock = 32;
 
 /** One parse of one stream: the lexer, one token of look-ahead and the first error. */
 class SyntaxParser
@@ -22,15 +24,21 @@ public:
         advance();
     }
 
-    /** Statements up to the end of the file (depth 0) or to the brace that closes the current block, into
-      * statements at their final size: they are gathered in the depth's scratch list first, whose room is kept from
-      * block to block, so that a file of many small blocks (a joint each) does not grow every block's list a
-      * statement at a time. */
+    /** Statements up to the end of the file (depth 0) or to the brace that closes the current block. They are
+      * gathered in the depth's scratch list, whose room is kept from block to block, and a small block's are then
+      * moved into a list of their exact size: a file of many small blocks (a joint each) does not grow every
+      * block's list a statement at a time. A large block takes the scratch list itself (moving its statements once
+      * more would cost more than the allocations it saves). */
     bool parseStatements(std::vector<SyntaxStatement>& statements, unsigned depth, int openLine)
     {
         std::vector<SyntaxStatement>& gathered = _blocks[depth];
         gathered.clear();
         if (!gatherStatements(gathered, depth, openLine)) return false;
+        if (gathered.size() > kSmallBlock)
+        {
+            statements.swap(gathered);
+            return true;
+        }
         statements.reserve(gathered.size());
         std::move(gathered.begin(), gathered.end(), std::back_inserter(statements));
         gathered.clear();
