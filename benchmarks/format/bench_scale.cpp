@@ -139,6 +139,7 @@ void measure(benchmark::State& state, Setup setup, Work work)
     {
         state.PauseTiming();
         auto input = setup();
+        if (!warmHeap()) malloc_trim(0); // after the setup, whose own freed memory the work would otherwise reuse
         const AllocationCount during;
         state.ResumeTiming();
         auto output = work(input);
@@ -147,7 +148,6 @@ void measure(benchmark::State& state, Setup setup, Work work)
         benchmark::DoNotOptimize(output);
         output = decltype(output)();
         input = decltype(input)();
-        if (!warmHeap()) malloc_trim(0);
         state.ResumeTiming();
     }
     state.counters[kMinorFaultsPerItem] = faults / static_cast<double>(state.iterations()) / items;
