@@ -110,7 +110,9 @@ void applyJointState(ActorNode& actor, unsigned joint, const JointDocument& docu
         const int dof = definition.getDofIndex(joint, static_cast<Dof>(d));
         if (document.values[d] && dof >= 0) actor.setDof(static_cast<unsigned>(dof), *document.values[d]);
     }
-    actor.getSkeletonNode(joint)->setHidden(document.hidden);
+    // A new node is shown: touch only those the document hides (a pass over every node of a large actor is paid in
+    // cache misses).
+    if (document.hidden) actor.getSkeletonNode(joint)->setHidden(true);
 }
 
 /** Hangs a joint's shapes and models below its skeleton node; false and an error when a model cannot be loaded. */
@@ -420,9 +422,13 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
     actor->setPostRotation(toOsg(document.postRotation));
 
     const osg::ref_ptr<osgDB::Options> local = optionsNextTo(fileName, options);
-    for (const JointDocument& joint : document.joints)
+    for (std::size_t j = 0; j < document.joints.size(); ++j)
     {
-        const int index = definition->findJoint(joint.spec.name);
+        const JointDocument& joint = document.joints[j];
+        // readActor() puts the joints in the definition's order: look the name up only where that is not so.
+        const int index = definition->getJointName(static_cast<unsigned>(j)) == joint.spec.name
+                              ? static_cast<int>(j)
+                              : definition->findJoint(joint.spec.name);
         SkeletonNode* node = index < 0 ? nullptr : actor->getSkeletonNode(static_cast<unsigned>(index));
         if (!node)
         {
@@ -433,13 +439,17 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
         if (!attachGeometry(*node, joint, fileName, local.get(), result.error)) return result;
     }
     if (!attachSkins(*actor, document, fileName, local.get(), result.error)) return result;
-    ActorDocument withFilesRead = document;
-    if (!readClipFiles(withFilesRead.clips, definition, document.sections, fileName, local.get(), result.error))
+    // The motion sections alone, with their files read (a copy of the whole document would copy every joint).
+    ActorDocument motion;
+    motion.clips = document.clips;
+    motion.trajectories = document.trajectories;
+    motion.players = document.players;
+    if (!readClipFiles(motion.clips, definition, document.sections, fileName, local.get(), result.error))
         return result;
-    if (!readTrajectoryFiles(withFilesRead.trajectories, fileName, local.get(), result.error)) return result;
-    applyClips(*actor, withFilesRead);
-    applyTrajectories(*actor, withFilesRead);
-    applyPlayers(*actor, withFilesRead);
+    if (!readTrajectoryFiles(motion.trajectories, fileName, local.get(), result.error)) return result;
+    applyClips(*actor, motion);
+    applyTrajectories(*actor, motion);
+    applyPlayers(*actor, motion);
     std::vector<IkChainPtr> chains;
     if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
     for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
@@ -448,7 +458,10 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
     // show and answer with its default pose until unblocked.
     actor->updatePose();
     actor->update(nullptr);
-    actor->setBoundMode(document.boundsCoverRotations ? ActorNode::BOUND_COVERS_ROTATIONS : ActorNode::BOUND_FOLLOWS_POSE);
+    // Set only when it differs from the new actor's: setting it visits every skeleton node.
+    const ActorNode::BoundMode boundMode =
+        document.boundsCoverRotations ? ActorNode::BOUND_COVERS_ROTATIONS : ActorNode::BOUND_FOLLOWS_POSE;
+    if (actor->getBoundMode() != boundMode) actor->setBoundMode(boundMode);
     actor->setBlocked(document.blocked);
     result.actor = actor;
     return result;

@@ -31,6 +31,7 @@ set(OSGACTOR_CORE_PRIVATE_HEADERS
     core/detail/ByteFlags.h
     core/detail/Column.h
     core/detail/HotPath.h
+    core/detail/JointChildren.h
     core/detail/JointMatrixKernel.h
     core/detail/SinCos
     core/detail/SinCosColumn.h
@@ -79,6 +80,7 @@ set(OSGACTOR_CORE_SOURCES
     core/SamplingJob.cpp
     core/Trajectory.cpp
     core/detail/JointBatches.cpp
+    core/detail/JointChildren.cpp
     core/detail/LocalMatrices.cpp
     core/detail/SinCos.cpp
     core/detail/WorkerPool.cpp

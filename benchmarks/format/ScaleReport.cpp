@@ -24,6 +24,10 @@ void ScaleReport::ReportRuns(const std::vector<Run>& runs)
         if (peak != run.counters.end()) measure.peakBytesPerItem = peak->second.value;
         const auto held = run.counters.find(kHeldBytesPerItem);
         if (held != run.counters.end()) measure.heldBytesPerItem = held->second.value;
+        const auto allocations = run.counters.find(kAllocationsPerItem);
+        if (allocations != run.counters.end()) measure.allocationsPerItem = allocations->second.value;
+        const auto faults = run.counters.find(kMinorFaultsPerItem);
+        if (faults != run.counters.end()) measure.minorFaultsPerItem = faults->second.value;
     }
 }
 
@@ -37,12 +41,13 @@ int ScaleReport::printSummary() const
         if (sizes.count(size * 10)) tenfold.push_back(size);
 
     std::printf("\nCPU time (ms) at each size, its growth from a size to ten times it (column x<size>; linear: 10, "
-                "target: at most %.0f), and the peak resident memory per item (joint or frame; in parentheses, what "
-                "the result holds after, at the largest size)\n%-24s",
+                "target: at most %.0f), the peak resident memory per item (joint or frame; in parentheses, what "
+                "the result holds after, at the largest size), the heap allocations per item at the largest size, and "
+                "the minor page faults per item and timed run at each size\n%-24s",
                 kMaxGrowthPerTenfold, "operation/kind");
     for (long size : sizes) std::printf(" %9ld", size);
     for (long size : tenfold) std::printf(" %9s", ("x" + std::to_string(size)).c_str());
-    std::printf("  peak B/item at each size (held)\n");
+    std::printf("  peak B/item at each size (held)  allocs/item  faults/item at each size\n");
 
     int over = 0;
     for (const auto& [row, measures] : _rows)
@@ -75,6 +80,8 @@ int ScaleReport::printSummary() const
         }
         if (!measures.empty() && measures.rbegin()->second.heldBytesPerItem > 0.0)
             std::printf("  (%.0f)", measures.rbegin()->second.heldBytesPerItem);
+        if (!measures.empty()) std::printf("  %.1f ", measures.rbegin()->second.allocationsPerItem);
+        for (const auto& [size, measure] : measures) std::printf(" %.2f", measure.minorFaultsPerItem);
         std::printf("\n");
     }
     if (over) std::printf("%d growth ratios above %.0f (marked !)\n", over, kMaxGrowthPerTenfold);

@@ -8,7 +8,9 @@
  *
  *     OSG_LIBRARY_PATH=build/lib build/bin/osgactor_scale_bench
  *     OSG_LIBRARY_PATH=build/lib OSGACTOR_SCALE_SIZES=30000,100000,300000 build/bin/osgactor_scale_bench
+ *     OSG_LIBRARY_PATH=build/lib OSGACTOR_SCALE_HEAP=warm build/bin/osgactor_scale_bench   (see warmHeap())
  */
+#include "AllocationCount"
 #include "FrameLoop"
 #include "LargeInputs"
 #include "ResidentPeak"
@@ -28,6 +30,8 @@
 #include <osgUtil/Optimizer>
 
 #include <benchmark/benchmark.h>
+
+#include <malloc.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -54,6 +58,24 @@ const std::vector<int64_t>& sizes()
         return values.empty() ? std::vector<int64_t>{1000, 10000, 100000} : values;
     }();
     return list;
+}
+
+/** Whether the timed runs find the memory they take already mapped (OSGACTOR_SCALE_HEAP=warm: a program that loads
+  * again and again) or not (the default, cold: each run starts as a program's first load does). Either way every
+  * size is measured alike: left to itself, the allocator would keep what a small size freed for its next run (no page
+  * faults) but give a large size's blocks back to the system (every run faulting them in again), and the growth per
+  * tenfold would count the difference. */
+bool warmHeap()
+{
+    static const bool warm = [] {
+        const char* heap = std::getenv("OSGACTOR_SCALE_HEAP");
+        if (!heap || std::string(heap) != "warm") return false;
+        // Nothing given back to the system: no block mapped on its own, no trimming of the heap's top.
+        mallopt(M_MMAP_THRESHOLD, 1 << 30);
+        mallopt(M_TRIM_THRESHOLD, 1 << 30);
+        return true;
+    }();
+    return warm;
 }
 
 /** The .actor text of a shape and size, made once. */
@@ -88,8 +110,10 @@ osg::ref_ptr<ActorNode> loadActor(const std::string& path)
     return dynamic_cast<ActorNode*>(osgDB::readRefNodeFile(path).get());
 }
 
-/** Times work(setup()) with setup() outside the timing, after one run outside it too that measures the peak resident
-  * memory per item (state.range(0) items) and what the result still holds. work returns what it made, or null (or
+/** Times work(setup()) with setup() outside the timing, after one run outside it too that measures, per item
+  * (state.range(0) items), the peak resident memory, what the result still holds and the heap allocations made; the
+  * timed runs, each started with the freed memory given back to the system, count the minor page faults they take
+  * (per item and run). work returns what it made, or null (or
   * false) on failure. */
 template <class Setup, class Work>
 void measure(benchmark::State& state, Setup setup, Work work)
@@ -98,7 +122,9 @@ void measure(benchmark::State& state, Setup setup, Work work)
     {
         auto input = setup();
         ResidentPeak peak;
+        AllocationCount counts;
         auto output = work(input);
+        const double allocations = static_cast<double>(counts.allocations());
         if (!output)
         {
             state.SkipWithError("the operation failed");
@@ -106,19 +132,25 @@ void measure(benchmark::State& state, Setup setup, Work work)
         }
         state.counters[kPeakBytesPerItem] = static_cast<double>(peak.peakBytes()) / items;
         state.counters[kHeldBytesPerItem] = static_cast<double>(peak.heldBytes()) / items;
+        state.counters[kAllocationsPerItem] = allocations / items;
     }
+    double faults = 0.0;
     for (auto _ : state)
     {
         state.PauseTiming();
         auto input = setup();
+        if (!warmHeap()) malloc_trim(0); // after the setup, whose own freed memory the work would otherwise reuse
+        const AllocationCount during;
         state.ResumeTiming();
         auto output = work(input);
-        benchmark::DoNotOptimize(output);
         state.PauseTiming(); // freeing what it made is not part of the operation
+        faults += static_cast<double>(during.minorFaults());
+        benchmark::DoNotOptimize(output);
         output = decltype(output)();
         input = decltype(input)();
         state.ResumeTiming();
     }
+    state.counters[kMinorFaultsPerItem] = faults / static_cast<double>(state.iterations()) / items;
     state.SetItemsProcessed(static_cast<int64_t>(state.iterations()) * state.range(0));
 }
 
@@ -212,6 +244,7 @@ void registerMocapBenchmarks()
 
 int main(int argc, char** argv)
 {
+    warmHeap(); // the allocator's settings, before the inputs are made
     benchmark::Initialize(&argc, argv);
     if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
     osgDB::Registry* registry = osgDB::Registry::instance();

@@ -1,4 +1,5 @@
 #include <osgActor/core/ActorDefinitionBuilder>
+#include <osgActor/core/detail/JointChildren.h>
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/ext/quaternion_geometric.hpp>
@@ -8,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 
 namespace osgActor {
@@ -22,7 +24,12 @@ std::string quoted(const std::string& name) { return "'" + name + "'"; }
 std::string checkDof(const JointSpec& joint, Dof dof)
 {
     const DofSpec& spec = joint.dofs[static_cast<unsigned>(dof)];
-    if (!spec.active) return std::string();
+    const bool valid = !std::isnan(spec.min) && !std::isnan(spec.max) && spec.min <= spec.max &&
+                       std::isfinite(spec.defaultValue) && std::abs(spec.defaultValue) <= kMaxDofMagnitude &&
+                       spec.defaultValue >= spec.min && spec.defaultValue <= spec.max && std::isfinite(spec.weight) &&
+                       spec.weight >= 0.0;
+    // The message is made only for a DOF that has something wrong: every joint of every file is checked here.
+    if (!spec.active || valid) return std::string();
     std::ostringstream what;
     const std::string name = quoted(joint.name + "." + dofName(dof));
     if (std::isnan(spec.min) || std::isnan(spec.max))
@@ -69,25 +76,29 @@ std::string checkJoint(const JointSpec& joint)
   * left out of the order hang below a parent cycle. */
 std::vector<unsigned> parentFirstOrder(const std::vector<int>& parents)
 {
-    const unsigned n = static_cast<unsigned>(parents.size());
-    std::vector<std::vector<unsigned>> children(n);
-    std::vector<unsigned> roots;
-    for (unsigned j = 0; j < n; ++j)
-    {
-        if (parents[j] < 0) roots.push_back(j);
-        else children[static_cast<unsigned>(parents[j])].push_back(j);
-    }
+    const detail::JointChildren children(parents);
     std::vector<unsigned> order;
-    order.reserve(n);
-    std::vector<unsigned> stack(roots.rbegin(), roots.rend());
+    order.reserve(parents.size());
+    std::vector<unsigned> stack;
+    for (unsigned j = static_cast<unsigned>(parents.size()); j-- > 0;)
+        if (parents[j] < 0) stack.push_back(j);
     while (!stack.empty())
     {
         const unsigned j = stack.back();
         stack.pop_back();
         order.push_back(j);
-        for (auto it = children[j].rbegin(); it != children[j].rend(); ++it) stack.push_back(*it);
+        const Span<const unsigned> below = children.of(j);
+        for (std::size_t c = below.size(); c-- > 0;) stack.push_back(below[c]);
     }
     return order;
+}
+
+unsigned countActiveDofs(const std::vector<JointSpec>& joints)
+{
+    unsigned count = 0;
+    for (const JointSpec& joint : joints)
+        for (const DofSpec& dof : joint.dofs) count += dof.active ? 1u : 0u;
+    return count;
 }
 
 /** Describes the parent cycle above joint start ("a -> b -> a"). */
@@ -205,7 +216,9 @@ BuildResult ActorDefinitionBuilder::build() const
 
     if (_joints.empty()) return fail("has no joints");
 
-    std::unordered_map<std::string, unsigned> byName;
+    // Keyed by views of the joints' own names: no copy of each name.
+    std::unordered_map<std::string_view, unsigned> byName;
+    byName.reserve(_joints.size());
     for (unsigned j = 0; j < _joints.size(); ++j)
     {
         const std::string error = checkJoint(_joints[j]);
@@ -254,6 +267,22 @@ BuildResult ActorDefinitionBuilder::build() const
     std::vector<int> newIndex(_joints.size(), -1);
     for (unsigned i = 0; i < order.size(); ++i) newIndex[order[i]] = static_cast<int>(i);
 
+    // Every per-joint and per-DOF array at its final size at once, rather than grown a joint at a time.
+    const std::size_t numJoints = _joints.size(), numDofs = countActiveDofs(_joints);
+    def->_jointNames.reserve(numJoints);
+    def->_parents.reserve(numJoints);
+    def->_offsetTranslations.reserve(numJoints);
+    def->_offsetRotations.reserve(numJoints);
+    def->_eulerOrders.reserve(numJoints);
+    def->_dofMasks.reserve(numJoints);
+    def->_firstDofs.reserve(numJoints + 1);
+    def->_kinematics.reserve(numJoints);
+    def->_jointIndex.reserve(numJoints);
+    for (std::vector<double>* perDof : {&def->_dofMins, &def->_dofMaxs, &def->_dofRangeMins, &def->_dofRangeMaxs,
+                                        &def->_dofDefaults, &def->_dofWeights})
+        perDof->reserve(numDofs);
+    def->_dofJoints.reserve(numDofs);
+    def->_dofTypes.reserve(numDofs);
     def->_firstDofs.push_back(0);
     for (unsigned i = 0; i < order.size(); ++i)
     {
@@ -289,29 +318,32 @@ BuildResult ActorDefinitionBuilder::build() const
     return result;
 }
 
+JointSpec toJointSpec(const ActorDefinition& definition, unsigned joint)
+{
+    JointSpec spec;
+    spec.name = definition.getJointName(joint);
+    const int parent = definition.getParent(joint);
+    if (parent >= 0) spec.parent = definition.getJointName(static_cast<unsigned>(parent));
+    spec.translation = definition.getOffsetTranslation(joint);
+    spec.rotation = definition.getOffsetRotation(joint);
+    spec.eulerOrder = definition.getEulerOrder(joint);
+    spec.translationMode = definition.getTranslationMode(joint);
+    for (unsigned d = 0; d < kNumDofTypes; ++d)
+    {
+        const int index = definition.getDofIndex(joint, static_cast<Dof>(d));
+        if (index < 0) continue;
+        const unsigned i = static_cast<unsigned>(index);
+        spec.dofs[d] = DofSpec{true, definition.getDofMin(i), definition.getDofMax(i), definition.getDofDefault(i),
+                               definition.getDofWeight(i)};
+    }
+    return spec;
+}
+
 ActorDefinitionBuilder toBuilder(const ActorDefinition& definition)
 {
     ActorDefinitionBuilder builder(definition.getName());
-    for (unsigned j = 0; j < definition.getNumJoints(); ++j)
-    {
-        JointSpec spec;
-        spec.name = definition.getJointName(j);
-        const int parent = definition.getParent(j);
-        if (parent >= 0) spec.parent = definition.getJointName(static_cast<unsigned>(parent));
-        spec.translation = definition.getOffsetTranslation(j);
-        spec.rotation = definition.getOffsetRotation(j);
-        spec.eulerOrder = definition.getEulerOrder(j);
-        spec.translationMode = definition.getTranslationMode(j);
-        for (unsigned d = 0; d < kNumDofTypes; ++d)
-        {
-            const int index = definition.getDofIndex(j, static_cast<Dof>(d));
-            if (index < 0) continue;
-            const unsigned i = static_cast<unsigned>(index);
-            spec.dofs[d] = DofSpec{true, definition.getDofMin(i), definition.getDofMax(i),
-                                   definition.getDofDefault(i), definition.getDofWeight(i)};
-        }
-        builder.addJoint(spec);
-    }
+    builder.reserve(definition.getNumJoints());
+    for (unsigned j = 0; j < definition.getNumJoints(); ++j) builder.addJoint(toJointSpec(definition, j));
     return builder;
 }
 

@@ -65,6 +65,7 @@ bool isReservedSection(const std::string& keyword) { return keyword == "jointmap
 BuildResult buildDefinition(const ActorDocument& document, const std::string& fileName)
 {
     ActorDefinitionBuilder builder(document.name);
+    builder.reserve(static_cast<unsigned>(document.joints.size()));
     for (const JointDocument& joint : document.joints) builder.addJoint(joint.spec);
     BuildResult result = builder.build();
     if (!result)
@@ -100,13 +101,8 @@ ActorDocument makeDocument(const ActorDefinition& definition)
 {
     ActorDocument document;
     document.name = definition.getName();
-    const ActorDefinitionBuilder builder = toBuilder(definition);
-    for (unsigned j = 0; j < builder.getNumJoints(); ++j)
-    {
-        JointDocument joint;
-        joint.spec = builder.getJoint(j);
-        document.joints.push_back(joint);
-    }
+    document.joints.resize(definition.getNumJoints());
+    for (unsigned j = 0; j < definition.getNumJoints(); ++j) document.joints[j].spec = toJointSpec(definition, j);
     return document;
 }
 

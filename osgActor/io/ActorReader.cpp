@@ -7,13 +7,41 @@
 #include <osgActor/text/Numbers>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
-#include <unordered_map>
+#include <string_view>
 
 namespace osgActor {
 
 namespace {
+
+/** The keywords (or DOF attributes) a block has given so far, to refuse the second of a kind. A block names a few,
+  * so they sit in place, not in a heap-allocated set for each of the thousands of joints a file may hold; the views
+  * point into the statements being read. */
+class SeenWords
+{
+public:
+    /** False when the word was seen already. */
+    bool insert(std::string_view word)
+    {
+        if (count(word)) return false;
+        if (_size < _inPlace.size()) _inPlace[_size++] = word;
+        else _more.push_back(word);
+        return true;
+    }
+
+    bool count(std::string_view word) const
+    {
+        return std::find(_inPlace.begin(), _inPlace.begin() + _size, word) != _inPlace.begin() + _size ||
+               std::find(_more.begin(), _more.end(), word) != _more.end();
+    }
+
+private:
+    std::array<std::string_view, 16> _inPlace;
+    std::size_t _size = 0;
+    std::vector<std::string_view> _more; // beyond 16: no block of the format has that many keywords
+};
 
 // Angles are read by readAngle(): degrees (radiansFromDegrees(), the conversion the writer inverts) or radians with
 // the suffix "rad".
@@ -116,9 +144,9 @@ private:
     }
 
     /** Marks a keyword seen in one block; false (with an error) the second time. */
-    bool once(std::set<std::string>& seen, const SyntaxStatement& statement)
+    bool once(SeenWords& seen, const SyntaxStatement& statement)
     {
-        if (seen.insert(statement.keyword).second) return true;
+        if (seen.insert(statement.keyword)) return true;
         return fail(statement.line, "'" + statement.keyword + "' is given twice");
     }
 
@@ -144,7 +172,7 @@ private:
     }
 
     /** A statement without values or block that sets a flag ("hidden", "blocked"). */
-    bool flag(std::set<std::string>& seen, const SyntaxStatement& statement, bool& value)
+    bool flag(SeenWords& seen, const SyntaxStatement& statement, bool& value)
     {
         if (!once(seen, statement) || !expectNoBlock(statement) || !expectArguments(statement, 0)) return false;
         value = true;
@@ -238,7 +266,8 @@ private:
         if (actor.arguments.size() > 1) return expectArguments(actor, 1);
         if (!actor.arguments.empty()) document.name = actor.arguments.front().text;
         document.line = actor.line;
-        std::set<std::string> seen;
+        document.joints.reserve(countJoints(actor.children));
+        SeenWords seen;
         for (const SyntaxStatement& s : actor.children)
         {
             const std::string& k = s.keyword;
@@ -308,7 +337,7 @@ private:
         trajectory.line = s.line;
         bool paused = false;
         std::vector<TrajectoryKey> keys;
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& c : s.children)
         {
             const std::string& k = c.keyword;
@@ -379,7 +408,7 @@ private:
             if (other.spec.name == chain.spec.name)
                 return fail(statement.line, "IK chain '" + chain.spec.name + "' is given twice (first at line " +
                                                 std::to_string(other.line) + ")");
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& c : statement.children)
         {
             const std::string& k = c.keyword;
@@ -428,6 +457,15 @@ private:
         return true;
     }
 
+    /** The joint statements among statements and nested in them (readJoint() reads nested joints). */
+    static std::size_t countJoints(const std::vector<SyntaxStatement>& statements)
+    {
+        std::size_t count = 0;
+        for (const SyntaxStatement& s : statements)
+            if (s.keyword == "joint") count += 1 + countJoints(s.children);
+        return count;
+    }
+
     /** A joint and, nested in it, its children; parentName is empty for a joint at the actor's level. */
     bool readJoint(const SyntaxStatement& statement, const std::string& parentName, ActorDocument& document)
     {
@@ -440,7 +478,7 @@ private:
             joint.spec.parent = parentName;
             joint.line = statement.line;
         }
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& s : statement.children)
         {
             const std::string& k = s.keyword;
@@ -508,14 +546,14 @@ private:
         DofSpec& spec = joint.spec.dofs[static_cast<unsigned>(dof)];
         if (spec.active) return fail(s.line, "DOF '" + s.arguments.front().text + "' is given twice");
         spec.active = true;
-        std::set<std::string> seen;
+        SeenWords seen;
         for (std::size_t i = 1; i < s.arguments.size(); i += 2)
         {
             const SyntaxArgument& key = s.arguments[i];
             if (i + 1 >= s.arguments.size()) return fail(key.line, "'" + key.text + "' needs a value");
             double value = 0.0;
             if (!dofValue(s.arguments[i + 1], isRotation(dof) && key.text != "weight", value)) return false;
-            if (!seen.insert(key.text).second) return fail(key.line, "'" + key.text + "' is given twice");
+            if (!seen.insert(key.text)) return fail(key.line, "'" + key.text + "' is given twice");
             if (key.text == "min") spec.min = value;
             else if (key.text == "max") spec.max = value;
             else if (key.text == "default") spec.defaultValue = value;
@@ -544,7 +582,7 @@ private:
                                     "' is not a shape (box, sphere, capsule, cylinder, cone)");
         const bool isBox = shape.kind == GeometryKind::Box;
         const bool hasHeight = !isBox && shape.kind != GeometryKind::Sphere;
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& c : s.children)
         {
             const std::string& k = c.keyword;
@@ -599,7 +637,7 @@ private:
         if (!expectArguments(s, 1)) return false;
         model.file = s.arguments.front().text;
         if (model.file.empty()) return fail(s.line, "'model' needs a file name");
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& c : s.children)
         {
             const std::string& k = c.keyword;
@@ -641,7 +679,7 @@ private:
         if (!channelIsAngular(s.arguments.front(), definition, angular)) return false;
         Interpolation interpolation = Interpolation::Linear;
         std::vector<std::pair<double, double>> keys; // seconds, API units
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& c : s.children)
         {
             if (c.keyword == "interpolation")
@@ -672,7 +710,7 @@ private:
         double frameRate = 0.0;
         std::vector<bool> angular; // per channel
         std::vector<double> values;
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& c : clip.children)
         {
             if (c.keyword == "frame_rate")
@@ -726,7 +764,7 @@ private:
             return fail(s.line, "'" + clip.file + "': a clip's file must be motion capture, BVH (.bvh) or AMC (.amc), "
                                 "or a rigged model's animation (.gltf, .glb)");
         MotionFileOptions& options = clip.fileOptions;
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& o : s.children)
         {
             const std::string& k = o.keyword;
@@ -778,7 +816,7 @@ private:
         player.name = s.arguments.front().text;
         player.line = s.line;
         bool paused = false;
-        std::set<std::string> seen;
+        SeenWords seen;
         const SyntaxStatement* clipOnly = nullptr; // the first statement only a clip's player takes
         for (const SyntaxStatement& c : s.children)
         {
@@ -912,7 +950,7 @@ private:
         ClipBuilder builder(s.arguments.front().text);
         bool keyed = false;
         bool uniform = false;
-        std::set<std::string> seen;
+        SeenWords seen;
         for (const SyntaxStatement& c : s.children)
         {
             if (c.keyword == "play")
@@ -978,12 +1016,10 @@ private:
   * (joints at the actor's level with 'parent' statements come in any). */
 void putInDefinitionOrder(const ActorDefinition& definition, std::vector<JointDocument>& joints)
 {
-    std::unordered_map<std::string, std::size_t> byName;
-    for (std::size_t j = 0; j < joints.size(); ++j) byName.emplace(joints[j].spec.name, j);
-    std::vector<JointDocument> ordered;
-    ordered.reserve(joints.size());
-    for (unsigned j = 0; j < definition.getNumJoints(); ++j)
-        ordered.push_back(std::move(joints[byName.at(definition.getJointName(j))]));
+    // The definition was built from these joints, so it knows each name once: its index is the joint's place.
+    std::vector<JointDocument> ordered(joints.size());
+    for (JointDocument& joint : joints)
+        ordered[static_cast<unsigned>(definition.findJoint(joint.spec.name))] = std::move(joint);
     joints.swap(ordered);
 }
 

@@ -1,6 +1,8 @@
 #include <osgActor/io/ActorLexer>
 #include <osgActor/io/ActorSyntax>
 
+#include <algorithm>
+#include <iterator>
 #include <ostream>
 
 namespace osgActor {
@@ -9,15 +11,44 @@ namespace {
 
 /** Deeper nesting than this is refused rather than risking the stack on a hostile file. */
 constexpr unsigned kMaxDepth = 200;
+/** Blocks of at most this many statements are copied out of the parser's scratch list at their exact size. */
+constexpr std::size_t kSmallBlock = 32;
 
 /** One parse of one stream: the lexer, one token of look-ahead and the first error. */
 class SyntaxParser
 {
 public:
-    SyntaxParser(TextLines& text, const std::string& fileName) : _lexer(text), _fileName(fileName) { advance(); }
+    SyntaxParser(TextLines& text, const std::string& fileName)
+        : _lexer(text), _fileName(fileName), _blocks(kMaxDepth + 1)
+    {
+        advance();
+    }
 
-    /** Statements up to the end of the file (depth 0) or to the brace that closes the current block. */
+    /** Statements up to the end of the file (depth 0) or to the brace that closes the current block. They are
+      * gathered in the depth's scratch list, whose room is kept from block to block, and a small block's are then
+      * moved into a list of their exact size: a file of many small blocks (a joint each) does not grow every
+      * block's list a statement at a time. A large block takes the scratch list itself (moving its statements once
+      * more would cost more than the allocations it saves). */
     bool parseStatements(std::vector<SyntaxStatement>& statements, unsigned depth, int openLine)
+    {
+        std::vector<SyntaxStatement>& gathered = _blocks[depth];
+        gathered.clear();
+        if (!gatherStatements(gathered, depth, openLine)) return false;
+        if (gathered.size() > kSmallBlock)
+        {
+            statements.swap(gathered);
+            return true;
+        }
+        statements.reserve(gathered.size());
+        std::move(gathered.begin(), gathered.end(), std::back_inserter(statements));
+        gathered.clear();
+        return true;
+    }
+
+    const std::string& error() const { return _error; }
+
+private:
+    bool gatherStatements(std::vector<SyntaxStatement>& statements, unsigned depth, int openLine)
     {
         for (;;)
         {
@@ -46,19 +77,20 @@ public:
         }
     }
 
-    const std::string& error() const { return _error; }
-
-private:
     bool parseStatement(SyntaxStatement& statement, unsigned depth)
     {
-        statement.keyword = _token.text;
+        statement.keyword = std::move(_token.text);
         statement.line = _token.line;
         advance();
+        // Gathered first, then moved in at their final size (one allocation, not one per doubling).
+        _arguments.clear();
         while (_token.type == TokenType::Word || _token.type == TokenType::String)
         {
-            statement.arguments.push_back(SyntaxArgument{_token.text, _token.type == TokenType::String, _token.line});
+            _arguments.push_back(SyntaxArgument{std::move(_token.text), _token.type == TokenType::String, _token.line});
             advance();
         }
+        statement.arguments.assign(std::make_move_iterator(_arguments.begin()),
+                                   std::make_move_iterator(_arguments.end()));
         if (_token.type == TokenType::Error) return fail(_token.line, _token.text);
         if (_token.type != TokenType::OpenBrace) return true; // a newline, ';', '}' or the end of the file ends it
         if (depth + 1 > kMaxDepth) return fail(_token.line, "blocks are nested too deeply");
@@ -80,7 +112,68 @@ private:
     const std::string& _fileName;
     Token _token;
     std::string _error;
+    std::vector<std::vector<SyntaxStatement>> _blocks; // per depth, the statements of the block being parsed
+    std::vector<SyntaxArgument> _arguments;            // the arguments of the statement being parsed
 };
+
+/** Appends the text in double quotes, with \" and \\ escapes. */
+void appendQuoted(std::string& out, const std::string& text)
+{
+    out += '"';
+    for (const char c : text)
+    {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    out += '"';
+}
+
+/** Writes statements' text into one buffer, handed to the stream a large piece at a time: a file of many short
+  * statements would otherwise go through the stream's formatted output a word at a time. */
+class SyntaxText
+{
+public:
+    explicit SyntaxText(std::ostream& out) : _out(out) {}
+    ~SyntaxText() { flush(); }
+
+    void write(const std::vector<SyntaxStatement>& statements, unsigned indent)
+    {
+        for (const SyntaxStatement& statement : statements)
+        {
+            _text.append(indent * 4, ' ');
+            _text += statement.keyword;
+            for (const SyntaxArgument& argument : statement.arguments)
+            {
+                _text += ' ';
+                if (argument.quoted) appendQuoted(_text, argument.text);
+                else _text += argument.text;
+            }
+            if (statement.hasBlock)
+            {
+                _text += " {\n";
+                write(statement.children, indent + 1);
+                _text.append(indent * 4, ' ');
+                _text += '}';
+            }
+            _text += '\n';
+            if (_text.size() >= kPiece) flush();
+        }
+    }
+
+private:
+    static constexpr std::size_t kPiece = 1 << 16;
+
+    void flush()
+    {
+        _out.write(_text.data(), static_cast<std::streamsize>(_text.size()));
+        _text.clear();
+    }
+
+    std::ostream& _out;
+    std::string _text;
+};
+
+} // namespace
 
 bool needsQuotes(const std::string& name)
 {
@@ -93,8 +186,6 @@ bool needsQuotes(const std::string& name)
     }
     return false;
 }
-
-} // namespace
 
 bool parseSyntax(std::istream& in, const std::string& fileName, std::vector<SyntaxStatement>& statements,
                  std::string& error)
@@ -117,32 +208,14 @@ std::string quoteIfNeeded(const std::string& name) { return needsQuotes(name) ? 
 
 std::string quoted(const std::string& name)
 {
-    std::string text = "\"";
-    for (const char c : name)
-    {
-        if (c == '"' || c == '\\') text.push_back('\\');
-        text.push_back(c);
-    }
-    text.push_back('"');
+    std::string text;
+    appendQuoted(text, name);
     return text;
 }
 
 void writeSyntax(std::ostream& out, const std::vector<SyntaxStatement>& statements, unsigned indent)
 {
-    const std::string margin(indent * 4, ' ');
-    for (const SyntaxStatement& statement : statements)
-    {
-        out << margin << statement.keyword;
-        for (const SyntaxArgument& argument : statement.arguments)
-            out << ' ' << (argument.quoted ? quoted(argument.text) : argument.text);
-        if (statement.hasBlock)
-        {
-            out << " {\n";
-            writeSyntax(out, statement.children, indent + 1);
-            out << margin << '}';
-        }
-        out << '\n';
-    }
+    SyntaxText(out).write(statements, indent);
 }
 
 } // namespace osgActor

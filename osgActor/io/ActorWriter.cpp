@@ -1,10 +1,12 @@
+#include <osgActor/core/detail/JointChildren.h>
 #include <osgActor/io/ActorWriter>
 #include <osgActor/io/AngleAxis>
 #include <osgActor/text/Degrees>
 #include <osgActor/text/Numbers>
 
 #include <cmath>
-#include <map>
+#include <string_view>
+#include <unordered_map>
 
 namespace osgActor {
 
@@ -15,7 +17,7 @@ namespace {
 // radians ("1rad") where no degrees do (text/Degrees): so reading what was written gives the same document.
 
 SyntaxArgument word(const std::string& text) { return SyntaxArgument{text, false, 0}; }
-SyntaxArgument nameArgument(const std::string& name) { return SyntaxArgument{name, quoteIfNeeded(name) != name, 0}; }
+SyntaxArgument nameArgument(const std::string& name) { return SyntaxArgument{name, needsQuotes(name), 0}; }
 SyntaxArgument numberArgument(double value) { return word(formatNumber(value)); }
 SyntaxArgument angleArgument(double radians) { return word(formatAngle(radians)); }
 
@@ -194,14 +196,9 @@ class JointTreeWriter
 {
 public:
     explicit JointTreeWriter(const ActorDocument& document)
-        : _document(document), _written(document.joints.size(), false)
+        : _document(document), _written(document.joints.size(), false), _byName(namesOf(document)),
+          _children(parentsOf(document, _byName))
     {
-        for (std::size_t j = 0; j < document.joints.size(); ++j) _byName.emplace(document.joints[j].spec.name, j);
-        for (std::size_t j = 0; j < document.joints.size(); ++j)
-        {
-            const auto parent = _byName.find(document.joints[j].spec.parent);
-            if (parent != _byName.end() && parent->second != j) _children[parent->second].push_back(j);
-        }
     }
 
     void write(std::vector<SyntaxStatement>& out)
@@ -233,21 +230,43 @@ private:
                 s.children.push_back(dofStatement(static_cast<Dof>(d), joint.spec.dofs[d], joint.values[d]));
         if (joint.hidden) s.children.push_back(statement("hidden"));
         for (const GeometryDescription& g : joint.geometry) s.children.push_back(geometryStatement(g));
-        const auto children = _children.find(j);
         // Below kMaxNesting, children are written at the actor's level with a 'parent' statement instead: the reader
         // refuses blocks nested 200 deep, and a chain of thousands of joints (a 'parent' chain in a .actor file, an
         // ASF hierarchy) would overflow the stack here.
-        if (children != _children.end() && depth + 1 < kMaxNesting)
-            for (std::size_t child : children->second)
+        if (depth + 1 < kMaxNesting)
+            for (unsigned child : _children.of(static_cast<unsigned>(j)))
                 if (!_written[child]) writeJoint(child, false, s.children, depth + 1);
         s.hasBlock = !s.children.empty();
         out.push_back(std::move(s));
     }
 
+    /** Each joint's index by name (the first of a name given twice, as a map's emplace keeps), viewing the
+      * document's names. */
+    static std::unordered_map<std::string_view, std::size_t> namesOf(const ActorDocument& document)
+    {
+        std::unordered_map<std::string_view, std::size_t> byName;
+        byName.reserve(document.joints.size());
+        for (std::size_t j = 0; j < document.joints.size(); ++j) byName.emplace(document.joints[j].spec.name, j);
+        return byName;
+    }
+
+    /** Each joint's parent by index: -1 for a root, a parent not in the document, or a joint its own parent. */
+    static detail::JointChildren parentsOf(const ActorDocument& document,
+                                           const std::unordered_map<std::string_view, std::size_t>& byName)
+    {
+        std::vector<int> parents(document.joints.size(), -1);
+        for (std::size_t j = 0; j < document.joints.size(); ++j)
+        {
+            const auto parent = byName.find(document.joints[j].spec.parent);
+            if (parent != byName.end() && parent->second != j) parents[j] = static_cast<int>(parent->second);
+        }
+        return detail::JointChildren(parents);
+    }
+
     const ActorDocument& _document;
     std::vector<bool> _written;
-    std::map<std::string, std::size_t> _byName;
-    std::map<std::size_t, std::vector<std::size_t>> _children;
+    std::unordered_map<std::string_view, std::size_t> _byName;
+    detail::JointChildren _children;
 };
 
 } // namespace
