@@ -370,9 +370,11 @@ void readAnimations(const AnimationManagerBase& manager, const std::multimap<std
                 entry.second[e] = &channel;
             }
         }
+        std::map<int, AnimatedNode> animatedNodes;
         for (const auto& [stack, entry] : driven)
         {
             AnimatedStack animated;
+            bool blendsMatrices = false;
             for (std::size_t e = 0; e < stack->size(); ++e)
             {
                 const StackedTransformElement* element = (*stack)[e].get();
@@ -398,12 +400,19 @@ void readAnimations(const AnimationManagerBase& manager, const std::multimap<std
                                           element->getName() + "'",
                                       "key times are not strictly increasing at key " + std::to_string(k));
                 animated.elements.push_back(driven);
+                blendsMatrices = blendsMatrices || dynamic_cast<const StackedMatrixElement*>(element) != nullptr;
             }
             if (sampleStack(animated, entry.first, model.nodes[entry.first], tolerance, levers[entry.first], place,
                             animation))
                 warnings.push_back(place + ": the motion of '" + model.nodes[entry.first].name +
                                    "' is resampled with the most samples allowed and strays more than the tolerance");
+            animatedNodes[entry.first] = AnimatedNode{[animated](double t) { return animated.at(t); },
+                                                      animated.breakpoints(), blendsMatrices};
         }
+        for (int node : addBlendedPositionChannels(animatedNodes, model, tolerance, animation))
+            warnings.push_back(place + ": the position of '" + model.nodes[node].name +
+                               "' under blended matrices is resampled with the most samples allowed and strays more "
+                               "than the tolerance");
         model.animations.push_back(std::move(animation));
     }
 }

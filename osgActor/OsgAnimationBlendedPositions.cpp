@@ -1,0 +1,200 @@
+// Joint positions under osgAnimation's matrix channels (OsgAnimationScene): osgAnimation blends a matrix channel's
+// keys element by element, which between keys is a rotation times a stretch. The import turns each node rigidly (the
+// rotation, OsgAnimationClips), and the DOF model has no animated stretch, so the nodes below such a channel get
+// translation channels that put them where osgAnimation's blended matrices put them.
+#include "OsgAnimationScene"
+
+#include <osgActor/import/ChannelSampling>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/matrix.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+namespace osgActor {
+namespace osganimation {
+
+namespace {
+
+/** The most pieces one interval between breakpoints is cut into (as OsgAnimationClips' sampling). */
+constexpr unsigned kMaxPieces = 256;
+
+/** The channel of a node and path in an animation, or null. */
+const AnimationChannel* findChannel(const RiggedAnimation& animation, int node, AnimationPath path)
+{
+    for (const AnimationChannel& channel : animation.channels)
+        if (channel.node == node && channel.path == path) return &channel;
+    return nullptr;
+}
+
+/** One node's motion in the two models: osgAnimation's (exact, blended) and the animation's (as it plays). */
+class Chains
+{
+public:
+    Chains(const std::map<int, AnimatedNode>& animated, const RiggedModel& model, const RiggedAnimation& animation)
+        : _animated(animated), _model(model), _animation(animation)
+    {
+    }
+
+    /** osgAnimation's world matrix of a node at t (the scene root's space, scene units). */
+    glm::dmat4 blendedWorld(int node, double t) const
+    {
+        glm::dmat4 world(1.0);
+        for (int n = node; n >= 0; n = _model.nodes[n].parent)
+        {
+            const auto moved = _animated.find(n);
+            world = (moved != _animated.end() ? moved->second.at(t) : restMatrix(_model.nodes[n])) * world;
+        }
+        return world;
+    }
+
+    /** The linear part (rotation and scale, no translation) of a node's world matrix as the animation plays it: its
+      * rotation and scale channels, else its rest values, composed up to the root. */
+    glm::dmat3 playedLinear(int node, double t) const
+    {
+        glm::dmat3 linear(1.0);
+        for (int n = node; n >= 0; n = _model.nodes[n].parent)
+        {
+            const RiggedNode& rest = _model.nodes[n];
+            const AnimationChannel* rotation = findChannel(_animation, n, AnimationPath::Rotation);
+            const AnimationChannel* scale = findChannel(_animation, n, AnimationPath::Scale);
+            const glm::dquat q = rotation ? sampleRotationChannel(*rotation, t) : rest.rotation;
+            const glm::dvec3 s = scale ? sampleVectorChannel(*scale, t) : rest.scale;
+            glm::dmat3 local = glm::mat3_cast(q);
+            for (int axis = 0; axis < 3; ++axis) local[axis] *= s[axis];
+            linear = local * linear;
+        }
+        return linear;
+    }
+
+    /** The translation (local to its parent) that puts the node at osgAnimation's world position at t, seen through
+      * the rotations and scales the animation plays above it; also that linear part, for measuring errors. */
+    glm::dvec3 translation(int node, double t, glm::dmat3& parentLinear) const
+    {
+        const int parent = _model.nodes[node].parent;
+        const glm::dvec3 position(blendedWorld(node, t)[3]);
+        const glm::dvec3 parentPosition = parent >= 0 ? glm::dvec3(blendedWorld(parent, t)[3]) : glm::dvec3(0.0);
+        parentLinear = parent >= 0 ? playedLinear(parent, t) : glm::dmat3(1.0);
+        return glm::inverse(parentLinear) * (position - parentPosition);
+    }
+
+    /** The breakpoints of the animated nodes from the root down to node, merged and sorted. */
+    std::vector<double> breakpoints(int node) const
+    {
+        std::set<double> times;
+        for (int n = node; n >= 0; n = _model.nodes[n].parent)
+        {
+            const auto moved = _animated.find(n);
+            if (moved != _animated.end()) times.insert(moved->second.breakpoints.begin(), moved->second.breakpoints.end());
+        }
+        return std::vector<double>(times.begin(), times.end());
+    }
+
+private:
+    const std::map<int, AnimatedNode>& _animated;
+    const RiggedModel& _model;
+    const RiggedAnimation& _animation;
+};
+
+/** Whether a proper ancestor of node is driven by a matrix channel. */
+bool belowBlendedMatrices(const std::map<int, AnimatedNode>& animated, const RiggedModel& model, int node)
+{
+    for (int n = model.nodes[node].parent; n >= 0; n = model.nodes[n].parent)
+    {
+        const auto moved = animated.find(n);
+        if (moved != animated.end() && moved->second.blendsMatrices) return true;
+    }
+    return false;
+}
+
+/** The node's translation channel, sampled at its breakpoints and, between them, at evenly spaced times, as few as
+  * keep the played position (the linear interpolation seen through the parent's played linear part) within
+  * tolerance of osgAnimation's; capped is set where the cap on samples was reached first. */
+AnimationChannel sampleTranslation(const Chains& chains, int node, double tolerance, bool& capped)
+{
+    AnimationChannel channel;
+    channel.node = node;
+    channel.path = AnimationPath::Translation;
+    channel.interpolation = KeyInterpolation::Linear;
+    const std::vector<double> keys = chains.breakpoints(node);
+    glm::dmat3 linear;
+    auto at = [&](double t) { return chains.translation(node, t, linear); };
+    for (std::size_t k = 0; k < keys.size(); ++k)
+    {
+        const glm::dvec3 first = at(keys[k]);
+        channel.times.push_back(keys[k]);
+        channel.values.push_back(glm::dvec4(first, 0.0));
+        if (k + 1 == keys.size()) continue;
+        const double t0 = keys[k], t1 = keys[k + 1];
+        if (std::nextafter(t0, t1) == t1) continue; // one unit in the last place: nothing between
+        const glm::dvec3 last = at(t1);
+        for (unsigned pieces = 1;; pieces *= 2)
+        {
+            std::vector<glm::dvec3> ends{first};
+            for (unsigned i = 1; i < pieces; ++i) ends.push_back(at(t0 + (t1 - t0) * i / pieces));
+            ends.push_back(last);
+            double worst = 0.0;
+            for (unsigned i = 0; i < pieces; ++i)
+                for (double u : {0.25, 0.5, 0.75})
+                {
+                    const glm::dvec3 exact = at(t0 + (t1 - t0) * (i + u) / pieces); // sets linear
+                    worst = std::max(worst, glm::length(linear * (glm::mix(ends[i], ends[i + 1], u) - exact)));
+                }
+            if (worst <= tolerance || pieces * 2 > kMaxPieces)
+            {
+                capped = capped || worst > tolerance;
+                for (unsigned i = 1; i < pieces; ++i)
+                {
+                    channel.times.push_back(t0 + (t1 - t0) * i / pieces);
+                    channel.values.push_back(glm::dvec4(ends[i], 0.0));
+                }
+                break;
+            }
+        }
+    }
+    return channel;
+}
+
+} // namespace
+
+std::vector<int> addBlendedPositionChannels(const std::map<int, AnimatedNode>& animated, const RiggedModel& model,
+                                            double tolerance, RiggedAnimation& animation)
+{
+    std::vector<int> capped;
+    std::vector<AnimationChannel> added;
+    {
+        const Chains chains(animated, model, animation);
+        for (std::size_t n = 0; n < model.nodes.size(); ++n)
+        {
+            if (!belowBlendedMatrices(animated, model, int(n))) continue;
+            bool cap = false;
+            AnimationChannel channel = sampleTranslation(chains, int(n), tolerance, cap);
+            if (cap) capped.push_back(int(n));
+            // A translation that never leaves its rest value is no channel (no needless DOFs), unless it replaces
+            // the node's own.
+            const glm::dvec3 rest = model.nodes[n].translation;
+            const bool moves = std::any_of(channel.values.begin(), channel.values.end(), [&](const glm::dvec4& v) {
+                return glm::length(glm::dvec3(v) - rest) > 1e-12 * (1.0 + glm::length(rest));
+            });
+            if (moves || findChannel(animation, int(n), AnimationPath::Translation))
+                added.push_back(std::move(channel));
+        }
+    }
+    for (AnimationChannel& channel : added)
+    {
+        auto& channels = animation.channels;
+        channels.erase(std::remove_if(channels.begin(), channels.end(),
+                                      [&](const AnimationChannel& c) {
+                                          return c.node == channel.node && c.path == AnimationPath::Translation;
+                                      }),
+                       channels.end());
+        channels.push_back(std::move(channel));
+    }
+    return capped;
+}
+
+} // namespace osganimation
+} // namespace osgActor
