@@ -19,9 +19,6 @@ namespace osganimation {
 
 namespace {
 
-/** The most pieces one interval between breakpoints is cut into (as OsgAnimationClips' sampling). */
-constexpr unsigned kMaxPieces = 256;
-
 /** The channel of a node and path in an animation, or null. */
 const AnimationChannel* findChannel(const RiggedAnimation& animation, int node, AnimationPath path)
 {
@@ -130,30 +127,13 @@ AnimationChannel sampleTranslation(const Chains& chains, int node, double tolera
         if (k + 1 == keys.size()) continue;
         const double t0 = keys[k], t1 = keys[k + 1];
         if (std::nextafter(t0, t1) == t1) continue; // one unit in the last place: nothing between
-        const glm::dvec3 last = at(t1);
-        for (unsigned pieces = 1;; pieces *= 2)
-        {
-            std::vector<glm::dvec3> ends{first};
-            for (unsigned i = 1; i < pieces; ++i) ends.push_back(at(t0 + (t1 - t0) * i / pieces));
-            ends.push_back(last);
-            double worst = 0.0;
-            for (unsigned i = 0; i < pieces; ++i)
-                for (double u : {0.25, 0.5, 0.75})
-                {
-                    const glm::dvec3 exact = at(t0 + (t1 - t0) * (i + u) / pieces); // sets linear
-                    worst = std::max(worst, glm::length(linear * (glm::mix(ends[i], ends[i + 1], u) - exact)));
-                }
-            if (worst <= tolerance || pieces * 2 > kMaxPieces)
-            {
-                capped = capped || worst > tolerance;
-                for (unsigned i = 1; i < pieces; ++i)
-                {
-                    channel.times.push_back(t0 + (t1 - t0) * i / pieces);
-                    channel.values.push_back(glm::dvec4(ends[i], 0.0));
-                }
-                break;
-            }
-        }
+        std::vector<glm::dvec3> values;
+        auto strays = [&](const glm::dvec3& a, const glm::dvec3& b, double u, double t) {
+            const glm::dvec3 exact = at(t); // sets linear: the parent's, at t
+            return glm::length(linear * (glm::mix(a, b, u) - exact));
+        };
+        capped = subdivideInterval(t0, t1, first, at(t1), at, strays, tolerance, channel.times, values) || capped;
+        for (const glm::dvec3& value : values) channel.values.push_back(glm::dvec4(value, 0.0));
     }
     return channel;
 }
