@@ -153,12 +153,17 @@ std::vector<int> addBlendedPositionChannels(const std::map<int, AnimatedNode>& a
             bool cap = false;
             AnimationChannel channel = sampleTranslation(chains, int(n), tolerance, cap);
             if (cap) capped.push_back(int(n));
-            // A translation that never leaves its rest value is no channel (no needless DOFs), unless it replaces
-            // the node's own.
+            // A translation that never leaves its rest value by more than a tenth of the tolerance (seen in the
+            // scene: what the float products of osgAnimation's matrices leave where nothing stretches) is no channel
+            // (no needless DOFs), unless it replaces the node's own.
+            const int parent = model.nodes[n].parent;
             const glm::dvec3 rest = model.nodes[n].translation;
-            const bool moves = std::any_of(channel.values.begin(), channel.values.end(), [&](const glm::dvec4& v) {
-                return glm::length(glm::dvec3(v) - rest) > 1e-12 * (1.0 + glm::length(rest));
-            });
+            bool moves = false;
+            for (std::size_t k = 0; k < channel.times.size() && !moves; ++k)
+            {
+                const glm::dmat3 linear = parent >= 0 ? chains.playedLinear(parent, channel.times[k]) : glm::dmat3(1.0);
+                moves = glm::length(linear * (glm::dvec3(channel.values[k]) - rest)) > 0.1 * tolerance;
+            }
             if (moves || findChannel(animation, int(n), AnimationPath::Translation))
                 added.push_back(std::move(channel));
         }
