@@ -32,19 +32,27 @@ class Chains
 {
 public:
     Chains(const std::map<int, AnimatedNode>& animated, const RiggedModel& model, const RiggedAnimation& animation)
-        : _animated(animated), _model(model), _animation(animation)
+        : _animated(animated), _model(model)
     {
+        for (const AnimationChannel& channel : animation.channels)
+        {
+            if (channel.path == AnimationPath::Rotation) _rotations.emplace(channel.node, &channel);
+            if (channel.path == AnimationPath::Scale) _scales.emplace(channel.node, &channel);
+        }
+    }
+
+    /** osgAnimation's matrix of a node at t (local to its parent, scene units): its stacked transform, or its rest. */
+    glm::dmat4 blendedLocal(int node, double t) const
+    {
+        const auto moved = _animated.find(node);
+        return moved != _animated.end() ? moved->second.at(t) : restMatrix(_model.nodes[node]);
     }
 
     /** osgAnimation's world matrix of a node at t (the scene root's space, scene units). */
     glm::dmat4 blendedWorld(int node, double t) const
     {
         glm::dmat4 world(1.0);
-        for (int n = node; n >= 0; n = _model.nodes[n].parent)
-        {
-            const auto moved = _animated.find(n);
-            world = (moved != _animated.end() ? moved->second.at(t) : restMatrix(_model.nodes[n])) * world;
-        }
+        for (int n = node; n >= 0; n = _model.nodes[n].parent) world = blendedLocal(n, t) * world;
         return world;
     }
 
@@ -56,10 +64,10 @@ public:
         for (int n = node; n >= 0; n = _model.nodes[n].parent)
         {
             const RiggedNode& rest = _model.nodes[n];
-            const AnimationChannel* rotation = findChannel(_animation, n, AnimationPath::Rotation);
-            const AnimationChannel* scale = findChannel(_animation, n, AnimationPath::Scale);
-            const glm::dquat q = rotation ? sampleRotationChannel(*rotation, t) : rest.rotation;
-            const glm::dvec3 s = scale ? sampleVectorChannel(*scale, t) : rest.scale;
+            const auto rotation = _rotations.find(n);
+            const auto scale = _scales.find(n);
+            const glm::dquat q = rotation != _rotations.end() ? sampleRotationChannel(*rotation->second, t) : rest.rotation;
+            const glm::dvec3 s = scale != _scales.end() ? sampleVectorChannel(*scale->second, t) : rest.scale;
             glm::dmat3 local = glm::mat3_cast(q);
             for (int axis = 0; axis < 3; ++axis) local[axis] *= s[axis];
             linear = local * linear;
@@ -72,10 +80,10 @@ public:
     glm::dvec3 translation(int node, double t, glm::dmat3& parentLinear) const
     {
         const int parent = _model.nodes[node].parent;
-        const glm::dvec3 position(blendedWorld(node, t)[3]);
-        const glm::dvec3 parentPosition = parent >= 0 ? glm::dvec3(blendedWorld(parent, t)[3]) : glm::dvec3(0.0);
+        const glm::dmat4 parentWorld = parent >= 0 ? blendedWorld(parent, t) : glm::dmat4(1.0);
+        const glm::dvec3 position(parentWorld * blendedLocal(node, t)[3]);
         parentLinear = parent >= 0 ? playedLinear(parent, t) : glm::dmat3(1.0);
-        return glm::inverse(parentLinear) * (position - parentPosition);
+        return glm::inverse(parentLinear) * (position - glm::dvec3(parentWorld[3]));
     }
 
     /** The breakpoints of the animated nodes from the root down to node, merged and sorted. */
@@ -93,7 +101,8 @@ public:
 private:
     const std::map<int, AnimatedNode>& _animated;
     const RiggedModel& _model;
-    const RiggedAnimation& _animation;
+    /** The animation's rotation and scale channels, by node (one of each at most). */
+    std::map<int, const AnimationChannel*> _rotations, _scales;
 };
 
 /** Whether a proper ancestor of node is driven by a matrix channel. */
