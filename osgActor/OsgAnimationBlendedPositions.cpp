@@ -73,7 +73,8 @@ public:
             const glm::dmat4 local = moved != _animated.end() ? moved->second.at(t) : restMatrix(node);
             const auto rotation = _rotations.find(n);
             const auto scale = _scales.find(n);
-            const glm::dquat q = rotation != _rotations.end() ? sampleRotationChannel(*rotation->second, t) : node.rotation;
+            const glm::dquat q =
+                rotation != _rotations.end() ? sampleRotationChannel(*rotation->second, t) : node.rotation;
             const glm::dvec3 s = scale != _scales.end() ? sampleVectorChannel(*scale->second, t) : node.scale;
             glm::dmat3 linear = glm::mat3_cast(q);
             for (int axis = 0; axis < 3; ++axis) linear[axis] *= s[axis];
