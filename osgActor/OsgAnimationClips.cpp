@@ -29,9 +29,6 @@ namespace osganimation {
 
 namespace {
 
-/** The most pieces one interval between key times is cut into. */
-constexpr unsigned kMaxPieces = 256; // RiggedActorOptions::maxSamplesPerInterval
-
 /** A channel's value at a time, as osgAnimation's sampler gives it, and its key times. */
 template <class Value>
 struct Curve
@@ -235,34 +232,15 @@ bool sampleStack(const AnimatedStack& stack, int node, const RiggedNode& rest, d
         const double t0 = keys[k], t1 = keys[k + 1];
         if (std::nextafter(t0, t1) == t1) continue; // one unit in the last place: nothing between
         const Pose first = poses.back(), last = poseOf(stack.at(t1));
-        for (unsigned pieces = 1;; pieces *= 2)
-        {
-            std::vector<Pose> ends{first};
-            for (unsigned i = 1; i < pieces; ++i) ends.push_back(poseOf(stack.at(t0 + (t1 - t0) * i / pieces)));
-            ends.push_back(last);
-            double worst = 0.0;
-            for (unsigned i = 0; i < pieces; ++i)
-                for (double u : {0.25, 0.5, 0.75})
-                {
-                    const Pose exact = poseOf(stack.at(t0 + (t1 - t0) * (i + u) / pieces));
-                    glm::dquat b = ends[i + 1].rotation;
-                    if (glm::dot(ends[i].rotation, b) < 0.0) b = -b;
-                    const glm::dquat rotation = glm::normalize(glm::slerp(ends[i].rotation, b, u));
-                    const glm::dvec3 translation = glm::mix(ends[i].translation, ends[i + 1].translation, u);
-                    worst = std::max(worst, glm::length(translation - exact.translation) +
-                                                lever * angleBetween(rotation, exact.rotation));
-                }
-            if (worst <= tolerance || pieces * 2 > kMaxPieces)
-            {
-                capped = capped || worst > tolerance;
-                for (unsigned i = 1; i < pieces; ++i)
-                {
-                    times.push_back(t0 + (t1 - t0) * i / pieces);
-                    poses.push_back(ends[i]);
-                }
-                break;
-            }
-        }
+        auto exact = [&](double t) { return poseOf(stack.at(t)); };
+        auto strays = [&](const Pose& a, const Pose& b, double u, double t) {
+            const Pose pose = exact(t);
+            const glm::dquat to = glm::dot(a.rotation, b.rotation) < 0.0 ? -b.rotation : b.rotation;
+            const glm::dquat rotation = glm::normalize(glm::slerp(a.rotation, to, u));
+            const glm::dvec3 translation = glm::mix(a.translation, b.translation, u);
+            return glm::length(translation - pose.translation) + lever * angleBetween(rotation, pose.rotation);
+        };
+        capped = subdivideInterval(t0, t1, first, last, exact, strays, tolerance, times, poses) || capped;
     }
     for (const Pose& pose : poses)
         if (!std::isfinite(pose.translation.x + pose.translation.y + pose.translation.z + pose.rotation.x +
@@ -370,9 +348,11 @@ void readAnimations(const AnimationManagerBase& manager, const std::multimap<std
                 entry.second[e] = &channel;
             }
         }
+        std::map<int, AnimatedNode> animatedNodes;
         for (const auto& [stack, entry] : driven)
         {
             AnimatedStack animated;
+            bool blendsMatrices = false;
             for (std::size_t e = 0; e < stack->size(); ++e)
             {
                 const StackedTransformElement* element = (*stack)[e].get();
@@ -398,12 +378,19 @@ void readAnimations(const AnimationManagerBase& manager, const std::multimap<std
                                           element->getName() + "'",
                                       "key times are not strictly increasing at key " + std::to_string(k));
                 animated.elements.push_back(driven);
+                blendsMatrices = blendsMatrices || dynamic_cast<const StackedMatrixElement*>(element) != nullptr;
             }
             if (sampleStack(animated, entry.first, model.nodes[entry.first], tolerance, levers[entry.first], place,
                             animation))
                 warnings.push_back(place + ": the motion of '" + model.nodes[entry.first].name +
                                    "' is resampled with the most samples allowed and strays more than the tolerance");
+            animatedNodes[entry.first] = AnimatedNode{[animated](double t) { return animated.at(t); },
+                                                      animated.breakpoints(), blendsMatrices};
         }
+        for (int node : addBlendedPositionChannels(animatedNodes, model, tolerance, animation))
+            warnings.push_back(place + ": the position of '" + model.nodes[node].name +
+                               "' under blended matrices is resampled with the most samples allowed and strays more "
+                               "than the tolerance");
         model.animations.push_back(std::move(animation));
     }
 }
