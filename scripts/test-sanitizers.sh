@@ -57,9 +57,13 @@ tsan() {
         xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_threaded_viewer" "$model" 60
     done
     # Skinned meshes: per-frame buffers filled in cull by two cameras' cull threads while the draw reads the others.
-    for model in DrawThreadPerContext CullThreadPerCameraDrawThreadPerContext; do
-        xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" "$model" 40
-    done
+    xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" DrawThreadPerContext 40
+    # OSG's own race between that model's second camera's cull and the next update: the file says which and why.
+    # (TSan reads one suppressions file: the common one and this one together.)
+    cat "$supp/tsan.supp" "$supp/tsan-cull-thread-per-camera.supp" > "$build/tsan-cull-thread-per-camera.supp"
+    TSAN_OPTIONS="$TSAN_OPTIONS:suppressions=$build/tsan-cull-thread-per-camera.supp" \
+        xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" \
+        CullThreadPerCameraDrawThreadPerContext 40
 }
 
 for step in "${steps[@]}"; do
