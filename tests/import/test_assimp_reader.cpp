@@ -202,7 +202,10 @@ TEST(AssimpReader, AssumesTwentyFiveTicksPerSecondWhereTheFileGivesNone)
     ASSERT_TRUE(read) << read.error;
     EXPECT_TRUE(anyWarningSays(read.warnings, "changed.assbin: animations[0] 'Bend': the file gives no ticks per second; 25 are assumed"));
     for (const AnimationChannel& channel : read.model->animations[0].channels)
-        if (channel.path == AnimationPath::Rotation) EXPECT_EQ(channel.times, (std::vector<double>{0.0, 0.4}));
+        if (channel.path == AnimationPath::Rotation)
+        {
+            EXPECT_EQ(channel.times, (std::vector<double>{0.0, 0.4}));
+        }
 }
 
 TEST(AssimpReader, MovesKeysBeforeTimeZeroToStartAtZero)
@@ -216,7 +219,10 @@ TEST(AssimpReader, MovesKeysBeforeTimeZeroToStartAtZero)
     ASSERT_TRUE(read) << read.error;
     EXPECT_TRUE(anyWarningSays(read.warnings, "its keys start at -0.5"));
     for (const AnimationChannel& channel : read.model->animations[0].channels)
-        if (channel.path == AnimationPath::Rotation) EXPECT_EQ(channel.times, (std::vector<double>{0.0, 1.0}));
+        if (channel.path == AnimationPath::Rotation)
+        {
+            EXPECT_EQ(channel.times, (std::vector<double>{0.0, 1.0}));
+        }
 }
 
 TEST(AssimpReader, WarnsAboutMorphTargetsMeshChannelsAndAnimatedScaleAndReadsTheRest)
