@@ -10,9 +10,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <set>
+#include <string>
+#include <vector>
 
 namespace osgActor {
 
@@ -729,6 +734,43 @@ RiggedModelRead loadAndConvert(const std::string& name, tinygltf::TinyGLTF& load
 
 bool isBinaryGltf(const char* magic, std::size_t size) { return size >= 4 && std::equal(magic, magic + 4, "glTF"); }
 
+/** What is wrong with a binary glTF's framing (its header and chunks), or empty. Checked before tinygltf sees the
+  * bytes: Debian's tinygltf 2.7 trusts a chunk's length and copies past the end of the input when a chunk claims
+  * more bytes than the file holds. */
+std::string glbFramingError(const unsigned char* bytes, std::size_t size)
+{
+    const auto word = [bytes](std::size_t at) {
+        return std::uint32_t(bytes[at]) | std::uint32_t(bytes[at + 1]) << 8 | std::uint32_t(bytes[at + 2]) << 16 |
+               std::uint32_t(bytes[at + 3]) << 24;
+    };
+    if (size < 12) return "a binary glTF (GLB) starts with a 12-byte header; the file has " + std::to_string(size);
+    if (word(4) != 2) return "GLB version " + std::to_string(word(4)) + ", not 2";
+    if (word(8) != size)
+        return "the GLB header gives a length of " + std::to_string(word(8)) + " bytes; the file has " +
+               std::to_string(size);
+    std::size_t at = 12;
+    unsigned chunk = 0;
+    for (; at < size; ++chunk)
+    {
+        const std::string place = "GLB chunk " + std::to_string(chunk) + " at byte " + std::to_string(at);
+        if (size - at < 8) return place + ": its 8-byte header runs past the end of the file";
+        const std::uint32_t length = word(at);
+        if (length > size - at - 8)
+            return place + " claims " + std::to_string(length) + " bytes; " + std::to_string(size - at - 8) +
+                   " remain in the file";
+        if (chunk == 0 && word(at + 4) != 0x4E4F534Au) return place + " is not the JSON chunk a GLB starts with";
+        at += 8 + std::size_t(length);
+    }
+    return chunk == 0 ? "the GLB holds no chunk" : "";
+}
+
+RiggedModelRead refused(const std::string& name, const std::string& error)
+{
+    RiggedModelRead failed;
+    failed.error = name + ": " + error;
+    return failed;
+}
+
 } // namespace
 
 RiggedModelRead readGltfFile(const std::string& path)
@@ -743,6 +785,14 @@ RiggedModelRead readGltfFile(const std::string& path)
     char magic[4] = {0, 0, 0, 0};
     probe.read(magic, 4);
     const bool binary = isBinaryGltf(magic, std::size_t(probe.gcount()));
+    if (binary)
+    {
+        probe.seekg(0);
+        const std::vector<unsigned char> whole((std::istreambuf_iterator<char>(probe)),
+                                               std::istreambuf_iterator<char>());
+        const std::string framing = glbFramingError(whole.data(), whole.size());
+        if (!framing.empty()) return refused(path, framing);
+    }
     probe.close();
     tinygltf::TinyGLTF loader;
     return loadAndConvert(path, loader, [&](tinygltf::Model& gltf, std::string& error, std::string& warning) {
@@ -759,6 +809,11 @@ RiggedModelRead readGltfMemory(const void* bytes, std::size_t size, const std::s
         RiggedModelRead failed;
         failed.error = name + ": too large";
         return failed;
+    }
+    if (isBinaryGltf(text, size))
+    {
+        const std::string framing = glbFramingError(static_cast<const unsigned char*>(bytes), size);
+        if (!framing.empty()) return refused(name, framing);
     }
     tinygltf::TinyGLTF loader;
     loader.SetFsCallbacks(tinygltf::FsCallbacks{&anyFileExists, &keepPath, &readNoFile, &writeNoFile, nullptr});

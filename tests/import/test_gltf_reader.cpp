@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 
@@ -170,6 +171,42 @@ TEST(GltfReader, WarnsAboutCamerasMorphTargetsAndExtensionsAndReadsTheRest)
     const RiggedModelRead transform = readGltfFile(path);
     ASSERT_TRUE(transform.model) << transform.error;
     EXPECT_TRUE(anyWarningSays(transform.warnings, path + ": extension KHR_texture_transform is not supported"));
+}
+
+// tinygltf trusts a GLB chunk's length and copied past the end of the input when a chunk claimed more bytes than the
+// file holds (found by fuzz_gltf): the framing is checked first and such a file refused with the chunk and its place.
+TEST(GltfReader, RefusesAGlbWhoseChunkRunsPastTheEndOrWhoseLengthIsWrong)
+{
+    std::ifstream in(gltf2("BoxTextured-glTF-Binary/BoxTextured.glb"), std::ios::binary);
+    const std::string glb((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(glb.size(), 28u);
+    const auto wordAt = [](const std::string& bytes, std::size_t at) {
+        return std::uint32_t(std::uint8_t(bytes[at])) | std::uint32_t(std::uint8_t(bytes[at + 1])) << 8 |
+               std::uint32_t(std::uint8_t(bytes[at + 2])) << 16 | std::uint32_t(std::uint8_t(bytes[at + 3])) << 24;
+    };
+    const std::size_t binAt = 20 + wordAt(glb, 12); // after the header and the JSON chunk
+    const std::uint32_t binLength = wordAt(glb, binAt);
+    ASSERT_EQ(binAt + 8 + binLength, glb.size());
+
+    std::string overlong = glb;
+    const std::uint32_t claimed = binLength + 6;
+    for (int b = 0; b < 4; ++b) overlong[binAt + b] = char((claimed >> (8 * b)) & 0xff);
+    const std::string expected = "GLB chunk 1 at byte " + std::to_string(binAt) + " claims " + std::to_string(claimed) +
+                                 " bytes; " + std::to_string(binLength) + " remain in the file";
+    const RiggedModelRead fromMemory = readGltfMemory(overlong.data(), overlong.size(), "box.glb");
+    EXPECT_FALSE(fromMemory.model);
+    EXPECT_EQ(fromMemory.error, "box.glb: " + expected);
+    const std::string path = ::testing::TempDir() + "overlong_chunk.glb";
+    std::ofstream(path, std::ios::binary) << overlong;
+    const RiggedModelRead fromFile = readGltfFile(path);
+    EXPECT_FALSE(fromFile.model);
+    EXPECT_EQ(fromFile.error, path + ": " + expected);
+
+    const std::string truncated = glb.substr(0, glb.size() - 4);
+    const RiggedModelRead cut = readGltfMemory(truncated.data(), truncated.size(), "cut.glb");
+    EXPECT_FALSE(cut.model);
+    EXPECT_EQ(cut.error, "cut.glb: the GLB header gives a length of " + std::to_string(glb.size()) +
+                             " bytes; the file has " + std::to_string(truncated.size()));
 }
 
 TEST(GltfReader, ReadsFromMemoryAsFromAFileButNoFileItNames)
