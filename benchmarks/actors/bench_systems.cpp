@@ -5,6 +5,7 @@
 // (--threads=N,...). Reported per joint; the summary at the end gives each result's ratio to osgAnimation at the
 // same N and mode, and each system's frame in view against its frame with three in four out of view.
 #include "BenchReport"
+#include "CountList"
 #include "FrameLoop"
 #include "NsPerJoint"
 #include "PeerScenes"
@@ -18,7 +19,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -157,22 +157,6 @@ void registerAll(const Sweep& sweep)
     }
 }
 
-/** Parses a list of positive integers ("1,10,100"); false if it is not one. */
-bool parseList(const char* text, std::vector<int>& values)
-{
-    values.clear();
-    std::stringstream stream(text);
-    std::string item;
-    while (std::getline(stream, item, ','))
-    {
-        char* end = nullptr;
-        const long value = std::strtol(item.c_str(), &end, 10);
-        if (item.empty() || *end != '\0' || value < 1 || value > 16000) return false;
-        values.push_back(static_cast<int>(value));
-    }
-    return !values.empty();
-}
-
 /** Takes --actors=N,... and --threads=N,... out of the arguments (Google Benchmark's own stay); false, with a
   * message, on a bad value. */
 bool parseSweep(int& argc, char** argv, Sweep& sweep)
@@ -192,7 +176,7 @@ bool parseSweep(int& argc, char** argv, Sweep& sweep)
             argv[kept++] = argv[i];
             continue;
         }
-        if (!parseList(argv[i] + argument.find('=') + 1, *target))
+        if (!bench::parseCountList(argv[i] + argument.find('=') + 1, 16000, *target))
         {
             std::fprintf(stderr, "osgactorbench: %s: want a list of counts in 1..16000, such as 1,10,100,1000\n",
                          argv[i]);

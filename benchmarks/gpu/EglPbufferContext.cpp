@@ -3,7 +3,6 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
-#include <osg/State>
 
 #include <cstring>
 #include <sstream>
@@ -114,15 +113,7 @@ osg::ref_ptr<EglPbufferContext> EglPbufferContext::create(int width, int height,
         std::string reason;
         if (openOnDevice(devices[d], width, height, display, context, surface, reason))
         {
-            osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
-            traits->width = width;
-            traits->height = height;
-            traits->pbuffer = true;
-            traits->doubleBuffer = false;
-            traits->red = traits->green = traits->blue = traits->alpha = 8;
-            traits->depth = 24;
-            traits->stencil = 8;
-            return new EglPbufferContext(traits.get(), display, context, surface);
+            return new EglPbufferContext(width, height, display, context, surface);
         }
         reasons += "\n  device " + std::to_string(d) + ": " + reason;
     }
@@ -138,23 +129,12 @@ std::string EglPbufferContext::listDevices()
     return out.str();
 }
 
-EglPbufferContext::EglPbufferContext(osg::GraphicsContext::Traits* traits, void* display, void* context,
-                                     void* surface)
-    : _display(display), _context(context), _surface(surface)
+EglPbufferContext::EglPbufferContext(int width, int height, void* display, void* context, void* surface)
+    : HeadlessGraphicsContext(width, height), _display(display), _context(context), _surface(surface)
 {
-    _traits = traits;
-    setState(new osg::State);
-    getState()->setGraphicsContext(this);
-    getState()->setContextID(osg::GraphicsContext::createNewContextID());
 }
 
 EglPbufferContext::~EglPbufferContext() { close(false); }
-
-bool EglPbufferContext::realizeImplementation()
-{
-    _realized = valid();
-    return _realized;
-}
 
 void EglPbufferContext::closeImplementation()
 {
@@ -165,7 +145,7 @@ void EglPbufferContext::closeImplementation()
     eglTerminate(_display);
     _surface = nullptr;
     _context = nullptr;
-    _realized = false;
+    markClosed();
 }
 
 bool EglPbufferContext::makeCurrentImplementation()

@@ -2,7 +2,6 @@
 
 #include <GL/osmesa.h>
 
-#include <osg/State>
 
 namespace bench {
 
@@ -16,15 +15,7 @@ osg::ref_ptr<OsMesaGraphicsContext> OsMesaGraphicsContext::create(int width, int
         error = "OSMesaCreateContextAttribs failed (compatibility profile, RGBA, depth 24, stencil 8)";
         return nullptr;
     }
-    osg::ref_ptr<osg::GraphicsContext::Traits> traits = new osg::GraphicsContext::Traits;
-    traits->width = width;
-    traits->height = height;
-    traits->pbuffer = true;
-    traits->doubleBuffer = false;
-    traits->red = traits->green = traits->blue = traits->alpha = 8;
-    traits->depth = 24;
-    traits->stencil = 8;
-    osg::ref_ptr<OsMesaGraphicsContext> made = new OsMesaGraphicsContext(traits.get(), context);
+    osg::ref_ptr<OsMesaGraphicsContext> made = new OsMesaGraphicsContext(width, height, context);
     if (!made->makeCurrentImplementation())
     {
         error = "OSMesaMakeCurrent failed on a " + std::to_string(width) + " x " + std::to_string(height) + " buffer";
@@ -33,28 +24,19 @@ osg::ref_ptr<OsMesaGraphicsContext> OsMesaGraphicsContext::create(int width, int
     return made;
 }
 
-OsMesaGraphicsContext::OsMesaGraphicsContext(osg::GraphicsContext::Traits* traits, void* context)
-    : _context(context), _pixels(static_cast<std::size_t>(traits->width) * traits->height * 4u)
+OsMesaGraphicsContext::OsMesaGraphicsContext(int width, int height, void* context)
+    : HeadlessGraphicsContext(width, height), _context(context),
+      _pixels(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4u)
 {
-    _traits = traits;
-    setState(new osg::State);
-    getState()->setGraphicsContext(this);
-    getState()->setContextID(osg::GraphicsContext::createNewContextID());
 }
 
 OsMesaGraphicsContext::~OsMesaGraphicsContext() { close(false); }
-
-bool OsMesaGraphicsContext::realizeImplementation()
-{
-    _realized = valid();
-    return _realized;
-}
 
 void OsMesaGraphicsContext::closeImplementation()
 {
     if (_context) OSMesaDestroyContext(static_cast<OSMesaContext>(_context));
     _context = nullptr;
-    _realized = false;
+    markClosed();
 }
 
 bool OsMesaGraphicsContext::makeCurrentImplementation()

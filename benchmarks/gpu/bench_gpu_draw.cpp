@@ -24,6 +24,7 @@ using HeadlessContext = bench::OsMesaGraphicsContext;
 using HeadlessContext = bench::EglPbufferContext;
 #endif
 
+#include "../actors/CountList"
 #include "../actors/PeerScenes"
 #include "../skin_draw/SkinnedCrowds"
 
@@ -343,21 +344,6 @@ bool compareSkinningPaths(const Options& options, osg::GraphicsContext* context)
     return true;
 }
 
-bool parseInts(const std::string& text, std::vector<int>& values)
-{
-    values.clear();
-    std::stringstream stream(text);
-    std::string item;
-    while (std::getline(stream, item, ','))
-    {
-        char* end = nullptr;
-        const long value = std::strtol(item.c_str(), &end, 10);
-        if (item.empty() || *end != '\0' || value < 1 || value > 100000) return false;
-        values.push_back(int(value));
-    }
-    return !values.empty();
-}
-
 std::vector<std::string> splitWords(const std::string& text)
 {
     std::vector<std::string> words;
@@ -377,7 +363,7 @@ bool parseOptions(int argc, char** argv, Options& options)
         const std::string key = argument.substr(0, equals);
         const std::string value = equals == std::string::npos ? "" : argument.substr(equals + 1);
         bool good = true;
-        if (key == "--actors") good = parseInts(value, options.actors);
+        if (key == "--actors") good = bench::parseCountList(value, 100000, options.actors);
         else if (key == "--systems") good = !(options.systems = splitWords(value)).empty();
         else if (key == "--seconds") good = (options.seconds = std::atof(value.c_str())) > 0.0;
         else if (key == "--size") good = std::sscanf(value.c_str(), "%dx%d", &options.width, &options.height) == 2 &&
