@@ -59,6 +59,12 @@ bool holdsMotion(const ActorDocument& document)
            !document.ikChains.empty();
 }
 
+/** Whether a document sets how the views treat its actor ("cull", "update_policy"), which only an actor holds. */
+bool holdsCullOrUpdatePolicy(const ActorDocument& document)
+{
+    return document.cullNodeByNode || !document.updatePolicy.isDefault();
+}
+
 /** The library's clips, in name order. */
 std::vector<ClipPtr> clipsOf(const ClipLibrary* library)
 {
@@ -83,10 +89,10 @@ ActorDefinitionPtr readDefinitionLines(const std::vector<std::string>& lines, co
     const ActorReadResult read = readWholeText(lines, where, error);
     if (!read) return nullptr;
     // What the text holds besides the joints would be lost: refuse it rather than read part of it.
-    if (holdsMotion(read.document) || !read.document.sections.empty())
+    if (holdsMotion(read.document) || holdsCullOrUpdatePolicy(read.document) || !read.document.sections.empty())
     {
-        error = where + ": a definition holds joints only, and this one has clips, trajectories, players, IK chains "
-                        "or other sections";
+        error = where + ": a definition holds joints only, and this one has clips, trajectories, players, IK chains, "
+                        "a cull mode, an update policy or other sections";
         return nullptr;
     }
     return read.definition;
@@ -120,9 +126,11 @@ ClipLibraryPtr readClipLines(const std::vector<std::string>& lines, const ActorD
         }
         library->addClip(clip.clip);
     }
-    if (!read.document.trajectories.empty() || !read.document.players.empty() || !read.document.ikChains.empty())
+    if (!read.document.trajectories.empty() || !read.document.players.empty() || !read.document.ikChains.empty() ||
+        holdsCullOrUpdatePolicy(read.document))
     {
-        error = where + ": a clip library holds clips only, and this one has trajectories, players or IK chains";
+        error = where + ": a clip library holds clips only, and this one has trajectories, players, IK chains, a cull "
+                        "mode or an update policy";
         return nullptr;
     }
     return library;
@@ -139,6 +147,7 @@ std::vector<std::string> writeMotionLines(const ActorNode& actor)
     addTrajectories(actor, document);
     addPlayers(actor, document);
     addIkChains(actor, document);
+    addCullAndUpdatePolicy(actor, document);
     document.clips.erase(document.clips.begin(), document.clips.begin() + static_cast<std::ptrdiff_t>(libraryClips));
     return sectionLines(document);
 }
@@ -153,6 +162,7 @@ bool readMotionLines(ActorNode& actor, const std::vector<std::string>& lines, co
     if (read.document.clips.size() > known.size()) applyClips(actor, read.document);
     applyTrajectories(actor, read.document);
     applyPlayers(actor, read.document);
+    applyCullAndUpdatePolicy(actor, read.document);
     for (const IkChainPtr& chain : read.ikChains) actor.addIkChain(chain);
     return true;
 }

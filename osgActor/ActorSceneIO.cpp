@@ -397,8 +397,30 @@ void addIkChains(const ActorNode& actor, ActorDocument& document)
         document.ikChains.push_back(IkChainDocument{chain->getSpec(), 0});
 }
 
+void applyCullAndUpdatePolicy(ActorNode& actor, const ActorDocument& document)
+{
+    actor.setCullMode(document.cullNodeByNode ? ActorNode::CULL_NODE_BY_NODE : ActorNode::CULL_AS_ONE);
+    ActorNode::UpdatePolicy policy;
+    policy.onlyWhenSeen = document.updatePolicy.onlyWhenSeen;
+    policy.maxDistance = document.updatePolicy.maxDistance;
+    policy.halfRateBelowPixels = document.updatePolicy.halfRateBelowPixels;
+    policy.quarterRateBelowPixels = document.updatePolicy.quarterRateBelowPixels;
+    actor.setUpdatePolicy(policy);
+}
+
+void addCullAndUpdatePolicy(const ActorNode& actor, ActorDocument& document)
+{
+    document.cullNodeByNode = actor.getCullMode() == ActorNode::CULL_NODE_BY_NODE;
+    const ActorNode::UpdatePolicy& policy = actor.getUpdatePolicy();
+    document.updatePolicy.onlyWhenSeen = policy.onlyWhenSeen;
+    document.updatePolicy.maxDistance = policy.maxDistance;
+    document.updatePolicy.halfRateBelowPixels = policy.halfRateBelowPixels;
+    document.updatePolicy.quarterRateBelowPixels = policy.quarterRateBelowPixels;
+}
+
 void applyDefinitionDocument(ActorNode& actor, const ActorDocument& document, const std::vector<IkChainPtr>& ikChains)
 {
+    applyCullAndUpdatePolicy(actor, document);
     applyClips(actor, document);
     applyTrajectories(actor, document);
     applyPlayers(actor, document);
@@ -450,6 +472,7 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
     applyClips(*actor, motion);
     applyTrajectories(*actor, motion);
     applyPlayers(*actor, motion);
+    applyCullAndUpdatePolicy(*actor, document);
     std::vector<IkChainPtr> chains;
     if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
     for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
@@ -479,6 +502,7 @@ ActorDocument extractActorDocument(const ActorNode& actor)
     document.postRotation = toGlm(actor.getPostRotation());
     document.blocked = actor.getBlocked();
     document.boundsCoverRotations = actor.getBoundMode() == ActorNode::BOUND_COVERS_ROTATIONS;
+    addCullAndUpdatePolicy(actor, document);
 
     for (unsigned dof = 0; dof < definition->getNumDofs(); ++dof)
     {

@@ -11,6 +11,7 @@ const char* const kKindNames[] = {"box", "sphere", "capsule", "cylinder", "cone"
 const char* const kInterpolationNames[] = {"step", "linear", "cubic"};
 const char* const kTranslationModeNames[] = {"after_rotation", "before_rotation"};
 const char* const kBoundsNames[] = {"follows_pose", "covers_rotations"}; // false, true
+const char* const kCullModeNames[] = {"as_one", "node_by_node"};          // false, true
 
 } // namespace
 
@@ -43,6 +44,13 @@ const char* boundsName(bool coverRotations) { return kBoundsNames[coverRotations
 bool parseBounds(const std::string& text, bool& coverRotations)
 {
     return parseEnumName(kBoundsNames, text, coverRotations);
+}
+
+const char* cullModeName(bool nodeByNode) { return kCullModeNames[nodeByNode ? 1 : 0]; }
+
+bool parseCullMode(const std::string& text, bool& nodeByNode)
+{
+    return parseEnumName(kCullModeNames, text, nodeByNode);
 }
 
 const char* geometryKindName(GeometryKind kind) { return kKindNames[static_cast<unsigned>(kind)]; }

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <string_view>
 
@@ -74,11 +75,18 @@ public:
 
     const std::string& error() const { return _error; }
 
-    /** The statements of an actor's motion alone (readActorMotion()): motion sections only. */
+    /** The statements of an actor's motion alone (readActorMotion()): motion sections, and how the views treat the
+      * actor (isViewingStatement()), which OSG's formats keep with the motion. */
     bool readMotionFile(const std::vector<SyntaxStatement>& statements, ActorDocument& document)
     {
+        SeenWords seen;
         for (const SyntaxStatement& s : statements)
         {
+            if (isViewingStatement(s.keyword))
+            {
+                if (!readViewingStatement(seen, s, document)) return false;
+                continue;
+            }
             if (!isMotionSection(s.keyword)) return unknownKeyword(s, "in an actor's motion");
             if (!readMotionSection(s, document)) return false;
         }
@@ -279,6 +287,7 @@ private:
             else if (k == "post_rotation") ok = once(seen, s) && rotation(s, document.postRotation);
             else if (k == "blocked") ok = flag(seen, s, document.blocked);
             else if (k == "bounds") ok = once(seen, s) && readBounds(s, document.boundsCoverRotations);
+            else if (isViewingStatement(k)) ok = readViewingStatement(seen, s, document);
             else if (k == "skin") ok = readSkinFile(s, document);
             else if (isMotionSection(k)) ok = readMotionSection(s, document);
             else if (isReservedSection(k))
@@ -525,6 +534,71 @@ private:
         const std::string& word = s.arguments.front().text;
         if (parseBounds(word, coverRotations)) return true;
         return fail(s.line, "'" + word + "' is not a bound mode (follows_pose, covers_rotations)");
+    }
+
+    /** "cull" and "update_policy": how the views treat the actor (ActorNode::setCullMode(), setUpdatePolicy()). */
+    static bool isViewingStatement(const std::string& keyword)
+    {
+        return keyword == "cull" || keyword == "update_policy";
+    }
+
+    bool readViewingStatement(SeenWords& seen, const SyntaxStatement& s, ActorDocument& document)
+    {
+        if (!once(seen, s)) return false;
+        if (s.keyword == "cull") return readCullMode(s, document.cullNodeByNode);
+        return readUpdatePolicy(s, document.updatePolicy);
+    }
+
+    bool readCullMode(const SyntaxStatement& s, bool& nodeByNode)
+    {
+        if (!expectNoBlock(s) || !expectArguments(s, 1)) return false;
+        const std::string& word = s.arguments.front().text;
+        if (parseCullMode(word, nodeByNode)) return true;
+        return fail(s.line, "'" + word + "' is not a cull mode (as_one, node_by_node)");
+    }
+
+    /** "update_policy { [only_when_seen] [max_distance d] [half_rate_below_pixels p] [quarter_rate_below_pixels p] }"
+      * (model units, pixels). */
+    bool readUpdatePolicy(const SyntaxStatement& s, UpdatePolicyDocument& policy)
+    {
+        if (!s.hasBlock) return fail(s.line, "'update_policy' needs a block in braces");
+        if (!expectArguments(s, 0)) return false;
+        SeenWords seen;
+        for (const SyntaxStatement& c : s.children)
+        {
+            const std::string& k = c.keyword;
+            bool ok = true;
+            if (k == "only_when_seen") ok = flag(seen, c, policy.onlyWhenSeen);
+            else if (k == "max_distance") ok = once(seen, c) && notNegative(c, policy.maxDistance);
+            else if (k == "half_rate_below_pixels") ok = once(seen, c) && pixels(c, policy.halfRateBelowPixels);
+            else if (k == "quarter_rate_below_pixels") ok = once(seen, c) && pixels(c, policy.quarterRateBelowPixels);
+            else return unknownKeyword(c, "in 'update_policy'");
+            if (!ok) return false;
+        }
+        return true;
+    }
+
+    bool notNegative(const SyntaxStatement& statement, double& value)
+    {
+        if (!numbers(statement, 1, &value)) return false;
+        if (value >= 0.0) return true;
+        return fail(statement.line, "'" + statement.keyword + "' must not be negative");
+    }
+
+    /** A size on screen, which ActorNode holds as a float: one that a float cannot hold (beyond its range, or so
+      * small it would become 0 and so mean "off") is refused rather than changed. */
+    bool pixels(const SyntaxStatement& statement, float& value)
+    {
+        double read = 0.0;
+        if (!notNegative(statement, read)) return false;
+        const float held = static_cast<float>(read);
+        if (read <= std::numeric_limits<float>::max() && (held > 0.0f || read == 0.0))
+        {
+            value = held;
+            return true;
+        }
+        return fail(statement.line, "'" + statement.keyword + "' " + statement.arguments.front().text +
+                                        " is not a size a float holds");
     }
 
     bool readTranslationMode(const SyntaxStatement& s, TranslationMode& mode)

@@ -295,6 +295,22 @@ SyntaxStatement trajectoryStatement(const TrajectoryDocument& document)
 
 /** A player: its clip or trajectory, then only the state that differs from a new player's ("play" for a player that
   * plays or has another mode than a new one, "paused" for one that waits), a clip player's DOF selection last. */
+/** "update_policy { ... }": the fields that differ from ActorNode's defaults. */
+SyntaxStatement updatePolicyStatement(const UpdatePolicyDocument& policy)
+{
+    const UpdatePolicyDocument defaults;
+    SyntaxStatement s = statement("update_policy");
+    s.hasBlock = true;
+    if (policy.onlyWhenSeen) s.children.push_back(statement("only_when_seen"));
+    if (policy.maxDistance != defaults.maxDistance)
+        s.children.push_back(statement("max_distance", {numberArgument(policy.maxDistance)}));
+    if (policy.halfRateBelowPixels != defaults.halfRateBelowPixels)
+        s.children.push_back(statement("half_rate_below_pixels", {numberArgument(policy.halfRateBelowPixels)}));
+    if (policy.quarterRateBelowPixels != defaults.quarterRateBelowPixels)
+        s.children.push_back(statement("quarter_rate_below_pixels", {numberArgument(policy.quarterRateBelowPixels)}));
+    return s;
+}
+
 SyntaxStatement playerStatement(const PlayerDocument& document)
 {
     const PlayerDocument defaults;
@@ -337,6 +353,8 @@ std::vector<SyntaxStatement> toSyntax(const ActorDocument& document)
     if (document.blocked) actor.children.push_back(statement("blocked"));
     if (!document.boundsCoverRotations)
         actor.children.push_back(statement("bounds", {word(boundsName(document.boundsCoverRotations))}));
+    if (document.cullNodeByNode) actor.children.push_back(statement("cull", {word(cullModeName(true))}));
+    if (!document.updatePolicy.isDefault()) actor.children.push_back(updatePolicyStatement(document.updatePolicy));
     JointTreeWriter(document).write(actor.children);
     for (const SkinFileDocument& skin : document.skinFiles)
         actor.children.push_back(statement("skin", {SyntaxArgument{skin.file, true, 0}}));

@@ -6,6 +6,7 @@ namespace osgActor {
 namespace {
 
 std::string text(double v) { return formatNumber(v); }
+std::string text(float v) { return formatNumber(v); }
 std::string text(const glm::dvec3& v) { return text(v.x) + " " + text(v.y) + " " + text(v.z); }
 std::string text(const glm::dvec4& v) { return text(v.x) + " " + text(v.y) + " " + text(v.z) + " " + text(v.w); }
 std::string text(const glm::dquat& q) { return text(q.w) + " " + text(q.x) + " " + text(q.y) + " " + text(q.z); }
@@ -239,6 +240,13 @@ std::string documentDifference(const ActorDocument& a, const ActorDocument& b)
     d.field("post_rotation", a.postRotation, b.postRotation);
     d.field("blocked", a.blocked, b.blocked);
     d.field("bounds cover rotations", a.boundsCoverRotations, b.boundsCoverRotations);
+    d.field("cull node by node", a.cullNodeByNode, b.cullNodeByNode);
+    d.field("update policy: only when seen", a.updatePolicy.onlyWhenSeen, b.updatePolicy.onlyWhenSeen);
+    d.field("update policy: max distance", a.updatePolicy.maxDistance, b.updatePolicy.maxDistance);
+    d.field("update policy: half rate below pixels", a.updatePolicy.halfRateBelowPixels,
+            b.updatePolicy.halfRateBelowPixels);
+    d.field("update policy: quarter rate below pixels", a.updatePolicy.quarterRateBelowPixels,
+            b.updatePolicy.quarterRateBelowPixels);
     if (d.count("clips", a.clips.size(), b.clips.size()))
         for (std::size_t c = 0; c < a.clips.size() && !d.found(); ++c)
         {

@@ -475,3 +475,46 @@ TEST(ActorReader, AcceptsFlatJointsWithParentInAnyOrder)
     EXPECT_EQ(result.definition->getJointName(0), "b") << "the definition is parent-first";
     EXPECT_EQ(result.definition->getParent(1), 0);
 }
+
+TEST(ActorReader, RefusesBrokenCullModesAndUpdatePolicies)
+{
+    const std::string head = "osgactor 1\nactor a {\n joint b\n ";
+    EXPECT_EQ(readError(head + "cull fast\n}"), "t.actor:4: 'fast' is not a cull mode (as_one, node_by_node)");
+    EXPECT_EQ(readError(head + "cull as_one\n cull node_by_node\n}"), "t.actor:5: 'cull' is given twice");
+    EXPECT_EQ(readError(head + "update_policy\n}"), "t.actor:4: 'update_policy' needs a block in braces");
+    EXPECT_EQ(readError(head + "update_policy { only_when_seen }\n update_policy { }\n}"),
+              "t.actor:5: 'update_policy' is given twice");
+    EXPECT_EQ(readError(head + "update_policy {\n  only_when_seen\n  only_when_seen\n }\n}"),
+              "t.actor:6: 'only_when_seen' is given twice");
+    EXPECT_EQ(readError(head + "update_policy {\n  max_distance -1\n }\n}"),
+              "t.actor:5: 'max_distance' must not be negative");
+    EXPECT_EQ(readError(head + "update_policy {\n  max_distance inf\n }\n}"), "t.actor:5: 'inf' is not a finite number");
+    EXPECT_EQ(readError(head + "update_policy {\n  half_rate_below_pixels 1e39\n }\n}"),
+              "t.actor:5: 'half_rate_below_pixels' 1e39 is not a size a float holds");
+    // So small a float would hold 0, which means "off": refused rather than changed.
+    EXPECT_EQ(readError(head + "update_policy {\n  quarter_rate_below_pixels 1e-50\n }\n}"),
+              "t.actor:5: 'quarter_rate_below_pixels' 1e-50 is not a size a float holds");
+    EXPECT_EQ(readError(head + "update_policy {\n  every_frame\n }\n}"),
+              "t.actor:5: unknown keyword 'every_frame' in 'update_policy'");
+}
+
+TEST(ActorReader, ReadsTheCullModeAndTheUpdatePolicy)
+{
+    const ActorReadResult plain = read("osgactor 1\nactor a {\n joint b\n}\n");
+    ASSERT_TRUE(plain) << plain.error;
+    EXPECT_FALSE(plain.document.cullNodeByNode);
+    EXPECT_TRUE(plain.document.updatePolicy.isDefault());
+
+    const ActorReadResult set = read("osgactor 1\nactor a {\n joint b\n cull node_by_node\n update_policy {\n"
+                                     "  only_when_seen\n  max_distance 40\n  half_rate_below_pixels 0.1\n"
+                                     "  quarter_rate_below_pixels 12\n }\n}\n");
+    ASSERT_TRUE(set) << set.error;
+    EXPECT_TRUE(set.document.cullNodeByNode);
+    EXPECT_TRUE(set.document.updatePolicy.onlyWhenSeen);
+    EXPECT_EQ(set.document.updatePolicy.maxDistance, 40.0);
+    EXPECT_EQ(set.document.updatePolicy.halfRateBelowPixels, 0.1f) << "held as the float nearest 0.1";
+    EXPECT_EQ(set.document.updatePolicy.quarterRateBelowPixels, 12.0f);
+    const ActorReadResult asOne = read("osgactor 1\nactor a {\n joint b\n cull as_one\n}\n");
+    ASSERT_TRUE(asOne) << asOne.error;
+    EXPECT_FALSE(asOne.document.cullNodeByNode);
+}

@@ -137,6 +137,27 @@ TEST(ActorRoundTrip, PosesFlagsBoundsAndTransformsComeBackExactly)
     }
 }
 
+TEST(ActorRoundTrip, CullModesAndUpdatePoliciesComeBackExactly)
+{
+    // Distances take any finite double from 0; sizes on screen any float (the largest, the smallest denormal, one
+    // that is not a short decimal).
+    for (const char* distance : {"0", "5e-324", "0.30000000000000004", "1.7976931348623157e+308"})
+        for (const char* pixels : {"0", "0.1", "1.401298464324817e-45", "3.4028234663852886e+38"})
+        {
+            SCOPED_TRACE(std::string(distance) + " " + pixels);
+            expectRoundTrip(kActor + " cull node_by_node\n update_policy {\n  only_when_seen\n  max_distance " +
+                            distance + "\n  half_rate_below_pixels " + pixels + "\n  quarter_rate_below_pixels " +
+                            pixels + "\n }\n}\n");
+        }
+    // The defaults are not written; a policy that is not the default is.
+    const ActorReadResult defaults =
+        read(kActor + " cull as_one\n update_policy { max_distance 1e300 }\n}\n");
+    ASSERT_TRUE(defaults) << defaults.error;
+    const std::string text = written(defaults.document);
+    EXPECT_EQ(text.find("cull"), std::string::npos) << text;
+    EXPECT_NE(text.find("update_policy {\n        max_distance 1e+300\n    }"), std::string::npos) << text;
+}
+
 TEST(ActorRoundTrip, GeometryComesBackExactly)
 {
     expectRoundTrip(kActor.substr(0, kActor.size() - 3) +

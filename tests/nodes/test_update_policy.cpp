@@ -7,8 +7,11 @@
 
 #include <osgActor/ActorGroup>
 #include <osgActor/ActorNode>
+#include <osgActor/ActorSceneIO>
 #include <osgActor/core/ClipBuilder>
 #include <osgActor/core/ClipPlayer>
+#include <osgActor/io/ActorReader>
+#include <osgActor/io/ActorWriter>
 
 #include <gtest/gtest.h>
 
@@ -254,4 +257,32 @@ TEST(UpdatePolicy, ActorGroupsSkipUnseenActorsOnTheirThreads)
         EXPECT_EQ(actor->getNumUpdatesSkipped(), 9u);
         expectSamePose(*actor, *always);
     }
+}
+
+TEST(UpdatePolicy, AnActorFileGivesTheActorItsCullModeAndUpdatePolicyAndTakesThemBack)
+{
+    std::istringstream text("osgactor 1\nactor arm {\n  cull node_by_node\n  update_policy {\n    only_when_seen\n"
+                            "    max_distance 75.25\n    half_rate_below_pixels 30\n    quarter_rate_below_pixels 0.1\n"
+                            "  }\n  joint base { dof rz }\n}\n");
+    const ActorReadResult read = readActor(text, "arm.actor");
+    ASSERT_TRUE(read) << read.error;
+    const ActorNodeResult made = createActorNode(read.document, read.definition, "arm.actor", nullptr);
+    ASSERT_TRUE(made.actor.valid()) << made.error;
+    EXPECT_EQ(made.actor->getCullMode(), ActorNode::CULL_NODE_BY_NODE);
+    const ActorNode::UpdatePolicy& policy = made.actor->getUpdatePolicy();
+    EXPECT_TRUE(policy.onlyWhenSeen);
+    EXPECT_EQ(policy.maxDistance, 75.25);
+    EXPECT_EQ(policy.halfRateBelowPixels, 30.0f);
+    EXPECT_EQ(policy.quarterRateBelowPixels, 0.1f);
+
+    // What the actor holds is what it gives back, and an actor of the defaults writes neither statement.
+    const ActorDocument back = extractActorDocument(*made.actor);
+    EXPECT_TRUE(back.cullNodeByNode);
+    EXPECT_EQ(back.updatePolicy, read.document.updatePolicy);
+    made.actor->setCullMode(ActorNode::CULL_AS_ONE);
+    made.actor->setUpdatePolicy(ActorNode::UpdatePolicy());
+    std::ostringstream written;
+    writeActor(written, extractActorDocument(*made.actor));
+    EXPECT_EQ(written.str().find("cull"), std::string::npos) << written.str();
+    EXPECT_EQ(written.str().find("update_policy"), std::string::npos) << written.str();
 }

@@ -39,8 +39,8 @@ std::string actorText(const ActorNode& actor)
     return text.str();
 }
 
-/** A crowd of clones of the humanoid under an ActorGroup of three threads: each clone placed, posed and (every
-  * other one) waving at its own point of the clip, so that no two are alike. */
+/** A crowd of clones of the humanoid under an ActorGroup of three threads: each clone placed, posed, (every
+  * other one) waving at its own point of the clip, and culled or updated in its own way, so that no two are alike. */
 osg::ref_ptr<ActorGroup> makeCrowd(unsigned numActors)
 {
     osg::ref_ptr<ActorNode> prototype = readActorFile(dataFile("humanoid.actor"));
@@ -54,6 +54,17 @@ osg::ref_ptr<ActorGroup> makeCrowd(unsigned numActors)
         actor->setName("walker " + std::to_string(i));
         actor->setPreTranslation(osg::Vec3d(1.5 * i, 0.25 * (i % 4), 0.0));
         actor->setDof("l_elbow.rx", -0.1 * (i % 10));
+        // How the views treat it, in the three kinds: the defaults, culled node by node, an update policy.
+        if (i % 3 == 1) actor->setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        if (i % 3 == 2)
+        {
+            ActorNode::UpdatePolicy policy;
+            policy.onlyWhenSeen = true;
+            policy.maxDistance = 40.0 + 0.1 * i;
+            policy.halfRateBelowPixels = 0.1f * static_cast<float>(i);
+            policy.quarterRateBelowPixels = 3.0f;
+            actor->setUpdatePolicy(policy);
+        }
         if (i % 2 == 0)
         {
             auto wave = std::make_shared<ClipPlayer>(actor->getClipLibrary()->getClip("wave"));
@@ -135,24 +146,33 @@ TEST(CrowdFiles, AnActorWhoseDefinitionObjectIsMissingFailsTheRead)
     EXPECT_NE(result.message().find("actor 'first arm' has no definition"), std::string::npos) << result.message();
 }
 
-TEST(CrowdFiles, ADefinitionObjectHoldingMoreThanJointsIsRefused)
+TEST(CrowdFiles, ADefinitionObjectHoldingMoreThanJointsOrACullModeIsRefused)
 {
     std::vector<std::string> lines{"osgactor 1", "actor a {", " joint b { dof rz }",
                                    " clip c { channel b.rz { key 0 0 } }", "}"};
     std::string error;
+    const std::string refusal = "the definition: a definition holds joints only, and this one has clips, "
+                                "trajectories, players, IK chains, a cull mode, an update policy or other sections";
     EXPECT_EQ(readDefinitionLines(lines, "the definition", error), nullptr);
-    EXPECT_EQ(error, "the definition: a definition holds joints only, and this one has clips, trajectories, players, "
-                     "IK chains or other sections");
+    EXPECT_EQ(error, refusal);
+    // How the views treat an actor belongs to the actor, not to the definition its clones share.
+    lines[3] = " cull node_by_node";
+    EXPECT_EQ(readDefinitionLines(lines, "the definition", error), nullptr);
+    EXPECT_EQ(error, refusal);
 }
 
-TEST(CrowdFiles, AClipLibraryHoldingPlayersIsRefused)
+TEST(CrowdFiles, AClipLibraryHoldingPlayersOrAnUpdatePolicyIsRefused)
 {
     std::string error;
     const ActorDefinitionPtr arm = makePlanarArm();
     EXPECT_EQ(readClipLines({"clip c { channel base.rz { key 0 0 } }", "player p { clip c }"}, arm, "the clips",
                             error),
               nullptr);
-    EXPECT_EQ(error, "the clips: a clip library holds clips only, and this one has trajectories, players or IK chains");
+    const std::string refusal = "the clips: a clip library holds clips only, and this one has trajectories, players, "
+                                "IK chains, a cull mode or an update policy";
+    EXPECT_EQ(error, refusal);
+    EXPECT_EQ(readClipLines({"update_policy { only_when_seen }"}, arm, "the clips", error), nullptr);
+    EXPECT_EQ(error, refusal);
     EXPECT_EQ(readClipLines({"clip c { channel knee.rz { key 0 0 } }"}, arm, "the clips", error), nullptr);
     EXPECT_EQ(error, "the clips:1: channel 'knee.rz' names no DOF of the actor");
 }
@@ -260,6 +280,16 @@ TEST_P(CrowdFormats, ACrowdComesBackWithItsThreadCountAndItsActorsSharingOneDefi
     osg::ref_ptr<osg::Node> back = osgDB::readRefNodeFile(path, precise.get());
     ASSERT_TRUE(back.valid()) << path;
     expectSameCrowd(*crowd, back.get(), extension);
+    osg::Group* backGroup = back->asGroup();
+    ASSERT_NE(backGroup, nullptr);
+    EXPECT_EQ(actorAt(*backGroup, 1)->getCullMode(), ActorNode::CULL_NODE_BY_NODE);
+    EXPECT_EQ(actorAt(*backGroup, 0)->getCullMode(), ActorNode::CULL_AS_ONE);
+    const ActorNode::UpdatePolicy& policy = actorAt(*backGroup, 5)->getUpdatePolicy();
+    EXPECT_TRUE(policy.onlyWhenSeen);
+    EXPECT_EQ(policy.maxDistance, 40.5);
+    EXPECT_EQ(policy.halfRateBelowPixels, 0.5f);
+    EXPECT_EQ(policy.quarterRateBelowPixels, 3.0f);
+    EXPECT_FALSE(actorAt(*backGroup, 4)->getUpdatePolicy().onlyWhenSeen);
 
     // It animates as the original does: the group's update runs the waving players of both alike.
     for (unsigned frame : {1u, 12u, 30u})
