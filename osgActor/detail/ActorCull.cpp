@@ -143,9 +143,9 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
       _modelViews(nullptr), _open(), _numOpen(0)
 {
     const ActorCullView view(cv);
-    const osg::Matrixd& actorModelView = *cv.getModelViewMatrix();
-    if (!_state.isPrepared(ActorCullState::keyOf(view, actorModelView), versions))
-        _state.prepare(view, actorModelView, cv.getCurrentCullingSet().getPixelSizeVector(), actor, versions);
+    const ActorCullState::Key key = ActorCullState::keyOf(view, *cv.getModelViewMatrix());
+    if (!_state.isPrepared(key, versions))
+        _state.prepare(key, view, cv.getCurrentCullingSet().getPixelSizeVector(), actor, versions);
     _state._prepared = false;
     _plan = _state._plan.get();
     if (_state._preparedReplay)
@@ -165,7 +165,13 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
 void ActorCullState::prepare(const ActorCullView& view, const osg::Matrixd& actorModelView,
                              const osg::Vec4& pixelSizeVector, osg::Group& actor, const Versions& versions)
 {
-    const Key key = keyOf(view, actorModelView);
+    prepare(keyOf(view, actorModelView), view, pixelSizeVector, actor, versions);
+}
+
+void ActorCullState::prepare(const Key& key, const ActorCullView& view, const osg::Vec4& pixelSizeVector,
+                             osg::Group& actor, const Versions& versions)
+{
+    const osg::Matrixd& actorModelView = key.actorModelView;
     const bool planKept = _plan && _planVersion == versions.plan;
     bool replayable = planKept && _replayable && _versions == versions && _key == key;
     // The joints' matrices and bounds are read after the plan is checked: ask for them now, with the flags the
@@ -203,41 +209,52 @@ void ActorCullState::prepare(const ActorCullView& view, const osg::Matrixd& acto
     _pixelSizeVectors[0] = pixelSizeVector;
     _hasPixelSizeVector[0] = 1;
 
-    // What the visitor would cull (a culled subtree's steps are skipped, and left undecided) and the drawables'
-    // depths.
+    // What the visitor would cull and the drawables' depths.
     const std::vector<ActorCullPlan::Step>& steps = _plan->getSteps();
-    _stepCulled.assign(steps.size(), 0);
-    _stepDepths.resize(steps.size());
+    const std::size_t numSteps = steps.size();
+    _stepCulled.assign(numSteps, 0);
+    _stepDepths.resize(numSteps);
+    const ActorCullPlan::Step* stepData = steps.data();
+    unsigned char* culled = _stepCulled.data();
+    float* depths = _stepDepths.data();
+    const ActorCullPlan::Joint* jointData = joints.data();
+    const osg::Matrixd* frames = matrices.data();
     const bool smallFeatureCulling = view.smallFeatureCulling();
     const bool frustumCullingForNearFar = view.computeNearFar() && view.frustumCulling();
-    for (std::size_t i = 0; i < steps.size(); ++i)
+    for (std::size_t i = 0; i < numSteps; ++i)
     {
-        const ActorCullPlan::Step& step = steps[i];
-        const bool isNode = step.kind == ActorCullPlan::JOINT || step.kind == ActorCullPlan::GEODE;
-        if (!isNode && step.kind != ActorCullPlan::DRAWABLE) continue;
-        // As Node::accept() would: a node the visitor's mask rules out is skipped with its subtree.
-        const bool masked = (view.traversalMask & (view.nodeMaskOverride | step.mask)) == 0;
-        if (isNode)
+        const ActorCullPlan::Step& step = stepData[i];
+        switch (step.kind)
         {
-            // The visitor tests the node's sphere in the frame the node is in; a small feature is culled with its
-            // subtree.
-            const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(joints[step.joint].parent + 1)
+        case ActorCullPlan::JOINT:
+        case ActorCullPlan::GEODE:
+        {
+            // As Node::accept() would: a node the visitor's mask rules out is skipped with its subtree. The visitor
+            // tests the node's sphere in the frame the node is in; a small feature is culled with its subtree.
+            const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(jointData[step.joint].parent + 1)
                                                                       : unsigned(step.joint + 1);
-            if (masked ||
+            if ((view.traversalMask & (view.nodeMaskOverride | step.mask)) == 0 ||
                 (smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame, view)))
             {
-                _stepCulled[i] = 1;
-                i = step.end - 1;
+                culled[i] = 1;
+                i = step.end - 1; // its steps are skipped, and left undecided
             }
-            continue;
+            break;
         }
-        // What CullVisitor::apply(osg::Drawable&) decides for a drawable without a cull callback, with the
-        // frustum test kept where it changes the image: near and far planes computed from what is drawn.
-        const osg::BoundingBox& box = step.node->asDrawable()->getBoundingBox();
-        const osg::Matrixd& modelView = matrices[static_cast<std::size_t>(step.joint + 1)];
-        _stepCulled[i] = masked || (frustumCullingForNearFar && box.valid() && step.cullingActive &&
-                                    isOutsideFrustum(box, modelView, view));
-        _stepDepths[i] = box.valid() ? eyeDepth(box.center(), modelView) : 0.0f;
+        case ActorCullPlan::DRAWABLE:
+        {
+            // What CullVisitor::apply(osg::Drawable&) decides for a drawable without a cull callback, with the
+            // frustum test kept where it changes the image: near and far planes computed from what is drawn.
+            const bool masked = (view.traversalMask & (view.nodeMaskOverride | step.mask)) == 0;
+            const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
+            const osg::Matrixd& modelView = frames[step.joint + 1];
+            culled[i] = masked || (frustumCullingForNearFar && box.valid() && step.cullingActive &&
+                                   isOutsideFrustum(box, modelView, view));
+            depths[i] = box.valid() ? eyeDepth(box.center(), modelView) : 0.0f;
+            break;
+        }
+        default: break;
+        }
     }
 }
 
@@ -264,9 +281,10 @@ void ActorCull::replay()
 
 void ActorCull::cull()
 {
-    const std::vector<Step>& steps = _plan->getSteps();
+    const Step* steps = _plan->getSteps().data();
+    const std::size_t numSteps = _plan->getSteps().size();
     const unsigned char* culled = _state._stepCulled.data();
-    for (std::size_t i = 0; i < steps.size();)
+    for (std::size_t i = 0; i < numSteps;)
     {
         const Step& step = steps[i];
         switch (step.kind)

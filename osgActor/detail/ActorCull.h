@@ -147,6 +147,9 @@ private:
         bool operator==(const Key& other) const;
     };
     static Key keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView);
+    /** prepare() for the key of the view and the actor's model-view matrix (its actorModelView). */
+    void prepare(const Key& key, const ActorCullView& view, const osg::Vec4& pixelSizeVector, osg::Group& actor,
+                 const Versions& versions);
     /** One call the cull made to the visitor. */
     struct Call
     {
