@@ -1,26 +1,41 @@
 #include <osgActor/ActorGroup>
 #include <osgActor/core/detail/WorkerPool>
+#include <osgActor/detail/ActorCull.h>
 
 #include <osg/FrameStamp>
+#include <osgUtil/CullVisitor>
 
 #include <unordered_map>
 
 namespace osgActor {
 
-ActorGroup::ActorGroup() : _numThreads(0), _actorsStale(true), _hasActorPolicy(false)
+namespace {
+
+/** Where the cull's preparation on the threads starts to pay (docs/performance.md). */
+constexpr unsigned kDefaultMinActorsForParallelCull = 64;
+
+} // namespace
+
+ActorGroup::ActorGroup()
+    : _numThreads(0), _minActorsForParallelCull(kDefaultMinActorsForParallelCull), _numParallelCulls(0),
+      _actorsStale(true), _hasActorPolicy(false)
 {
+    _culling.clear();
     setUpdateCallback(new ActorGroupUpdateCallback);
 }
 
 ActorGroup::ActorGroup(const ActorGroup& group, const osg::CopyOp& copyop)
-    : osg::Group(group, copyop), _numThreads(group._numThreads), _actorsStale(true),
+    : osg::Group(group, copyop), _numThreads(group._numThreads),
+      _minActorsForParallelCull(group._minActorsForParallelCull), _numParallelCulls(0), _actorsStale(true),
       _hasActorPolicy(group._hasActorPolicy), _actorPolicy(group._actorPolicy)
 {
+    _culling.clear();
 }
 
 void ActorGroup::setNumThreads(unsigned numThreads)
 {
     if (numThreads == _numThreads) return;
+    std::lock_guard<std::mutex> lock(_poolMutex);
     _numThreads = numThreads;
     _pool.reset();
 }
@@ -64,8 +79,12 @@ void ActorGroup::updateActors(const osg::NodeVisitor* nv)
     if (numActors == 0) return;
     const osg::FrameStamp* stamp = nv ? nv->getFrameStamp() : nullptr;
 
-    if (!_pool) _pool = std::make_shared<WorkerPool>(_numThreads);
-    _pool->parallelFor(numActors, [this, stamp](unsigned i) { _workLeft[i] = _actors[i]->updateWithinGroup(stamp); });
+    {
+        // Waits for a camera still culling on its own thread (a model without an end-of-cull barrier).
+        std::lock_guard<std::mutex> lock(_poolMutex);
+        pool().parallelFor(numActors,
+                           [this, stamp](unsigned i) { _workLeft[i] = _actors[i]->updateWithinGroup(stamp); });
+    }
     // In child order, as the serial update would: bound dirtying walks shared parents.
     for (unsigned i = 0; i < numActors; ++i)
         if (_workLeft[i] & ActorNode::GROUP_WORK_WRITE_ACTOR_MATRIX) _actors[i]->writeActorMatrix();
@@ -81,6 +100,56 @@ void ActorGroup::traverseAfterActors(osg::NodeVisitor& nv)
         if (actor >= 0 && !(_workLeft[actor] & ActorNode::GROUP_WORK_VISIT)) continue;
         _children[i]->accept(nv);
     }
+}
+
+WorkerPool& ActorGroup::pool()
+{
+    if (!_pool) _pool = std::make_shared<WorkerPool>(_numThreads);
+    return *_pool;
+}
+
+void ActorGroup::traverse(osg::NodeVisitor& nv)
+{
+    osgUtil::CullVisitor* cv = nv.getVisitorType() == osg::NodeVisitor::CULL_VISITOR ? nv.asCullVisitor() : nullptr;
+    if (!cv || !cullActorsInParallel(*cv)) osg::Group::traverse(nv);
+}
+
+bool ActorGroup::cullActorsInParallel(osgUtil::CullVisitor& cv)
+{
+    if (_children.size() < _minActorsForParallelCull || !detail::ActorCull::canCullAsOne(cv)) return false;
+    // Another camera's cull (on another thread, or within this one's traversal), or the next frame's update.
+    if (_culling.test_and_set(std::memory_order_acquire)) return false;
+    struct EndCull
+    {
+        std::atomic_flag& culling;
+        ~EndCull() { culling.clear(std::memory_order_release); }
+    } endCull{_culling};
+    std::unique_lock<std::mutex> lock(_poolMutex, std::try_to_lock);
+    if (!lock.owns_lock()) return false;
+    WorkerPool& workers = pool();
+    if (workers.getNumThreads() < 2) return false;
+    _cullActors.clear();
+    for (const osg::ref_ptr<osg::Node>& child : _children)
+        if (ActorNode* actor = dynamic_cast<ActorNode*>(child.get())) _cullActors.push_back(actor);
+    const unsigned numActors = static_cast<unsigned>(_cullActors.size());
+    if (numActors < _minActorsForParallelCull) return false;
+
+    // Bounds are computed lazily, and a bound below an actor (a geode, a skinned mesh) may be shared by many:
+    // computed here, on this thread, all at once, so that the threads only read them.
+    getBound();
+    const detail::ActorCullView view(cv);
+    const osg::Matrixd& modelView = *cv.getModelViewMatrix();
+    const osg::CullingSet& cullingSet = cv.getCurrentCullingSet();
+    _cullPrepared.assign(numActors, 0);
+    workers.parallelFor(numActors, [&](unsigned i) {
+        _cullPrepared[i] = _cullActors[i]->prepareCullWithinGroup(view, modelView, cullingSet, &cv);
+    });
+    // The visitor's own traversal, child by child: each prepared actor makes its calls from its preparation.
+    osg::Group::traverse(cv);
+    for (unsigned i = 0; i < numActors; ++i)
+        if (_cullPrepared[i]) _cullActors[i]->releaseCullWithinGroup(&cv);
+    _numParallelCulls.fetch_add(1, std::memory_order_relaxed);
+    return true;
 }
 
 void ActorGroupUpdateCallback::operator()(osg::Node* node, osg::NodeVisitor* nv)

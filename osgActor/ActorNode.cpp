@@ -2,6 +2,7 @@
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/GlmOsg>
 #include <osgActor/detail/ActorCull.h>
+#include <osgActor/detail/PoseFollower.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/Prefetch.h>
 #include <osgActor/detail/SkeletonNodeAccess.h>
@@ -20,6 +21,18 @@
 namespace osgActor {
 
 namespace {
+
+/** The counters the cull keeps its calls for: an actor's edits below its skeleton nodes, joint-matrix writes and
+  * bound recomputations. */
+detail::ActorCullState::Versions cullVersionsOf(const std::atomic<unsigned>& plan, unsigned pose,
+                                                const std::atomic<unsigned>& bound)
+{
+    detail::ActorCullState::Versions versions;
+    versions.plan = plan.load(std::memory_order_relaxed);
+    versions.pose = pose;
+    versions.bound = bound.load(std::memory_order_relaxed);
+    return versions;
+}
 
 constexpr unsigned kNoFrame = std::numeric_limits<unsigned>::max();
 /** The simulation time of a frame without a frame stamp: controllers do not run. */
@@ -571,10 +584,37 @@ unsigned char ActorNode::updateWithinGroup(const osg::FrameStamp* stamp)
     if (!claimFrame(stamp)) return left;
     if (poseWorkDue(stamp)) computeFrame(stamp ? stamp->getSimulationTime() : kNoTime);
     writeJointMatrices();
+    if (stamp) runPoseFollowers(stamp->getFrameNumber());
     // Nothing to write for a still actor_m whose bounds below stayed clean (the covering bounds' usual frame):
     // the update thread then need not touch this actor at all.
     if (!_actorMatrixWritten || _boundsToPropagate) left |= GROUP_WORK_WRITE_ACTOR_MATRIX;
     return left;
+}
+
+void ActorNode::runPoseFollowers(unsigned frameNumber)
+{
+    if (_poseFollowers.empty()) return;
+    // Followers read the model matrices. With joints still dirty (pose work left for a later frame while DOFs were
+    // written), bringing them up to date would write skeleton nodes and dirty bounds up shared parents: the update
+    // traversal does it then, on its own thread.
+    if (_pose.hasDirtyJoints()) return;
+    bool posed = false;
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < _poseFollowers.size(); ++i)
+    {
+        detail::PoseFollower& follower = *_poseFollowers[i];
+        if (follower._lastMetFrame + 1 != frameNumber)
+        {
+            follower._listed = false; // no longer met by the traversal: removed, or its actor changed
+            continue;
+        }
+        if (!posed) _pose.updateMatrices(); // no dirty joint: model matrices only, no node written
+        posed = true;
+        follower.followPose(*this, frameNumber);
+        if (kept != i) _poseFollowers[kept] = _poseFollowers[i];
+        ++kept;
+    }
+    _poseFollowers.resize(kept);
 }
 
 bool ActorNode::hasUpdateTraversalWorkBeyondOwnUpdate() const
@@ -652,21 +692,38 @@ void ActorNode::traverse(osg::NodeVisitor& nv)
     // The visitor found our bound visible to come here.
     if (_updatePolicy.onlyWhenSeen) noteSeen(nv);
     osgUtil::CullVisitor* cv = nv.asCullVisitor();
-    if (_cullMode == CULL_AS_ONE && cv && detail::ActorCull::canCullAsOne(*cv) && _cullState->tryAcquire())
+    // Held already when an ActorGroup above prepared this cull on its threads: the group gives it back after.
+    const bool held = cv && _cullState->isHeldBy(cv);
+    if (_cullMode == CULL_AS_ONE && cv && detail::ActorCull::canCullAsOne(*cv) && (held || _cullState->tryAcquire()))
     {
         // The bound computed (the visitor did unless culling is off here): a change below recomputes it.
         getBound();
-        detail::ActorCullState::Versions versions;
-        versions.plan = _cullPlanVersion.load(std::memory_order_relaxed);
-        versions.pose = _poseVersion;
-        versions.bound = _boundVersion.load(std::memory_order_relaxed);
-        detail::ActorCull(*cv, *_cullState, *this, versions);
-        _cullState->release();
+        detail::ActorCull(*cv, *_cullState, *this, cullVersionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
+        if (!held) _cullState->release();
     }
     else
         // Another visitor's cull, or one of another thread culling this actor for another camera at this moment.
         osg::MatrixTransform::traverse(nv);
 }
+
+bool ActorNode::prepareCullWithinGroup(const detail::ActorCullView& view, const osg::Matrixd& groupModelView,
+                                       const osg::CullingSet& groupCullingSet, const void* visitor)
+{
+    // What the visitor will do on its way in (CullVisitor::apply(osg::Transform&)), foreseen; where it does
+    // otherwise, the actor's cull finds nothing prepared for what the visitor holds and prepares it then.
+    if (_cullMode != CULL_AS_ONE || getCullCallback() || (view.traversalMask & (view.nodeMaskOverride | getNodeMask())) == 0)
+        return false;
+    if (isCullingActive() && detail::ActorCullView::isCulled(groupCullingSet, getBound())) return false;
+    if (!_cullState->tryAcquireFor(visitor)) return false; // another camera's cull has it
+    osg::Matrixd modelView = groupModelView;
+    computeLocalToWorldMatrix(modelView, nullptr); // the visitor's call, so the same bits
+    const osg::Vec4 pixelSizeVector =
+        osg::CullingSet::computePixelSizeVector(*view.viewport, view.projection, modelView); // as pushCullingSet()
+    _cullState->prepare(view, modelView, pixelSizeVector, *this, cullVersionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
+    return true;
+}
+
+void ActorNode::releaseCullWithinGroup(const void* visitor) { _cullState->releaseFrom(visitor); }
 
 void ActorNode::noteSeen(osg::NodeVisitor& nv)
 {

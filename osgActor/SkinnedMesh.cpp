@@ -300,16 +300,31 @@ void SkinnedMesh::accept(osg::NodeVisitor& nv)
     nv.popFromNodePath();
 }
 
-void SkinnedMesh::update(osg::NodeVisitor& /*nv*/, ActorNode& actor)
+void SkinnedMesh::update(osg::NodeVisitor& nv, ActorNode& actor)
 {
     SkinnedMeshInstance* instance = instanceFor(actor);
     if (!instance) return;
-    // The pose's model matrices (the per-frame path keeps only the local ones current).
-    actor.updatePose();
-    const osg::BoundingBox before = instance->getBound();
-    instance->updateMatrices(*_skin, actor.getPose());
+    const osg::FrameStamp* stamp = nv.getFrameStamp();
+    // A change of bound the actor's worker made (ActorGroup) is reported here, on the update thread: dirtying it
+    // walks the parents the actors share.
+    bool boundChanged = instance->takeBoundChange();
+    if (!stamp || !instance->hasFollowed(stamp->getFrameNumber(), actor.getPose()))
+    {
+        // The pose's model matrices (the per-frame path keeps only the local ones current).
+        actor.updatePose();
+        const osg::BoundingBox before = instance->getBound();
+        instance->updateMatrices(*_skin, actor.getPose());
+        boundChanged = boundChanged || !(instance->getBound()._min == before._min &&
+                                         instance->getBound()._max == before._max);
+    }
     // The union is recomputed once, when the bound is next asked for (at the end of update, in a viewer).
-    if (!(instance->getBound()._min == before._min && instance->getBound()._max == before._max)) dirtyBound();
+    if (boundChanged) dirtyBound();
+    if (stamp)
+    {
+        // From the next frame on, the actor's worker does the work above if the actor is in an ActorGroup.
+        instance->setFollowedSkin(_skin);
+        detail::PoseFollower::follow(actor, *instance, stamp->getFrameNumber());
+    }
 }
 
 osg::BoundingBox SkinnedMesh::computeUnionBound() const

@@ -74,6 +74,17 @@ void SkinnedMeshInstance::updateMatrices(const Skin& skin, const ActorPose& pose
     ++statistics.matrixUpdates;
 }
 
+void SkinnedMeshInstance::followPose(const ActorNode& actor, unsigned frameNumber)
+{
+    if (!_followedSkin || !isBound(actor)) return;
+    const osg::BoundingBox before = _bound;
+    updateMatrices(*_followedSkin, actor.getPose());
+    if (!(_bound._min == before._min && _bound._max == before._max)) _boundChanged = true;
+    _followed = true;
+    _followedFrame = frameNumber;
+    _followedRecomputed = actor.getPose().getTotalRecomputedJoints();
+}
+
 bool SkinnedMeshInstance::claimFrame(unsigned frame, bool bufferFilled)
 {
     // Claims move forward only. A cull of a frame older than the last claimed one comes late: a camera that OSG

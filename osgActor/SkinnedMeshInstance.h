@@ -8,6 +8,7 @@
 #include <osgActor/ActorNode>
 #include <osgActor/SkinnedMesh>
 #include <osgActor/core/skin/SkinningMatricesJob>
+#include <osgActor/detail/PoseFollower.h>
 
 #include <osg/Geometry>
 #include <osg/observer_ptr>
@@ -26,10 +27,11 @@ public:
     osg::BoundingBox computeBound(const osg::Drawable&) const override { return box; }
 };
 
-/** One actor's state in a SkinnedMesh. The update traversal writes the matrices and the bound; the cull traversal
-  * reads them (OSG never overlaps the two) and fills this frame's buffer under a mutex, once per frame whatever the
-  * number of cameras; the draw of the previous frame may still read the other buffer meanwhile. */
-class SkinnedMeshInstance : public osg::Referenced
+/** One actor's state in a SkinnedMesh. The update traversal writes the matrices and the bound (or, for an actor in
+  * an ActorGroup, the actor's worker right after the actor's update: followPose()); the cull traversal reads them
+  * (OSG never overlaps the two) and fills this frame's buffer under a mutex, once per frame whatever the number of
+  * cameras; the draw of the previous frame may still read the other buffer meanwhile. */
+class SkinnedMeshInstance : public detail::PoseFollower
 {
 public:
     /** Binds the skin to the actor's definition; isBound() says whether it could. */
@@ -48,6 +50,29 @@ public:
       * from the pose's model matrices, which the caller has brought up to date. */
     void updateMatrices(const Skin& skin, const ActorPose& pose);
     bool hasMatrices() const { return _hasMatrices; }
+
+    /** The skin followPose() skins with (the mesh's): set when the update traversal lists the instance. */
+    void setFollowedSkin(const SkinPtr& skin)
+    {
+        if (_followedSkin != skin) _followedSkin = skin;
+    }
+    /** updateMatrices() from the actor's pose on the actor's worker (the model matrices are current), noting the
+      * frame and a change of the bound. */
+    void followPose(const ActorNode& actor, unsigned frameNumber) override;
+    /** Whether followPose() did this frame's work at the pose the actor has now. */
+    bool hasFollowed(unsigned frameNumber, const ActorPose& pose) const
+    {
+        return _followed && _followedFrame == frameNumber && !pose.hasDirtyJoints() &&
+               pose.getTotalRecomputedJoints() == _followedRecomputed;
+    }
+    /** Whether followPose() changed the bound since the last call (the mesh's bound must then be dirtied, on the
+      * update thread); clears it. */
+    bool takeBoundChange()
+    {
+        const bool changed = _boundChanged;
+        _boundChanged = false;
+        return changed;
+    }
     /** Model space, as of the last updateMatrices(). */
     const osg::BoundingBox& getBound() const { return _bound; }
 
@@ -83,6 +108,13 @@ private:
     std::vector<SkinDualQuaternion> _dualQuaternions;
     bool _hasMatrices = false;
     osg::BoundingBox _bound;
+
+    // followPose(): on the actor's worker; read by the update thread after.
+    SkinPtr _followedSkin;
+    bool _followed = false;
+    bool _boundChanged = false;
+    unsigned _followedFrame = 0;
+    std::uint64_t _followedRecomputed = 0; // the pose's getTotalRecomputedJoints() then
 
     std::mutex _cullMutex;
     bool _culledBefore = false;

@@ -50,14 +50,18 @@ tsan() {
     # Any report makes the program exit with 66 at the end (TSan's exitcode), which fails this script.
     export TSAN_OPTIONS="suppressions=$supp/tsan.supp:second_deadlock_stack=1:history_size=4"
     export OSG_NOTIFY_LEVEL=WARN
-    "$build/bin/osgactor_node_tests" --gtest_filter='WorkerPool.*:ActorGroup.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*'
+    "$build/bin/osgactor_node_tests" \
+        --gtest_filter='WorkerPool.*:ActorGroup.*:ActorGroupCull.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*'
     OSGACTOR_SOAK_FRAMES=400 "$build/bin/osgactor_soak_test"
     local model
     for model in DrawThreadPerContext CullDrawThreadPerContext; do
         xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_threaded_viewer" "$model" 60
     done
-    # Skinned meshes: per-frame buffers filled in cull by two cameras' cull threads while the draw reads the others.
-    xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" DrawThreadPerContext 40
+    # Skinned meshes: per-frame buffers filled in cull by two cameras' cull threads while the draw reads the others;
+    # their matrices and bounds computed on the ActorGroup's threads, and the actors' cull prepared there.
+    for model in DrawThreadPerContext CullDrawThreadPerContext; do
+        xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" "$model" 40
+    done
     # OSG's own race between that model's second camera's cull and the next update: the file says which and why.
     # (TSan reads one suppressions file: the common one and this one together.)
     cat "$supp/tsan.supp" "$supp/tsan-cull-thread-per-camera.supp" > "$build/tsan-cull-thread-per-camera.supp"

@@ -1,8 +1,8 @@
 // osgActor against osgAnimation and plain OSG, side by side in one run: the same 31-joint humanoid and the same
 // looping clip in each system, N = 1, 10, 100, 1000 instances (--actors=N,...: up to 16000), the update traversal
 // alone and update plus cull; the frame with every instance in view and with three in four behind the camera; the
-// update of the largest crowd in an ActorGroup on 1, 2, 4, ... threads up to the machine's cores
-// (--threads=N,...). Reported per joint; the summary at the end gives each result's ratio to osgAnimation at the
+// update, and update plus cull, of the largest crowd in an ActorGroup on 1, 2, 4, ... threads up to the machine's
+// cores (--threads=N,...). Reported per joint; the summary at the end gives each result's ratio to osgAnimation at the
 // same N and mode, and each system's frame in view against its frame with three in four out of view.
 #include "BenchReport"
 #include "CountList"
@@ -139,22 +139,24 @@ void registerAll(const Sweep& sweep)
     // for the whole sweep, its thread count changed between runs, and never destroyed: every joint of every actor
     // holds the one shared box geode, and OSG removes a parent from a node's parent list by a linear search and
     // erase, so taking a crowd of 16,000 apart (500,000 parents of one node) costs far more than the sweep itself.
+    // The same with the cull (parallel_cull: update + cull, the actors' cull prepared on the group's threads).
     const int largest = *std::max_element(sweep.actors.begin(), sweep.actors.end());
-    for (int threads : sweep.threads)
-    {
-        const std::string name =
-            "parallel/osgActor_" + std::to_string(threads) + (threads == 1 ? "thread" : "threads");
-        benchmark::RegisterBenchmark(name.c_str(), [threads](benchmark::State& state) {
-            static osgActor::ActorGroup* const crowd = [&state] {
-                osg::ref_ptr<osg::Group> scene =
-                    bench::makeOsgActorScene(static_cast<unsigned>(state.range(0)), Motion::All, 1u);
-                scene->ref(); // the reference that is never given back
-                return static_cast<osgActor::ActorGroup*>(scene.get());
-            }();
-            crowd->setNumThreads(unsigned(threads));
-            runScene(state, *crowd, false, true);
-        })->Arg(largest)->Unit(benchmark::kMicrosecond)->UseRealTime();
-    }
+    for (bool withCull : {false, true})
+        for (int threads : sweep.threads)
+        {
+            const std::string name = std::string(withCull ? "parallel_cull" : "parallel") + "/osgActor_" +
+                                     std::to_string(threads) + (threads == 1 ? "thread" : "threads");
+            benchmark::RegisterBenchmark(name.c_str(), [threads, withCull](benchmark::State& state) {
+                static osgActor::ActorGroup* const crowd = [&state] {
+                    osg::ref_ptr<osg::Group> scene =
+                        bench::makeOsgActorScene(static_cast<unsigned>(state.range(0)), Motion::All, 1u);
+                    scene->ref(); // the reference that is never given back
+                    return static_cast<osgActor::ActorGroup*>(scene.get());
+                }();
+                crowd->setNumThreads(unsigned(threads));
+                runScene(state, *crowd, withCull, true);
+            })->Arg(largest)->Unit(benchmark::kMicrosecond)->UseRealTime();
+        }
 }
 
 /** Takes --actors=N,... and --threads=N,... out of the arguments (Google Benchmark's own stay); false, with a

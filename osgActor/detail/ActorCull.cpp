@@ -11,9 +11,71 @@ namespace detail {
 
 // --- ActorCullState ---
 
-ActorCullState::ActorCullState() : _planVersion(0), _replayable(false)
+ActorCullView::ActorCullView(osgUtil::CullVisitor& cv)
+    : projection(*cv.getProjectionMatrix()), viewport(cv.getViewport()),
+      frustum(&cv.getProjectionCullingStack().back().getFrustum()), traversalMask(cv.getTraversalMask()),
+      nodeMaskOverride(cv.getNodeMaskOverride()), cullingMask(cv.getCurrentCullingSet().getCullingMask()),
+      cullingMode(cv.getCullingMode()),
+      smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()),
+      computeNearFarMode(cv.getComputeNearFarMode()), binNumber(cv.getCurrentRenderBin()->getBinNum()),
+      binSortMode(cv.getCurrentRenderBin()->getSortMode())
+{
+}
+
+bool ActorCullView::isCulled(const osg::CullingSet& set, const osg::BoundingSphere& bound)
+{
+    // osg::CullingSet::isCulled(const BoundingSphere&) and osg::Polytope::contains(), term for term, but for the
+    // mask of planes left to test below, which contains() writes and nothing reads before the next test rewrites it.
+    const osg::CullingSet::Mask mask = set.getCullingMask();
+    if (mask & osg::CullingSet::VIEW_FRUSTUM_CULLING)
+    {
+        const osg::Polytope& frustum = set.getFrustum();
+        const osg::Polytope::ClippingMask selected = frustum.getCurrentMask();
+        osg::Polytope::ClippingMask selector = 0x1;
+        for (const osg::Plane& plane : frustum.getPlaneList())
+        {
+            if ((selected & selector) && plane.intersect(bound) < 0) return true;
+            selector <<= 1;
+        }
+    }
+    if ((mask & osg::CullingSet::SMALL_FEATURE_CULLING) &&
+        ((bound.center() * set.getPixelSizeVector()) * set.getSmallFeatureCullingPixelSize()) > bound.radius())
+        return true;
+    return false; // no occluders where an actor is culled as one (ActorCull::canCullAsOne())
+}
+
+ActorCullState::ActorCullState() : _holder(nullptr), _planVersion(0), _replayable(false)
 {
     _busy.clear();
+}
+
+ActorCullState::Key ActorCullState::keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView)
+{
+    Key key;
+    key.actorModelView = actorModelView;
+    key.projection = view.projection;
+    key.cullingMode = view.cullingMode;
+    // With near and far computed, the viewer clamps the camera's projection to them after each cull (SceneView does
+    // it in place, CullVisitor::clampProjectionMatrix() rewriting the third column): that column changes from frame
+    // to frame by a rounding. It enters no leaf while the near and far planes are not culled: the pixel-size vector
+    // and the frustum's sides are made of the other columns.
+    if ((key.cullingMode & (osg::CullSettings::NEAR_PLANE_CULLING | osg::CullSettings::FAR_PLANE_CULLING)) == 0)
+        for (int row = 0; row < 4; ++row) key.projection(row, 2) = 0.0;
+    if (view.viewport)
+    {
+        key.viewport[0] = view.viewport->x();
+        key.viewport[1] = view.viewport->y();
+        key.viewport[2] = view.viewport->width();
+        key.viewport[3] = view.viewport->height();
+    }
+    key.traversalMask = view.traversalMask;
+    key.nodeMaskOverride = view.nodeMaskOverride;
+    key.cullingMask = view.cullingMask;
+    key.smallFeaturePixelSize = view.smallFeaturePixelSize;
+    key.computeNearFar = view.computeNearFarMode;
+    key.binNumber = view.binNumber;
+    key.binSortMode = view.binSortMode;
+    return key;
 }
 
 bool ActorCullState::Key::operator==(const Key& other) const
@@ -77,66 +139,123 @@ bool ActorCull::canCullAsOne(osgUtil::CullVisitor& cv)
 
 ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
                      const ActorCullState::Versions& versions)
-    : _cv(cv), _state(state), _plan(nullptr),
-      _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
-      _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
-      _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
+    : _cv(cv), _state(state), _plan(nullptr), _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
       _modelViews(nullptr), _open(), _numOpen(0)
 {
-    const ActorCullState::Key key = keyNow();
-    const bool planKept = _state._plan && _state._planVersion == versions.plan;
-    bool replayable = planKept && _state._replayable && _state._versions == versions && _state._key == key;
-    // The joints' matrices and bounds are read after the plan is checked: ask for them now, with the flags the
-    // check reads, so that all the fetches overlap.
-    if (planKept && !replayable) _state._plan->prefetchJoints();
-    if (!planKept || !_state._plan->isCurrent())
-    {
-        _state._plan = new ActorCullPlan(actor);
-        _state._planVersion = versions.plan;
-        replayable = false;
-    }
+    const ActorCullView view(cv);
+    const ActorCullState::Key key = ActorCullState::keyOf(view, *cv.getModelViewMatrix());
+    if (!_state.isPrepared(key, versions))
+        _state.prepare(key, view, cv.getCurrentCullingSet().getPixelSizeVector(), actor, versions);
+    _state._prepared = false;
     _plan = _state._plan.get();
-    if (replayable)
+    if (_state._preparedReplay)
     {
         replay();
         return;
     }
-    _state._calls.clear();
-    _state._keptModelViews = nullptr; // free for the pool again once the render graph lets go of it
+    _modelViews = _state._preparedModelViews.get();
     cull();
     _state._keptModelViews = _modelViews;
-    _state._key = key;
+    _state._preparedModelViews = nullptr;
+    _state._key = _state._preparedKey;
     _state._versions = versions;
     _state._replayable = true;
 }
 
-ActorCullState::Key ActorCull::keyNow() const
+void ActorCullState::prepare(const ActorCullView& view, const osg::Matrixd& actorModelView,
+                             const osg::Vec4& pixelSizeVector, osg::Group& actor, const Versions& versions)
 {
-    ActorCullState::Key key;
-    key.actorModelView = *_cv.getModelViewMatrix();
-    key.projection = *_cv.getProjectionMatrix();
-    key.cullingMode = _cv.getCullingMode();
-    // With near and far computed, the viewer clamps the camera's projection to them after each cull (SceneView does
-    // it in place, CullVisitor::clampProjectionMatrix() rewriting the third column): that column changes from frame
-    // to frame by a rounding. It enters no leaf while the near and far planes are not culled: the pixel-size vector
-    // and the frustum's sides are made of the other columns.
-    if ((key.cullingMode & (osg::CullSettings::NEAR_PLANE_CULLING | osg::CullSettings::FAR_PLANE_CULLING)) == 0)
-        for (int row = 0; row < 4; ++row) key.projection(row, 2) = 0.0;
-    if (const osg::Viewport* viewport = _cv.getViewport())
+    prepare(keyOf(view, actorModelView), view, pixelSizeVector, actor, versions);
+}
+
+void ActorCullState::prepare(const Key& key, const ActorCullView& view, const osg::Vec4& pixelSizeVector,
+                             osg::Group& actor, const Versions& versions)
+{
+    const osg::Matrixd& actorModelView = key.actorModelView;
+    const bool planKept = _plan && _planVersion == versions.plan;
+    bool replayable = planKept && _replayable && _versions == versions && _key == key;
+    // The joints' matrices and bounds are read after the plan is checked: ask for them now, with the flags the
+    // check reads, so that all the fetches overlap.
+    if (planKept && !replayable) _plan->prefetchJoints();
+    if (!planKept || !_plan->isCurrent())
     {
-        key.viewport[0] = viewport->x();
-        key.viewport[1] = viewport->y();
-        key.viewport[2] = viewport->width();
-        key.viewport[3] = viewport->height();
+        _plan = new ActorCullPlan(actor);
+        _planVersion = versions.plan;
+        replayable = false;
     }
-    key.traversalMask = _cv.getTraversalMask();
-    key.nodeMaskOverride = _cv.getNodeMaskOverride();
-    key.cullingMask = _cv.getCurrentCullingSet().getCullingMask();
-    key.smallFeaturePixelSize = _cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize();
-    key.computeNearFar = _cv.getComputeNearFarMode();
-    key.binNumber = _cv.getCurrentRenderBin()->getBinNum();
-    key.binSortMode = _cv.getCurrentRenderBin()->getSortMode();
-    return key;
+    _prepared = true;
+    _preparedReplay = replayable;
+    _preparedKey = key;
+    _preparedVersions = versions;
+    if (replayable) return;
+    _replayable = false;
+    _calls.clear();
+    _keptModelViews = nullptr; // free for the pool again once the render graph lets go of it
+
+    // Every planned joint's model-view matrix, parents first.
+    _preparedModelViews = _modelViews.acquire();
+    const std::vector<ActorCullPlan::Joint>& joints = _plan->getJoints();
+    std::vector<osg::Matrixd>& matrices = _preparedModelViews->matrices;
+    matrices.resize(joints.size() + 1);
+    matrices[0] = actorModelView;
+    for (std::size_t j = 0; j < joints.size(); ++j)
+        composeModelView(joints[j].node->getMatrix().ptr(),
+                         matrices[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), matrices[j + 1].ptr());
+
+    const std::size_t numFrames = joints.size() + 1;
+    _leafMatrices.assign(numFrames, nullptr);
+    _hasPixelSizeVector.assign(numFrames, 0);
+    _pixelSizeVectors.resize(numFrames);
+    _pixelSizeVectors[0] = pixelSizeVector;
+    _hasPixelSizeVector[0] = 1;
+
+    // What the visitor would cull and the drawables' depths.
+    const std::vector<ActorCullPlan::Step>& steps = _plan->getSteps();
+    const std::size_t numSteps = steps.size();
+    _stepCulled.assign(numSteps, 0);
+    _stepDepths.resize(numSteps);
+    const ActorCullPlan::Step* stepData = steps.data();
+    unsigned char* culled = _stepCulled.data();
+    float* depths = _stepDepths.data();
+    const ActorCullPlan::Joint* jointData = joints.data();
+    const osg::Matrixd* frames = matrices.data();
+    const bool smallFeatureCulling = view.smallFeatureCulling();
+    const bool frustumCullingForNearFar = view.computeNearFar() && view.frustumCulling();
+    for (std::size_t i = 0; i < numSteps; ++i)
+    {
+        const ActorCullPlan::Step& step = stepData[i];
+        switch (step.kind)
+        {
+        case ActorCullPlan::JOINT:
+        case ActorCullPlan::GEODE:
+        {
+            // As Node::accept() would: a node the visitor's mask rules out is skipped with its subtree. The visitor
+            // tests the node's sphere in the frame the node is in; a small feature is culled with its subtree.
+            const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(jointData[step.joint].parent + 1)
+                                                                      : unsigned(step.joint + 1);
+            if ((view.traversalMask & (view.nodeMaskOverride | step.mask)) == 0 ||
+                (smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame, view)))
+            {
+                culled[i] = 1;
+                i = step.end - 1; // its steps are skipped, and left undecided
+            }
+            break;
+        }
+        case ActorCullPlan::DRAWABLE:
+        {
+            // What CullVisitor::apply(osg::Drawable&) decides for a drawable without a cull callback, with the
+            // frustum test kept where it changes the image: near and far planes computed from what is drawn.
+            const bool masked = (view.traversalMask & (view.nodeMaskOverride | step.mask)) == 0;
+            const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
+            const osg::Matrixd& modelView = frames[step.joint + 1];
+            culled[i] = masked || (frustumCullingForNearFar && box.valid() && step.cullingActive &&
+                                   isOutsideFrustum(box, modelView, view));
+            depths[i] = box.valid() ? eyeDepth(box.center(), modelView) : 0.0f;
+            break;
+        }
+        default: break;
+        }
+    }
 }
 
 void ActorCull::replay()
@@ -162,35 +281,17 @@ void ActorCull::replay()
 
 void ActorCull::cull()
 {
-    const std::size_t numFrames = _plan->getJoints().size() + 1;
-    _state._leafMatrices.assign(numFrames, nullptr);
-    _state._hasPixelSizeVector.assign(numFrames, 0);
-    _state._pixelSizeVectors.resize(numFrames);
-    _state._pixelSizeVectors[0] = _cv.getCurrentCullingSet().getPixelSizeVector();
-    _state._hasPixelSizeVector[0] = 1;
-    computeModelViews();
-
-    const std::vector<Step>& steps = _plan->getSteps();
-    const std::vector<ActorCullPlan::Joint>& joints = _plan->getJoints();
-    const unsigned traversalMask = _cv.getTraversalMask(), maskOverride = _cv.getNodeMaskOverride();
-    for (std::size_t i = 0; i < steps.size();)
+    const Step* steps = _plan->getSteps().data();
+    const std::size_t numSteps = _plan->getSteps().size();
+    const unsigned char* culled = _state._stepCulled.data();
+    for (std::size_t i = 0; i < numSteps;)
     {
         const Step& step = steps[i];
-        // As Node::accept() would: a node the visitor's mask rules out is skipped with its subtree.
-        const bool masked = (step.kind == ActorCullPlan::JOINT || step.kind == ActorCullPlan::GEODE ||
-                             step.kind == ActorCullPlan::DRAWABLE) &&
-                            (traversalMask & (maskOverride | step.mask)) == 0;
         switch (step.kind)
         {
         case ActorCullPlan::JOINT:
         case ActorCullPlan::GEODE:
-        {
-            // The visitor tests the node's sphere in the frame the node is in; a small feature is culled with its
-            // subtree.
-            const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(joints[step.joint].parent + 1)
-                                                                      : unsigned(step.joint + 1);
-            if (masked ||
-                (_smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame)))
+            if (culled[i])
             {
                 i = step.end;
                 continue;
@@ -203,7 +304,6 @@ void ActorCull::cull()
             }
             if (step.stateSet) wantState(step.stateSet);
             break;
-        }
         case ActorCullPlan::END_JOINT:
         case ActorCullPlan::END_GEODE:
             if (step.stateSet) unwantState();
@@ -214,7 +314,7 @@ void ActorCull::cull()
             }
             break;
         case ActorCullPlan::DRAWABLE:
-            if (!masked) addDrawable(step);
+            if (!culled[i]) addDrawable(step, static_cast<unsigned>(i));
             break;
         case ActorCullPlan::ORDINARY: traverseOrdinarily(step); break;
         }
@@ -223,36 +323,22 @@ void ActorCull::cull()
     applyWantedStates(); // pops what is left
 }
 
-void ActorCull::computeModelViews()
+void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
 {
-    _modelViews = _state._modelViews.acquire();
-    const std::vector<ActorCullPlan::Joint>& joints = _plan->getJoints();
-    std::vector<osg::Matrixd>& matrices = _modelViews->matrices;
-    matrices.resize(joints.size() + 1);
-    matrices[0] = *_cv.getModelViewMatrix();
-    for (std::size_t j = 0; j < joints.size(); ++j)
-        composeModelView(joints[j].node->getMatrix().ptr(),
-                         matrices[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), matrices[j + 1].ptr());
-}
-
-void ActorCull::addDrawable(const Step& step)
-{
-    // What CullVisitor::apply(osg::Drawable&) does for a drawable without a cull callback, with the
-    // frustum test kept where it changes the image: near and far planes computed from what is drawn.
+    // What CullVisitor::apply(osg::Drawable&) does for a drawable without a cull callback, from what prepare()
+    // decided.
     osg::Drawable& drawable = *step.node->asDrawable();
     const unsigned frame = static_cast<unsigned>(step.joint + 1);
     const osg::Matrixd& modelView = _modelViews->matrices[frame];
-    const osg::BoundingBox& box = drawable.getBoundingBox();
-    if (_computeNearFar && box.valid())
+    if (_computeNearFar && drawable.getBoundingBox().valid())
     {
-        if (_frustumCulling && step.cullingActive && isOutsideFrustum(box, modelView)) return;
         // The visitor takes the box's nearest and farthest corners along the view in the frame of the matrix it last
         // pushed, which here is the actor's, not the joint's: its billboard form finds them from the matrix given,
         // with the same arithmetic pushModelViewMatrix() uses, so the planes are those of the ordinary traversal.
         if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
         call(Call::NEAR_FAR, &drawable, nullptr, 0.0f, &modelView);
     }
-    const float depth = box.valid() ? eyeDepth(box.center(), modelView) : 0.0f;
+    const float depth = _state._stepDepths[stepIndex];
     if (osg::isNaN(depth)) return; // the visitor drops it too (with a notice)
     if (step.stateSet) wantState(step.stateSet);
     applyWantedStates();
@@ -352,30 +438,29 @@ void ActorCull::closeBatch(osgUtil::StateGraph* graph)
         }
 }
 
-bool ActorCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame)
+bool ActorCullState::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame, const ActorCullView& view)
 {
     if (!bound.valid()) return false; // the visitor never tests it (the node is not culling-active)
-    if (!_state._hasPixelSizeVector[frame])
+    if (!_hasPixelSizeVector[frame])
     {
         // As osg::CullStack::pushCullingSet() makes it for this matrix.
-        _state._pixelSizeVectors[frame] = osg::CullingSet::computePixelSizeVector(
-            *_cv.getViewport(), *_cv.getProjectionMatrix(), _modelViews->matrices[frame]);
-        _state._hasPixelSizeVector[frame] = 1;
+        _pixelSizeVectors[frame] = osg::CullingSet::computePixelSizeVector(*view.viewport, view.projection,
+                                                                           _preparedModelViews->matrices[frame]);
+        _hasPixelSizeVector[frame] = 1;
     }
     // osg::CullingSet::isCulled(const BoundingSphere&)'s small-feature test, term for term.
-    return ((bound.center() * _state._pixelSizeVectors[frame]) *
-            _cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()) > bound.radius();
+    return ((bound.center() * _pixelSizeVectors[frame]) * view.smallFeaturePixelSize) > bound.radius();
 }
 
-bool ActorCull::isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView) const
+bool ActorCullState::isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView,
+                                      const ActorCullView& view) const
 {
     // The projection's culling set holds the frustum's planes in eye space; the visitor tests them moved into the
     // drawable's frame. A box is outside a plane when its farthest corner along the plane's normal is, that is
     // when all eight corners are, whichever frame they are taken in.
     osg::Vec3d corners[8];
     for (unsigned k = 0; k < 8; ++k) corners[k] = osg::Vec3d(box.corner(k)) * modelView;
-    const osg::Polytope& frustum = _cv.getProjectionCullingStack().back().getFrustum();
-    for (const osg::Plane& plane : frustum.getPlaneList())
+    for (const osg::Plane& plane : view.frustum->getPlaneList())
     {
         bool allOutside = true;
         for (unsigned k = 0; k < 8 && allOutside; ++k) allOutside = plane.distance(corners[k]) < 0.0;

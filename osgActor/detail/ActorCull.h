@@ -21,6 +21,13 @@
 // another frame) before it counts for near and far. What only saves work is skipped: spheres against the frustum,
 // so a drawable outside the view may reach the render graph, where OpenGL clips it, and the statistics count it.
 //
+// The work is in two parts. prepare() touches no visitor: it checks the plan, computes the model-view matrices and
+// decides what small features, and what lies outside the frustum, are culled, and each drawable's depth, from a
+// view (ActorCullView: what the visitor holds, taken once) and the actor's model-view matrix. ActorCull (the visitor's
+// thread) then makes the calls to the visitor from what was prepared. An actor culls itself with both in turn; an
+// ActorGroup prepares its actors on its threads first, then the visitor meets them in child order as it would, and
+// each finds its cull prepared, provided the visitor holds what the preparation was made for (it is checked).
+//
 // What a cull did to the visitor (state sets pushed and popped, leaves added, subtrees traversed) is kept as a
 // list of calls. When the actor is culled again with nothing it depends on changed (the same plan, no joint
 // matrix written, no bound below recomputed, the same model-view matrix on entry, the same projection, viewport
@@ -41,6 +48,34 @@
 namespace osgActor {
 namespace detail {
 
+/** What the cull of an actor reads of the cull visitor, but the actor's own model-view matrix and pixel-size
+  * vector: the view, the masks and settings, and where the actor's leaves go. Taken from the visitor where it enters
+  * the actor, or where it enters the ActorGroup above it (it then holds the same, or the actor's cull finds that it
+  * does not and prepares again). Points into the visitor: valid while its cull goes on. */
+struct ActorCullView
+{
+    explicit ActorCullView(osgUtil::CullVisitor& cv);
+
+    osg::Matrixd projection;
+    const osg::Viewport* viewport;
+    const osg::Polytope* frustum; // the projection's culling set's, eye space
+    unsigned traversalMask;
+    unsigned nodeMaskOverride;
+    unsigned cullingMask;          // the current culling set's
+    unsigned cullingMode;          // the visitor's, which made the projection's frustum
+    float smallFeaturePixelSize;
+    int computeNearFarMode;
+    int binNumber;
+    int binSortMode;
+
+    bool smallFeatureCulling() const { return (cullingMask & osg::CullingSet::SMALL_FEATURE_CULLING) != 0; }
+    bool frustumCulling() const { return (cullingMask & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0; }
+    bool computeNearFar() const { return computeNearFarMode != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR; }
+    /** What the visitor's isCulled(node) answers for a bound in the culling set's frame (frustum planes in its
+      * current mask, and small features), without the writes osg::CullingSet::isCulled() makes: any thread. */
+    static bool isCulled(const osg::CullingSet& set, const osg::BoundingSphere& bound);
+};
+
 /** What one actor keeps from one cull to the next: its plan, the calls of its last cull, and the batches and
   * matrices those calls gave the render graph. One cull visitor at a time (tryAcquire()). */
 class ActorCullState : public osg::Referenced
@@ -52,10 +87,26 @@ public:
       * traversal). */
     bool tryAcquire() { return !_busy.test_and_set(std::memory_order_acquire); }
     void release() { _busy.clear(std::memory_order_release); }
+    /** Claims it for a visitor's whole traversal of an ActorGroup (its preparation on the group's threads, then
+      * its cull), and gives it back after: isHeldBy(visitor) in between. */
+    bool tryAcquireFor(const void* visitor)
+    {
+        if (!tryAcquire()) return false;
+        _holder.store(visitor, std::memory_order_relaxed);
+        return true;
+    }
+    bool isHeldBy(const void* visitor) const { return _holder.load(std::memory_order_relaxed) == visitor; }
+    void releaseFrom(const void* visitor)
+    {
+        if (!isHeldBy(visitor)) return;
+        _prepared = false;
+        _preparedModelViews = nullptr;
+        _holder.store(nullptr, std::memory_order_relaxed);
+        release();
+    }
 
-    /** Whether the last cull kept its calls for the given versions (ActorNode's counters of plan-changing edits,
-      * joint-matrix writes and bound recomputations); whether it would be replayed also needs the same visitor
-      * settings (ActorCull). */
+    /** Counters of what the actor changed (ActorNode's counters of plan-changing edits, joint-matrix writes and
+      * bound recomputations): the last cull's calls are replayed only for the same ones, and the same view. */
     struct Versions
     {
         unsigned plan = 0;
@@ -66,6 +117,12 @@ public:
             return plan == other.plan && pose == other.pose && bound == other.bound;
         }
     };
+
+    /** Everything of the actor's cull that does not touch the visitor, for a view and the actor's model-view
+      * matrix (eye space) and pixel-size vector (as the visitor computes them on its way into the actor), with
+      * the state acquired; any thread, one actor per thread. The actor's bound is computed already. */
+    void prepare(const ActorCullView& view, const osg::Matrixd& actorModelView, const osg::Vec4& pixelSizeVector,
+                 osg::Group& actor, const Versions& versions);
 
 protected:
     ~ActorCullState() override = default;
@@ -89,6 +146,10 @@ private:
         int binSortMode = 0;
         bool operator==(const Key& other) const;
     };
+    static Key keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView);
+    /** prepare() for the key of the view and the actor's model-view matrix (its actorModelView). */
+    void prepare(const Key& key, const ActorCullView& view, const osg::Vec4& pixelSizeVector, osg::Group& actor,
+                 const Versions& versions);
     /** One call the cull made to the visitor. */
     struct Call
     {
@@ -109,7 +170,16 @@ private:
         Object* acquire();
     };
 
+    /** Whether the decisions below hold for a cull seeing _key. */
+    bool isPrepared(const Key& key, const Versions& versions) const
+    {
+        return _prepared && _preparedVersions == versions && _preparedKey == key;
+    }
+    bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame, const ActorCullView& view);
+    bool isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView, const ActorCullView& view) const;
+
     std::atomic_flag _busy;
+    std::atomic<const void*> _holder;
     osg::ref_ptr<ActorCullPlan> _plan;
     unsigned _planVersion;
     bool _replayable;
@@ -121,6 +191,15 @@ private:
     Pool<osg::RefMatrix> _matrices;
     /** The matrices the kept calls refer to. */
     osg::ref_ptr<JointModelViews> _keptModelViews;
+    // What prepare() decided, for the cull that follows: replay the kept calls, or make new ones with these
+    // matrices and, per step, whether it is culled (JOINT, GEODE, DRAWABLE) and the drawable's depth.
+    bool _prepared = false;
+    bool _preparedReplay = false;
+    Key _preparedKey;
+    Versions _preparedVersions;
+    osg::ref_ptr<JointModelViews> _preparedModelViews;
+    std::vector<unsigned char> _stepCulled;
+    std::vector<float> _stepDepths;
     // A cull's working space, kept so that a frame allocates nothing. Per frame (the actor's, then each planned
     // joint's): its matrix for the render graph, or null; its pixel-size vector, valid where the flag says.
     std::vector<osg::RefMatrix*> _leafMatrices;
@@ -138,7 +217,8 @@ public:
     static bool canCullAsOne(osgUtil::CullVisitor& cv);
 
     /** Culls the children of the actor node the visitor is in now (its model-view matrix on top of the stack),
-      * with the state the caller acquired. versions: the actor's counters now. */
+      * with the state the caller acquired, from what prepare() made for this visitor or, if it made nothing for
+      * what the visitor holds now, after preparing it here. versions: the actor's counters now. */
     ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
               const ActorCullState::Versions& versions);
 
@@ -146,17 +226,11 @@ private:
     using Step = ActorCullPlan::Step;
     using Call = ActorCullState::Call;
 
-    ActorCullState::Key keyNow() const;
     void replay();
-    /** The plan followed afresh, every call kept for the next frame. */
+    /** The plan followed afresh from the prepared decisions, every call kept for the next frame. */
     void cull();
-    void computeModelViews();
-    void addDrawable(const Step& step);
+    void addDrawable(const Step& step, unsigned stepIndex);
     void traverseOrdinarily(const Step& step);
-    /** Whether the visitor would cull a sphere in the frame as a small feature. */
-    bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
-    /** Whether a box in a frame lies wholly outside one plane of the view frustum. */
-    bool isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView) const;
     /** The frame's model-view matrix as the render graph holds it, made at its first use this cull. */
     osg::RefMatrix* leafMatrix(unsigned frame);
 
@@ -180,9 +254,7 @@ private:
     osgUtil::CullVisitor& _cv;
     ActorCullState& _state;
     const ActorCullPlan* _plan;
-    bool _smallFeatureCulling;
     bool _computeNearFar;
-    bool _frustumCulling;
     JointModelViews* _modelViews;
     /** The batches this actor is filling, by state graph: a drawable goes into its graph's open batch, which is
       * closed when anything else may land in that graph (a drawable that is not batched, an ordinary traversal),

@@ -1,8 +1,10 @@
 /* osgViewer with a multi-threaded threading model (argv[1]: DrawThreadPerContext, CullDrawThreadPerContext or
  * CullThreadPerCameraDrawThreadPerContext) drawing skinned Cesium Men through two cameras (a slave beside the master:
  * under CullThreadPerCamera... two cull threads meet the same meshes in one frame): every actor a shallow copy of one
- * (they share one SkinnedMesh), half of them skinned on the CPU, all updated by an ActorGroup on worker threads
- * while the previous frame is drawn; the main thread turns actors' paths between frames. The slave is added before
+ * (they share one SkinnedMesh), half of them skinned on the CPU, and as many rigid ones (Cesium Man's skeleton with a
+ * stick figure, no skin), all updated by an ActorGroup on worker threads while the previous frame is drawn, their
+ * skins' matrices and bounds computed there too, and culled with the group's parallel preparation (one camera's cull
+ * at a time; the other's serially); the main thread turns actors' paths between frames. The slave is added before
  * the viewer starts its threads, so that each camera is culled where the model says (a camera added later is culled
  * on the draw thread, alongside the next frame's update). Run under xvfb-run by ctest and under ThreadSanitizer by
  * scripts/test-sanitizers.sh. Exit status 0 after the frames (and every actor's mesh skinned or uploaded once per
@@ -36,11 +38,28 @@ int main(int argc, char** argv)
         std::cerr << error << "\n";
         return 1;
     }
+    RiggedModelActorOptions figureOptions;
+    figureOptions.addFigure = true;
+    const RiggedModelActor figure = readRiggedModelActor(std::string(OSGACTOR_TEST_DATA_DIR) +
+                                                             "/models/CesiumMan/CesiumMan.gltf",
+                                                         figureOptions, error);
+    osg::Node* figureSkins =
+        figure.actor && !figure.skinnedMeshes.empty() ? figure.skinnedMeshes[0]->getParent(0) : nullptr;
+    if (!figureSkins)
+    {
+        std::cerr << error << "\n";
+        return 1;
+    }
+    figure.actor->removeChild(figureSkins); // rigid: the stick figure on the joints only
     osg::ref_ptr<ActorGroup> actors = new ActorGroup;
     actors->setNumThreads(2);
-    for (int a = 0; a < 12; ++a)
+    actors->setMinActorsForParallelCull(1);
+    const int numSkinned = 12;
+    for (int a = 0; a < 2 * numSkinned; ++a)
     {
-        osg::ref_ptr<ActorNode> actor = osg::clone(read.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        const bool skinned = a < numSkinned;
+        osg::ref_ptr<ActorNode> actor =
+            osg::clone((skinned ? read : figure).actor.get(), osg::CopyOp::SHALLOW_COPY);
         actor->setPreTranslation(osg::Vec3d(0.8 * (a % 4), 0.8 * (a / 4), 0.0));
         if (a % 2) setSkinningPath(*actor, SkinnedMesh::CPU_SKINNING);
         actors->addChild(actor.get());
@@ -78,16 +97,16 @@ int main(int argc, char** argv)
     for (int frame = 0; frame < frames && !viewer.done(); ++frame)
     {
         // Between frames, on the main thread (OSG's update thread): an actor changes path.
-        ActorNode* actor = static_cast<ActorNode*>(actors->getChild(frame % actors->getNumChildren()));
+        ActorNode* actor = static_cast<ActorNode*>(actors->getChild(static_cast<unsigned>(frame % numSkinned)));
         setSkinningPath(*actor, frame % 3 ? SkinnedMesh::CPU_SKINNING : SkinnedMesh::GPU_SKINNING);
         viewer.frame();
     }
     viewer.stopThreading();
     const SkinnedMesh& mesh = *read.skinnedMeshes[0];
     unsigned long long work = 0, updates = 0;
-    for (unsigned a = 0; a < actors->getNumChildren(); ++a)
+    for (int a = 0; a < numSkinned; ++a)
     {
-        const SkinnedMesh::Statistics statistics = mesh.getStatistics(*static_cast<ActorNode*>(actors->getChild(a)));
+        const SkinnedMesh::Statistics statistics = mesh.getStatistics(*static_cast<ActorNode*>(actors->getChild(static_cast<unsigned>(a))));
         work += statistics.cpuSkinnings + statistics.paletteUploads;
         updates += statistics.matrixUpdates;
         if (statistics.cpuSkinnings + statistics.paletteUploads > statistics.matrixUpdates)
@@ -97,6 +116,12 @@ int main(int argc, char** argv)
         }
     }
     std::cout << "skinned_threaded_viewer: " << modelName << ", " << viewer.getFrameStamp()->getFrameNumber()
-              << " frames, " << updates << " matrix updates, " << work << " skinnings or uploads\n";
+              << " frames, " << updates << " matrix updates, " << work << " skinnings or uploads, "
+              << actors->getNumParallelCulls() << " culls prepared on the group's threads\n";
+    if (actors->getNumParallelCulls() == 0)
+    {
+        std::cerr << "no cull was prepared on the group's threads\n";
+        return 1;
+    }
     return work > 0 ? 0 : 1;
 }
