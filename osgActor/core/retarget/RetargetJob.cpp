@@ -25,6 +25,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -189,35 +190,53 @@ OSGACTOR_INLINE RotationColumns jointFrame(const RetargetJobTables& tables, unsi
     return hasParent ? multiply(parentRotation, offset) : offset;
 }
 
-/** Pass 3: the Euler fits of the batches' joints, four at a time, each under its parent's desired rotation. */
+/** Pass 3: the Euler fits of the batches' joints, four at a time, each under its parent's desired rotation. Batches go
+  * in groups: the group's arctangents (each a long chain of dependent operations: divisions, a polynomial) run one
+  * after another, so the processor overlaps them, which it cannot do across one batch's whole fit. */
 OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs, RetargetWorkspace& w)
 {
+    constexpr std::size_t kGroup = 4;
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
+    const std::vector<RetargetEulerBatch>& batches = tables.eulerBatches;
     RetargetWorkspace::Scratch& s = w.scratch;
-    for (const RetargetEulerBatch& batch : tables.eulerBatches)
+    for (std::size_t first = 0; first < batches.size(); first += kGroup)
     {
-        const double* local[RetargetEulerBatch::kWidth];
-        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+        const std::size_t numInGroup = std::min(kGroup, batches.size() - first);
+        EulerArctangents in[kGroup];
+        for (std::size_t b = 0; b < numInGroup; ++b)
         {
-            const unsigned t = batch.joints[lane];
-            const int parent = target.getParent(t);
-            const RotationColumns parentDesired =
-                parent >= 0 ? loadRotation(&s.desired[static_cast<unsigned>(parent) * kRotationDoubles])
-                            : identityColumns();
-            const RotationColumns frame = jointFrame(tables, t, parent >= 0, parentDesired);
-            double* const out = &s.local[t * kRotationDoubles];
-            storeRotation(out, multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
-            local[lane] = out;
+            const RetargetEulerBatch& batch = batches[first + b];
+            const double* local[RetargetEulerBatch::kWidth];
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+            {
+                const unsigned t = batch.joints[lane];
+                const int parent = target.getParent(t);
+                const RotationColumns parentDesired =
+                    parent >= 0 ? loadRotation(&s.desired[static_cast<unsigned>(parent) * kRotationDoubles])
+                                : identityColumns();
+                const RotationColumns frame = jointFrame(tables, t, parent >= 0, parentDesired);
+                double* const out = &s.local[t * kRotationDoubles];
+                storeRotation(out, multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
+                local[lane] = out;
+            }
+            for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
+                local[lane] = local[batch.numJoints - 1];
+            in[b] = eulerArctangents(batch, local);
         }
-        for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
-            local[lane] = local[batch.numJoints - 1];
-        const EulerLanesFit fit = fitEulerLanes(batch, local, dofs);
-        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+        Column angles[kGroup][3];
+        for (std::size_t b = 0; b < numInGroup; ++b)
+            for (unsigned r = 0; r < 3; ++r) angles[b][r] = arctangent2Lanes(in[b].y[r], in[b].x[r], in[b].invalid);
+        for (std::size_t b = 0; b < numInGroup; ++b)
         {
-            const unsigned t = batch.joints[lane];
-            s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-            for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = fit.angles[r][lane];
+            const RetargetEulerBatch& batch = batches[first + b];
+            const EulerLanesFit fit = fitEulerLanes(batch, angles[b], in[b].invalid, dofs);
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+            {
+                const unsigned t = batch.joints[lane];
+                s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+                for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = fit.angles[r][lane];
+            }
         }
     }
 }
