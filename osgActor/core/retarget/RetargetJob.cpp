@@ -4,7 +4,7 @@
 //    exactly: a product or two from the rig's constants;
 // 3. the Euler fits of the joints with three rotations, four joints to a vector (EulerLanes.h), each from its local
 //    rotation under its parent's desired rotation; a lane that needs more (a limit, gimbal lock, the second solution)
-//    is left to the scalar fit;
+//    is left to the scalar fit; and the Copy joints' angles, four joints to a vector, checked against the limits;
 // 4. depth by depth, each joint's DOFs and actual model matrix: the Euler lanes' angles where its parent took its
 //    desired rotation; for joints with one or two rotations (a knee, an ankle), the fits of the depth's axis batches,
 //    four joints to a vector (AxisLanes.h), under their parents' actual rotations; else the scalar fit under the
@@ -241,6 +241,29 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
     }
 }
 
+/** Pass 3, for the copy batches' joints, four at a time: their source joints' angles, fitted where all of a joint's
+  * lie within its limits. */
+OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const double* sourceValues, RetargetWorkspace& w)
+{
+    RetargetWorkspace::Scratch& s = w.scratch;
+    for (const RetargetCopyBatch& batch : tables.copyBatches)
+    {
+        Column angles[3];
+        LaneMask within = ~LaneMask{};
+        for (unsigned r = 0; r < 3; ++r)
+        {
+            angles[r] = gatherLanes(sourceValues, batch.sourceDof[r]);
+            within &= angles[r] >= loadColumn(batch.min[r]) && angles[r] <= loadColumn(batch.max[r]);
+        }
+        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+        {
+            const unsigned t = batch.joints[lane];
+            s.laneFitted[t] = within[lane] != 0 ? 1 : 0;
+            for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = angles[r][lane];
+        }
+    }
+}
+
 /** frame * R_a1 * R_a2 * R_a3 for a joint's rotation DOFs (product order): its model rotation from its frame. */
 OSGACTOR_INLINE RotationColumns rotateByDofs(RotationColumns frame, const JointKinematics& k, const double* dofs)
 {
@@ -344,6 +367,13 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
         const RotationColumns restLocal = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
         rotation = hasParent ? multiply(parentRotation, restLocal) : restLocal;
     }
+    else if (plan.kind == RetargetJointKind::Copy && parentExact && s.laneFitted[t])
+    {
+        // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches).
+        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        exact = true;
+        rotation = desired;
+    }
     else if (plan.kind == RetargetJointKind::Copy && parentExact)
     {
         // The same local frames as the source joint's: its angles, turned or clamped into the limits.
@@ -441,6 +471,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
     poseSource(*rig->getSourceDefinition(), rig->getJobTables(), sourceDofs.data(), w);
     desireRotations(*rig, w);
     fitEulerBatches(*rig, targetDofs.data(), w);
+    takeCopyBatches(rig->getJobTables(), sourceDofs.data(), w);
     numInexact = placeJoints(*rig, sourceDofs.data(), targetDofs.data(), w);
     return true;
 }
