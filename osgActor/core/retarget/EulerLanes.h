@@ -2,8 +2,8 @@
 // at once, one per vector lane (../Column.h), for RetargetJob: the decomposition's three arctangents and square root,
 // and the turn of each angle to the whole turn nearest the previous frame's value, within the limits. In three steps
 // (the arctangents' inputs, the arctangents, the turns), so the caller can run the long dependent chains of several
-// batches' arctangents one after another, which the processor then overlaps. A lane whose
-// joint needs more than that (gimbal lock, a limit, the second solution) is reported, and left to the scalar fit.
+// batches' arctangents one after another, which the processor then overlaps. A lane whose joint needs more than that
+// (gimbal lock, a limit, the second solution) is reported, and left to the scalar fit.
 #ifndef OSGACTOR_CORE_RETARGET_EULERLANES_H
 #define OSGACTOR_CORE_RETARGET_EULERLANES_H 1
 
@@ -92,7 +92,8 @@ struct EulerArctangents
 };
 
 /** The arctangents' inputs of a batch's joints (see RetargetEulerBatch), each joint's local rotation given as columns
-  * of four (12 doubles, local[lane]), for the decomposition's first solution (the middle angle within [-pi/2, pi/2]). */
+  * of four (12 doubles, local[lane]), for the decomposition's first solution (the middle angle within
+  * [-pi/2, pi/2]). */
 OSGACTOR_INLINE EulerArctangents eulerArctangents(const RetargetEulerBatch& batch, const double* const local[4])
 {
     using E = RetargetEulerBatch;

@@ -78,8 +78,9 @@ OSGACTOR_INLINE RotationColumns transpose(const RotationColumns& a)
 {
     const Column upperLeft = __builtin_shufflevector(a.c[0], a.c[1], 0, 4, 1, 5);  // a00 a01 a10 a11
     const Column lowerLeft = __builtin_shufflevector(a.c[0], a.c[1], 2, 6, 3, 7);  // a20 a21 0 0
-    return {{__builtin_shufflevector(upperLeft, a.c[2], 0, 1, 4, 7), __builtin_shufflevector(upperLeft, a.c[2], 2, 3, 5, 7),
-             __builtin_shufflevector(lowerLeft, a.c[2], 0, 1, 6, 7)}};
+    return {{__builtin_shufflevector(upperLeft, a.c[2], 0, 1, 4, 7),  // a00 a01 a02 0
+             __builtin_shufflevector(upperLeft, a.c[2], 2, 3, 5, 7),  // a10 a11 a12 0
+             __builtin_shufflevector(lowerLeft, a.c[2], 0, 1, 6, 7)}}; // a20 a21 a22 0
 }
 
 /** m * R_axis(angle), from its cosine and sine: the columns the axis rotation mixes (X: y and z, Y: z and x, Z: x
