@@ -239,6 +239,11 @@ TEST(RetargetJob, AHingeStopsAtItsLimitAndTheJointsBelowKeepTheirOrientation)
         {"hip", "l_hip"}, {"knee", "l_knee"}, {"ankle", "l_ankle"}};
     const RetargetRigPtr rig = buildRig(mappedSkeleton(source, joints), mappedSkeleton(target, joints));
     ASSERT_TRUE(rig);
+    // The same local frames: the joints copy the source's angles, checked against the limits four to a vector, and
+    // the knee, beyond its limit there, is clamped one by one.
+    unsigned copied = 0;
+    for (const RetargetCopyBatch& batch : rig->getJobTables().copyBatches) copied += batch.numJoints;
+    EXPECT_EQ(copied, 3u) << "hip, knee and ankle";
     std::vector<double> pose = source->getDefaultDofs();
     pose[static_cast<unsigned>(source->findDof("knee.rx"))] = degrees(120);
     pose[static_cast<unsigned>(source->findDof("ankle.rz"))] = degrees(20);

@@ -1,7 +1,9 @@
 // Internal to the library (not installed): the Euler fit of fitJointRotationDofs (JointRotationFit) for four joints
 // at once, one per vector lane (../Column.h), for RetargetJob: the decomposition's three arctangents and square root,
-// and the turn of each angle to the whole turn nearest the previous frame's value, within the limits. A lane whose
-// joint needs more than that (gimbal lock, a limit, the second solution) is reported, and left to the scalar fit.
+// and the turn of each angle to the whole turn nearest the previous frame's value, within the limits. In three steps
+// (the arctangents' inputs, the arctangents, the turns), so the caller can run the long dependent chains of several
+// batches' arctangents one after another, which the processor then overlaps. A lane whose joint needs more than that
+// (gimbal lock, a limit, the second solution) is reported, and left to the scalar fit.
 #ifndef OSGACTOR_CORE_RETARGET_EULERLANES_H
 #define OSGACTOR_CORE_RETARGET_EULERLANES_H 1
 
@@ -80,21 +82,19 @@ OSGACTOR_INLINE Column turnNearLanes(Column angle, Column reference, Column min,
     return turned;
 }
 
-/** What fitEulerLanes gives back: per lane, the three angles in product order, and whether the lane's joint is
-  * fitted exactly. */
-struct EulerLanesFit
+/** The inputs of the Euler decomposition's three arctangents for a batch's joints, one joint per lane: angle r (in
+  * product order) is atan2(y[r], x[r]); invalid is set in the lanes at gimbal lock (the scalar fit puts the free sum
+  * in the last angle). */
+struct EulerArctangents
 {
-    Column angles[3];
-    LaneMask fitted;
+    Column y[3], x[3];
+    LaneMask invalid;
 };
 
-/** The Euler fit of a batch's joints (see RetargetEulerBatch), each joint's local rotation given as columns of four
-  * (12 doubles, local[lane]): the decomposition's first solution (the middle angle within [-pi/2, pi/2]), each angle
-  * turned by the whole turns that bring it nearest the reference (dofs, the previous frame's values). A lane is
-  * fitted when that solution is what fitJointRotationDofs takes: no gimbal lock, every angle within its limits, and
-  * the three within a quarter turn of the reference in all (so the second solution is farther). */
-OSGACTOR_INLINE EulerLanesFit fitEulerLanes(const RetargetEulerBatch& batch, const double* const local[4],
-                                            const double* dofs)
+/** The arctangents' inputs of a batch's joints (see RetargetEulerBatch), each joint's local rotation given as columns
+  * of four (12 doubles, local[lane]), for the decomposition's first solution (the middle angle within
+  * [-pi/2, pi/2]). */
+OSGACTOR_INLINE EulerArctangents eulerArctangents(const RetargetEulerBatch& batch, const double* const local[4])
 {
     using E = RetargetEulerBatch;
     const auto element = [&](E::Element e) OSGACTOR_INLINE_LAMBDA {
@@ -106,19 +106,41 @@ OSGACTOR_INLINE EulerLanesFit fitEulerLanes(const RetargetEulerBatch& batch, con
     const Column squared = mii * mii + mij * mij;
     const Column cosMiddle = {std::sqrt(squared[0]), std::sqrt(squared[1]), std::sqrt(squared[2]),
                               std::sqrt(squared[3])};
-    LaneMask invalid = !(cosMiddle > 1e-12); // gimbal lock: the scalar fit puts the free sum in the last angle
-    EulerLanesFit fit;
-    fit.angles[0] = arctangent2Lanes(-parity * element(E::kJK), element(E::kKK), invalid);
-    fit.angles[1] = arctangent2Lanes(parity * element(E::kIK), cosMiddle, invalid);
-    fit.angles[2] = arctangent2Lanes(-parity * mij, mii, invalid);
+    EulerArctangents in;
+    in.invalid = !(cosMiddle > 1e-12);
+    in.y[0] = -parity * element(E::kJK);
+    in.x[0] = element(E::kKK);
+    in.y[1] = parity * element(E::kIK);
+    in.x[1] = cosMiddle;
+    in.y[2] = -parity * mij;
+    in.x[2] = mii;
+    return in;
+}
 
+/** What fitEulerLanes gives back: per lane, the three angles in product order, and whether the lane's joint is
+  * fitted exactly. */
+struct EulerLanesFit
+{
+    Column angles[3];
+    LaneMask fitted;
+};
+
+/** The Euler fit of a batch's joints from their arctangents (angles, in product order, and invalid, as
+  * eulerArctangents and arctangent2Lanes leave them): each angle turned by the whole turns that bring it nearest the
+  * reference (dofs, the previous frame's values). A lane is fitted when that solution is what fitJointRotationDofs
+  * takes: no gimbal lock, every angle within its limits, and the three within a quarter turn of the reference in all
+  * (so the second solution is farther). */
+OSGACTOR_INLINE EulerLanesFit fitEulerLanes(const RetargetEulerBatch& batch, const Column angles[3], LaneMask invalid,
+                                            const double* dofs)
+{
+    EulerLanesFit fit;
     LaneMask within = ~invalid;
     Column distance = broadcast(0.0);
     for (unsigned r = 0; r < 3; ++r)
     {
         const Column reference = gatherLanes(dofs, batch.dof[r]);
         fit.angles[r] =
-            turnNearLanes(fit.angles[r], reference, loadColumn(batch.min[r]), loadColumn(batch.max[r]), within);
+            turnNearLanes(angles[r], reference, loadColumn(batch.min[r]), loadColumn(batch.max[r]), within);
         distance += absColumn(fit.angles[r] - reference);
     }
     fit.fitted = within & (distance < 0.5 * 3.14159265358979323846);

@@ -4,7 +4,7 @@
 //    exactly: a product or two from the rig's constants;
 // 3. the Euler fits of the joints with three rotations, four joints to a vector (EulerLanes.h), each from its local
 //    rotation under its parent's desired rotation; a lane that needs more (a limit, gimbal lock, the second solution)
-//    is left to the scalar fit;
+//    is left to the scalar fit; and the Copy joints' angles, four joints to a vector, checked against the limits;
 // 4. depth by depth, each joint's DOFs and actual model matrix: the Euler lanes' angles where its parent took its
 //    desired rotation; for joints with one or two rotations (a knee, an ankle), the fits of the depth's axis batches,
 //    four joints to a vector (AxisLanes.h), under their parents' actual rotations; else the scalar fit under the
@@ -25,6 +25,7 @@
 
 #include <glm/gtc/quaternion.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -189,35 +190,76 @@ OSGACTOR_INLINE RotationColumns jointFrame(const RetargetJobTables& tables, unsi
     return hasParent ? multiply(parentRotation, offset) : offset;
 }
 
-/** Pass 3: the Euler fits of the batches' joints, four at a time, each under its parent's desired rotation. */
+/** Pass 3: the Euler fits of the batches' joints, four at a time, each under its parent's desired rotation. Batches go
+  * in groups: the group's arctangents (each a long chain of dependent operations: divisions, a polynomial) run one
+  * after another, so the processor overlaps them, which it cannot do across one batch's whole fit. */
 OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs, RetargetWorkspace& w)
 {
+    constexpr std::size_t kGroup = 4;
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
+    const std::vector<RetargetEulerBatch>& batches = tables.eulerBatches;
     RetargetWorkspace::Scratch& s = w.scratch;
-    for (const RetargetEulerBatch& batch : tables.eulerBatches)
+    for (std::size_t first = 0; first < batches.size(); first += kGroup)
     {
-        const double* local[RetargetEulerBatch::kWidth];
-        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+        const std::size_t numInGroup = std::min(kGroup, batches.size() - first);
+        EulerArctangents in[kGroup];
+        for (std::size_t b = 0; b < numInGroup; ++b)
         {
-            const unsigned t = batch.joints[lane];
-            const int parent = target.getParent(t);
-            const RotationColumns parentDesired =
-                parent >= 0 ? loadRotation(&s.desired[static_cast<unsigned>(parent) * kRotationDoubles])
-                            : identityColumns();
-            const RotationColumns frame = jointFrame(tables, t, parent >= 0, parentDesired);
-            double* const out = &s.local[t * kRotationDoubles];
-            storeRotation(out, multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
-            local[lane] = out;
+            const RetargetEulerBatch& batch = batches[first + b];
+            const double* local[RetargetEulerBatch::kWidth];
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+            {
+                const unsigned t = batch.joints[lane];
+                const int parent = target.getParent(t);
+                const RotationColumns parentDesired =
+                    parent >= 0 ? loadRotation(&s.desired[static_cast<unsigned>(parent) * kRotationDoubles])
+                                : identityColumns();
+                const RotationColumns frame = jointFrame(tables, t, parent >= 0, parentDesired);
+                double* const out = &s.local[t * kRotationDoubles];
+                storeRotation(out, multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
+                local[lane] = out;
+            }
+            for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
+                local[lane] = local[batch.numJoints - 1];
+            in[b] = eulerArctangents(batch, local);
         }
-        for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
-            local[lane] = local[batch.numJoints - 1];
-        const EulerLanesFit fit = fitEulerLanes(batch, local, dofs);
+        Column angles[kGroup][3];
+        for (std::size_t b = 0; b < numInGroup; ++b)
+            for (unsigned r = 0; r < 3; ++r) angles[b][r] = arctangent2Lanes(in[b].y[r], in[b].x[r], in[b].invalid);
+        for (std::size_t b = 0; b < numInGroup; ++b)
+        {
+            const RetargetEulerBatch& batch = batches[first + b];
+            const EulerLanesFit fit = fitEulerLanes(batch, angles[b], in[b].invalid, dofs);
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+            {
+                const unsigned t = batch.joints[lane];
+                s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+                for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = fit.angles[r][lane];
+            }
+        }
+    }
+}
+
+/** Pass 3, for the copy batches' joints, four at a time: their source joints' angles, fitted where all of a joint's
+  * lie within its limits. */
+OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const double* sourceValues, RetargetWorkspace& w)
+{
+    RetargetWorkspace::Scratch& s = w.scratch;
+    for (const RetargetCopyBatch& batch : tables.copyBatches)
+    {
+        Column angles[3];
+        LaneMask within = ~LaneMask{};
+        for (unsigned r = 0; r < 3; ++r)
+        {
+            angles[r] = gatherLanes(sourceValues, batch.sourceDof[r]);
+            within &= angles[r] >= loadColumn(batch.min[r]) && angles[r] <= loadColumn(batch.max[r]);
+        }
         for (unsigned lane = 0; lane < batch.numJoints; ++lane)
         {
             const unsigned t = batch.joints[lane];
-            s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-            for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = fit.angles[r][lane];
+            s.laneFitted[t] = within[lane] != 0 ? 1 : 0;
+            for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = angles[r][lane];
         }
     }
 }
@@ -325,6 +367,13 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
         const RotationColumns restLocal = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
         rotation = hasParent ? multiply(parentRotation, restLocal) : restLocal;
     }
+    else if (plan.kind == RetargetJointKind::Copy && parentExact && s.laneFitted[t])
+    {
+        // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches).
+        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        exact = true;
+        rotation = desired;
+    }
     else if (plan.kind == RetargetJointKind::Copy && parentExact)
     {
         // The same local frames as the source joint's: its angles, turned or clamped into the limits.
@@ -422,6 +471,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
     poseSource(*rig->getSourceDefinition(), rig->getJobTables(), sourceDofs.data(), w);
     desireRotations(*rig, w);
     fitEulerBatches(*rig, targetDofs.data(), w);
+    takeCopyBatches(rig->getJobTables(), sourceDofs.data(), w);
     numInexact = placeJoints(*rig, sourceDofs.data(), targetDofs.data(), w);
     return true;
 }

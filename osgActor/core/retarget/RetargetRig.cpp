@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace osgActor {
@@ -572,7 +573,7 @@ struct RetargetRigBuilder
         buildJobTables();
     }
 
-    /** RetargetJobTables: the rig's rotations as columns of four, the constant origins, the Euler batches. */
+    /** RetargetJobTables: the rig's rotations as columns of four, the constant origins, the Euler and copy batches. */
     void buildJobTables()
     {
         using retarget_detail::kRotationDoubles;
@@ -633,6 +634,34 @@ struct RetargetRigBuilder
             for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
                 setEulerLane(batch, lane, j);
             ++batch.numJoints;
+        }
+        tables.copyBatches.clear();
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            // A joint with no rotation has nothing to take.
+            if (rig->_plans[j].kind != RetargetJointKind::Copy || t.getKinematics(j).numRotations == 0) continue;
+            if (tables.copyBatches.empty() || tables.copyBatches.back().numJoints == RetargetCopyBatch::kWidth)
+                tables.copyBatches.emplace_back();
+            RetargetCopyBatch& batch = tables.copyBatches.back();
+            // Lanes past the last joint repeat it until another joint takes them.
+            for (unsigned lane = batch.numJoints; lane < RetargetCopyBatch::kWidth; ++lane) setCopyLane(batch, lane, j);
+            ++batch.numJoints;
+        }
+    }
+
+    /** A lane of a copy batch for target joint j (its plan a Copy of source joint sourceB). */
+    void setCopyLane(RetargetCopyBatch& batch, unsigned lane, unsigned joint) const
+    {
+        const ActorDefinition& t = *target.definition;
+        const JointKinematics& k = t.getKinematics(joint);
+        const JointKinematics& sk = source.definition->getKinematics(static_cast<unsigned>(rig->_plans[joint].sourceB));
+        batch.joints[lane] = joint;
+        for (unsigned r = 0; r < 3; ++r)
+        {
+            const bool used = r < k.numRotations;
+            batch.sourceDof[r][lane] = used ? sk.rotationDof[r] : sk.rotationDof[0];
+            batch.min[r][lane] = used ? t.getDofRangeMin(k.rotationDof[r]) : -std::numeric_limits<double>::infinity();
+            batch.max[r][lane] = used ? t.getDofRangeMax(k.rotationDof[r]) : std::numeric_limits<double>::infinity();
         }
     }
 

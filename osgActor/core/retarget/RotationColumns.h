@@ -72,11 +72,15 @@ OSGACTOR_INLINE RotationColumns multiply(const RotationColumns& a, const Rotatio
     return {{combine(a, b.c[0]), combine(a, b.c[1]), combine(a, b.c[2])}};
 }
 
-/** a^T: the rows of a as columns. */
+/** a^T: the rows of a as columns, by whole-register shuffles (element by element, it is a chain of inserts). With
+  * a_rc the element of row r and column c: */
 OSGACTOR_INLINE RotationColumns transpose(const RotationColumns& a)
 {
-    return {{Column{a.c[0][0], a.c[1][0], a.c[2][0], 0.0}, Column{a.c[0][1], a.c[1][1], a.c[2][1], 0.0},
-             Column{a.c[0][2], a.c[1][2], a.c[2][2], 0.0}}};
+    const Column upperLeft = __builtin_shufflevector(a.c[0], a.c[1], 0, 4, 1, 5);  // a00 a01 a10 a11
+    const Column lowerLeft = __builtin_shufflevector(a.c[0], a.c[1], 2, 6, 3, 7);  // a20 a21 0 0
+    return {{__builtin_shufflevector(upperLeft, a.c[2], 0, 1, 4, 7),  // a00 a01 a02 0
+             __builtin_shufflevector(upperLeft, a.c[2], 2, 3, 5, 7),  // a10 a11 a12 0
+             __builtin_shufflevector(lowerLeft, a.c[2], 0, 1, 6, 7)}}; // a20 a21 a22 0
 }
 
 /** m * R_axis(angle), from its cosine and sine: the columns the axis rotation mixes (X: y and z, Y: z and x, Z: x
