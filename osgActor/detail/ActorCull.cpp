@@ -1,4 +1,5 @@
 #include <osgActor/detail/ActorCull.h>
+#include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/Prefetch.h>
 
 #include <osg/Math>
@@ -50,24 +51,6 @@ Object* ActorCullState::Pool<Object>::acquire()
 }
 
 // --- ActorCull ---
-
-namespace {
-
-/** modelView = local * parent (OSG's row-vector order): what MatrixTransform::computeLocalToWorldMatrix() computes
-  * for a relative frame, the call the visitor makes (osg::Matrixd::preMult), term for term and in the same order,
-  * so the bits are the same; inline, into other memory than its inputs (so the compiler may take two columns at
-  * once), and without preMult's temporary copy. The file is compiled without contracting products and sums into
-  * fused multiply-adds, as OSG is. */
-inline void composeModelView(const double* __restrict local, const double* __restrict parent,
-                             double* __restrict modelView)
-{
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 4; ++col)
-            modelView[row * 4 + col] = local[row * 4 + 0] * parent[0 * 4 + col] + local[row * 4 + 1] * parent[1 * 4 + col] +
-                                       local[row * 4 + 2] * parent[2 * 4 + col] + local[row * 4 + 3] * parent[3 * 4 + col];
-}
-
-} // namespace
 
 bool ActorCull::canCullAsOne(osgUtil::CullVisitor& cv)
 {
@@ -362,26 +345,13 @@ bool ActorCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame)
             *_cv.getViewport(), *_cv.getProjectionMatrix(), _modelViews->matrices[frame]);
         _state._hasPixelSizeVector[frame] = 1;
     }
-    // osg::CullingSet::isCulled(const BoundingSphere&)'s small-feature test, term for term.
-    return ((bound.center() * _state._pixelSizeVectors[frame]) *
-            _cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()) > bound.radius();
+    return detail::isSmallFeature(bound, _state._pixelSizeVectors[frame],
+                                  _cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize());
 }
 
 bool ActorCull::isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView) const
 {
-    // The projection's culling set holds the frustum's planes in eye space; the visitor tests them moved into the
-    // drawable's frame. A box is outside a plane when its farthest corner along the plane's normal is, that is
-    // when all eight corners are, whichever frame they are taken in.
-    osg::Vec3d corners[8];
-    for (unsigned k = 0; k < 8; ++k) corners[k] = osg::Vec3d(box.corner(k)) * modelView;
-    const osg::Polytope& frustum = _cv.getProjectionCullingStack().back().getFrustum();
-    for (const osg::Plane& plane : frustum.getPlaneList())
-    {
-        bool allOutside = true;
-        for (unsigned k = 0; k < 8 && allOutside; ++k) allOutside = plane.distance(corners[k]) < 0.0;
-        if (allOutside) return true;
-    }
-    return false;
+    return detail::isOutsideFrustum(box, modelView, _cv.getProjectionCullingStack().back().getFrustum());
 }
 
 } // namespace detail
