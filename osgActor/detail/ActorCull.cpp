@@ -30,6 +30,17 @@ bool ActorCullState::Key::operator==(const Key& other) const
            binSortMode == other.binSortMode;
 }
 
+const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned planVersion)
+{
+    if (!_plan || _planVersion != planVersion || !_plan->isCurrent())
+    {
+        _plan = new ActorCullPlan(actor); // made while the old one lives: never at its address
+        _planVersion = planVersion;
+        _replayable = false;
+    }
+    return *_plan;
+}
+
 template <class Object>
 Object* ActorCullState::Pool<Object>::acquire()
 {
@@ -72,13 +83,9 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
     // The joints' matrices and bounds are read after the plan is checked: ask for them now, with the flags the
     // check reads, so that all the fetches overlap.
     if (planKept && !replayable) _state._plan->prefetchJoints();
-    if (!planKept || !_state._plan->isCurrent())
-    {
-        _state._plan = new ActorCullPlan(actor);
-        _state._planVersion = versions.plan;
-        replayable = false;
-    }
-    _plan = _state._plan.get();
+    const ActorCullPlan* kept = _state._plan.get();
+    _plan = &_state.currentPlan(actor, versions.plan);
+    if (_plan != kept) replayable = false;
     if (replayable)
     {
         replay();

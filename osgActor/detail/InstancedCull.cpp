@@ -1,17 +1,15 @@
 #include <osgActor/detail/InstancedCull.h>
 
 #include <osgActor/ActorNode>
-#include <osgActor/SkeletonNode>
 #include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/JointDrawBatch.h>
-#include <osgActor/detail/PlacedSkeletonNode.h>
 
 #include <osg/Material>
-#include <osg/ShapeDrawable>
 #include <osg/TextureBuffer>
 
 #include <algorithm>
+#include <iterator>
 #include <typeinfo>
 
 namespace osgActor {
@@ -71,13 +69,6 @@ void InstancedCullState::releaseGLObjects(osg::State* state) const
 
 namespace {
 
-bool isPlainGeometry(const osg::Drawable& drawable)
-{
-    const std::type_info& type = typeid(drawable);
-    return !drawable.getCullCallback() && (type == typeid(osg::Geometry) || type == typeid(osg::ShapeDrawable)) &&
-           InstancedDraw::canDraw(static_cast<const osg::Geometry&>(drawable));
-}
-
 /** Culling active at the node, but for its bound's validity, tested where the bound is used (as ActorCullPlan). */
 bool isCullingActive(const osg::Node& node)
 {
@@ -112,68 +103,91 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize())
 {
     _state._statistics = InstancedCullState::Statistics();
+    _state._stateVerdicts.clear();
     for (InstancedCullState::Batch& batch : _state._batches) batch.matrices.clear();
+    // Verdicts of plans that only the cache still holds (their actors made new ones, or are gone) are dropped now and
+    // then, never while a plan in use could be among them.
+    if (_state._verdicts.size() > 2 * std::size_t(group.getNumChildren()) + 64)
+        for (auto it = _state._verdicts.begin(); it != _state._verdicts.end();)
+            it = it->second.plan->referenceCount() == 1 ? _state._verdicts.erase(it) : std::next(it);
     for (unsigned i = 0; i < group.getNumChildren(); ++i)
     {
         osg::Node& child = *group.getChild(i);
-        ActorNode* actor = typeid(child) == typeid(ActorNode) ? static_cast<ActorNode*>(&child) : nullptr;
-        if (!actor || !gatherParts(*actor))
-        {
-            if (actor) ++_state._statistics.actorsOrdinary;
-            child.accept(cv);
-            continue;
-        }
-        ++_state._statistics.actorsInstanced;
-        // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
-        if (!_cv.isCulled(*actor) && _cv.validNodeMask(*actor)) cullActor(*actor);
+        if (typeid(child) == typeid(ActorNode)) cullChild(static_cast<ActorNode&>(child));
+        else child.accept(cv);
     }
     emitBatches(textureUnit);
 }
 
-bool InstancedCull::gatherParts(ActorNode& actor)
+bool InstancedCull::isPlainActor(const ActorNode& actor)
 {
-    _state._joints.clear();
-    _state._geodes.clear();
-    if (actor.getCullMode() != ActorNode::CULL_AS_ONE || actor.getCullCallback() || actor.getStateSet() ||
-        actor.getReferenceFrame() != osg::Transform::RELATIVE_RF || !isCullingActive(actor))
-        return false;
-    for (unsigned i = 0; i < actor.getNumChildren(); ++i)
-        if (!gatherChild(*actor.getChild(i), -1)) return false;
+    return actor.getCullMode() == ActorNode::CULL_AS_ONE && !actor.getCullCallback() && !actor.getStateSet() &&
+           actor.getReferenceFrame() == osg::Transform::RELATIVE_RF && isCullingActive(actor);
+}
+
+void InstancedCull::cullChild(ActorNode& actor)
+{
+    // The actor's own cull state (one cull at a time: another thread may be culling the actor for another camera)
+    // gives the plan its cull as one keeps: its joints, geodes and drawables in the visitor's order.
+    ActorCullState& actorState = *actor._cullState;
+    if (isPlainActor(actor) && actorState.tryAcquire())
+    {
+        const ActorCullPlan& plan =
+            actorState.currentPlan(actor, actor._cullPlanVersion.load(std::memory_order_relaxed));
+        if (isInstanceable(plan))
+        {
+            ++_state._statistics.actorsInstanced;
+            // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
+            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, plan);
+            actorState.release();
+            return;
+        }
+        actorState.release();
+    }
+    ++_state._statistics.actorsOrdinary;
+    actor.accept(_cv);
+}
+
+bool InstancedCull::isInstanceable(const ActorCullPlan& plan)
+{
+    auto found = _state._verdicts.find(&plan);
+    if (found == _state._verdicts.end())
+    {
+        InstancedCullState::PlanVerdict verdict{&plan, true, {}};
+        for (const Step& step : plan.getSteps())
+        {
+            const bool plain =
+                step.kind == ActorCullPlan::END_JOINT || step.kind == ActorCullPlan::END_GEODE ||
+                (step.kind == ActorCullPlan::JOINT && !step.stateSet) || step.kind == ActorCullPlan::GEODE ||
+                // A plain drawable of the plan is an osg::Geometry or osg::ShapeDrawable (ActorCullPlan::isPlainDrawable).
+                (step.kind == ActorCullPlan::DRAWABLE &&
+                 InstancedDraw::canDraw(*static_cast<const osg::Geometry*>(step.node->asDrawable())));
+            verdict.plain = verdict.plain && plain;
+            const bool stated = step.kind == ActorCullPlan::GEODE || step.kind == ActorCullPlan::DRAWABLE;
+            if (stated && step.stateSet &&
+                std::find(verdict.states.begin(), verdict.states.end(), step.stateSet) == verdict.states.end())
+                verdict.states.push_back(step.stateSet);
+        }
+        found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
+    }
+    const InstancedCullState::PlanVerdict& verdict = found->second;
+    if (!verdict.plain) return false;
+    for (const osg::StateSet* state : verdict.states)
+        if (!isInstanceableNow(state)) return false;
     return true;
 }
 
-bool InstancedCull::gatherChild(osg::Node& child, int joint)
+bool InstancedCull::isInstanceableNow(const osg::StateSet* state)
 {
-    const std::type_info& type = typeid(child);
-    if (type == typeid(PlacedSkeletonNode) || type == typeid(SkeletonNode))
-    {
-        SkeletonNode& node = static_cast<SkeletonNode&>(child);
-        if (node.getHidden() || node.getCullCallback() || node.getStateSet() ||
-            node.getReferenceFrame() != osg::Transform::RELATIVE_RF || !isCullingActive(node))
-            return false;
-        const int index = static_cast<int>(_state._joints.size());
-        _state._joints.push_back({&node, joint});
-        for (unsigned i = 0; i < node.getNumChildren(); ++i)
-            if (!gatherChild(*node.getChild(i), index)) return false;
-        return true;
-    }
-    if (type != typeid(osg::Geode) || joint < 0 || child.getCullCallback() || !isCullingActive(child) ||
-        !isInstanceableState(child.getStateSet()))
-        return false;
-    osg::Geode& geode = static_cast<osg::Geode&>(child);
-    for (unsigned i = 0; i < geode.getNumChildren(); ++i)
-    {
-        const osg::Drawable* drawable = geode.getChild(i)->asDrawable();
-        if (!drawable || !isPlainGeometry(*drawable) || !isInstanceableState(drawable->getStateSet())) return false;
-    }
-    _state._geodes.push_back({&geode, joint});
-    return true;
+    for (const auto& known : _state._stateVerdicts)
+        if (known.first == state) return known.second;
+    const bool verdict = isInstanceableState(state);
+    _state._stateVerdicts.emplace_back(state, verdict);
+    return verdict;
 }
 
-bool InstancedCull::isSmallFeature(const osg::Node& node, unsigned frame)
+bool InstancedCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame)
 {
-    if (!_smallFeatureCulling) return false;
-    const osg::BoundingSphere& bound = node.getBound();
     if (!bound.valid()) return false; // the visitor never tests it (the node is not culling-active)
     if (!_state._hasPixelSizeVector[frame])
     {
@@ -185,17 +199,20 @@ bool InstancedCull::isSmallFeature(const osg::Node& node, unsigned frame)
     return detail::isSmallFeature(bound, _state._pixelSizeVectors[frame], _smallFeaturePixelSize);
 }
 
-void InstancedCull::cullActor(ActorNode& actor)
+void InstancedCull::cullActor(ActorNode& actor, const ActorCullPlan& plan)
 {
-    const std::vector<InstancedCullState::Joint>& joints = _state._joints;
+    const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
     const std::size_t numFrames = joints.size() + 1;
-    _state._modelViews.resize(numFrames);
+    std::vector<osg::Matrixd>& modelViews = _state._modelViews;
+    modelViews.resize(numFrames);
     _state._hasPixelSizeVector.assign(numFrames, 0);
     _state._pixelSizeVectors.resize(numFrames);
-    _state._jointCulled.assign(joints.size(), 0);
-    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's).
-    std::vector<osg::Matrixd>& modelViews = _state._modelViews;
+    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's), then
+    // each joint's, parents first, as ActorCull composes them.
     composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());
+    for (std::size_t j = 0; j < joints.size(); ++j)
+        composeModelView(joints[j].node->getMatrix().ptr(),
+                         modelViews[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
     if (actor.getUpdatePolicy().onlyWhenSeen)
     {
         // The update policy notes the view with the actor's frame on the visitor's stack, as its own cull does.
@@ -203,41 +220,52 @@ void InstancedCull::cullActor(ActorNode& actor)
         actor.noteSeen(_cv);
         _cv.popModelViewMatrix();
     }
-    for (std::size_t j = 0; j < joints.size(); ++j)
+    // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
+    // is in is skipped with its subtree.
+    const std::vector<Step>& steps = plan.getSteps();
+    const osg::StateSet* geodeState = nullptr;
+    for (std::size_t i = 0; i < steps.size();)
     {
-        const unsigned parentFrame = static_cast<unsigned>(joints[j].parent + 1);
-        composeModelView(joints[j].node->getMatrix().ptr(), modelViews[parentFrame].ptr(), modelViews[j + 1].ptr());
-        // A joint masked out or too small in its parent's frame is culled with everything below it (parents first).
-        _state._jointCulled[j] = (joints[j].parent >= 0 && _state._jointCulled[joints[j].parent]) ||
-                                 isMasked(*joints[j].node) || isSmallFeature(*joints[j].node, parentFrame);
-    }
-    const osg::Polytope& frustum = _cv.getProjectionCullingStack().back().getFrustum();
-    for (const InstancedCullState::Geode& part : _state._geodes)
-    {
-        const unsigned frame = static_cast<unsigned>(part.joint + 1);
-        if (_state._jointCulled[part.joint] || isMasked(*part.geode) || isSmallFeature(*part.geode, frame)) continue;
-        const osg::Matrixd& modelView = modelViews[frame];
-        for (unsigned i = 0; i < part.geode->getNumChildren(); ++i)
+        const Step& step = steps[i];
+        switch (step.kind)
         {
-            const osg::Geometry& drawable = *static_cast<const osg::Geometry*>(part.geode->getChild(i)->asDrawable());
-            if (isMasked(drawable)) continue;
-            // As ActorCull::addDrawable(): near and far from what is drawn, the box against the frustum before.
-            const osg::BoundingBox& box = drawable.getBoundingBox();
-            if (_computeNearFar && box.valid())
+        case ActorCullPlan::JOINT:
+        case ActorCullPlan::GEODE:
+        {
+            const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(joints[step.joint].parent + 1)
+                                                                      : unsigned(step.joint + 1);
+            if (isMasked(step.mask) ||
+                (_smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame)))
             {
-                if (_frustumCulling && isCullingActive(drawable) && isOutsideFrustum(box, modelView, frustum))
-                    continue;
-                if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) continue;
+                i = step.end;
+                continue;
             }
-            if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) continue; // the visitor drops it too
-            addInstance(part.geode->getStateSet(), drawable, modelView);
+            if (step.kind == ActorCullPlan::GEODE) geodeState = step.stateSet;
+            break;
         }
+        case ActorCullPlan::DRAWABLE:
+            if (!isMasked(step.mask)) addDrawable(step, geodeState);
+            break;
+        default: break; // the ends; no ORDINARY step in an instanceable plan
+        }
+        ++i;
     }
 }
 
-void InstancedCull::addInstance(const osg::StateSet* geodeState, const osg::Geometry& drawable,
-                                const osg::Matrixd& modelView)
+void InstancedCull::addDrawable(const Step& step, const osg::StateSet* geodeState)
 {
+    const osg::Geometry& drawable = *static_cast<const osg::Geometry*>(step.node->asDrawable());
+    const osg::Matrixd& modelView = _state._modelViews[static_cast<std::size_t>(step.joint + 1)];
+    // As ActorCull::addDrawable(): near and far from what is drawn, the box against the frustum before.
+    const osg::BoundingBox& box = drawable.getBoundingBox();
+    if (_computeNearFar && box.valid())
+    {
+        if (_frustumCulling && step.cullingActive &&
+            isOutsideFrustum(box, modelView, _cv.getProjectionCullingStack().back().getFrustum()))
+            return;
+        if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
+    }
+    if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
     auto found = _state._batchOfKey.emplace(InstancedCullState::BatchKey{geodeState, &drawable},
                                             static_cast<unsigned>(_state._batches.size()));
     if (found.second) _state._batches.push_back({geodeState, &drawable, {}});

@@ -1,12 +1,13 @@
 // Internal to the library (not installed, NOT API): the cull of an InstancedActorGroup's actors (issue 28).
 //
-// Per cull, every actor child that can be drawn instanced (InstancedCull::gatherParts(): its own class, culled as
-// one, plain skeleton nodes with plain geodes of plain geometry below, state sets that light as the instanced program
-// lights) is culled as the ordinary traversal would cull it (its mask and bound; each joint's and geode's mask and
-// small-feature test in its frame; while near and far are computed, each drawable's box against the frustum), its
-// joints' model-view matrices composed with the visitor's own products (CullArithmetic.h), and each drawable that
-// survives adds one instance, its joint's model-view matrix, to the batch of its (geode state set, drawable). The
-// actors that cannot be taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an
+// Per cull, every actor child that can be drawn instanced (its own class, culled as one, and a cull plan, the one its
+// cull as one keeps (ActorCullPlan), with nothing for the ordinary traversal, no state set on a joint, and state sets
+// on geodes and drawables that light as the instanced program lights) is culled as the ordinary traversal would cull
+// it, following its plan as ActorCull does (its mask and bound; each joint's and geode's mask and small-feature test
+// in its frame; while near and far are computed, each drawable's box against the frustum), its joints' model-view
+// matrices composed with the visitor's own products (CullArithmetic.h), and each drawable that survives adds one
+// instance, its joint's model-view matrix, to the batch of its (geode state set, drawable). The actors that cannot be
+// taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an
 // InstancedDraw of the drawable for all its instances, under the geode's and the drawable's state sets and the
 // frame's state set (the program and the texture buffer of all instances' matrices, as floats, 4 texels each).
 //
@@ -16,6 +17,7 @@
 #ifndef OSGACTOR_DETAIL_INSTANCEDCULL_H
 #define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
 
+#include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/InstancedDraw.h>
 
 #include <osg/Geode>
@@ -31,7 +33,6 @@
 namespace osgActor {
 
 class ActorNode;
-class SkeletonNode;
 
 namespace detail {
 
@@ -90,15 +91,15 @@ protected:
 private:
     friend class InstancedCull;
 
-    struct Joint
+    /** What decides whether an actor of a plan can be drawn instanced, found once per plan (plans are rebuilt, not
+      * changed, when what they were made from changes): no step for the ordinary traversal, no state set on a joint,
+      * drawables InstancedDraw draws; and the distinct state sets of its geodes and drawables, whose contents OSG lets
+      * change in place, so checked at every cull (isInstanceableState(), once per state set per cull). */
+    struct PlanVerdict
     {
-        SkeletonNode* node;
-        int parent; // index into the joints; -1: the actor's frame
-    };
-    struct Geode
-    {
-        osg::Geode* geode;
-        int joint;
+        osg::ref_ptr<const ActorCullPlan> plan; // held, so that no other plan is made at its address
+        bool plain;
+        std::vector<const osg::StateSet*> states;
     };
     /** The drawables of one (geode state set, drawable) and their instances' model-view matrices this cull. */
     struct Batch
@@ -127,13 +128,12 @@ private:
     std::atomic_flag _busy;
     std::vector<osg::ref_ptr<InstancedFrame>> _frames;
     Statistics _statistics;
+    std::unordered_map<const ActorCullPlan*, PlanVerdict> _verdicts;
     // The working space of one cull, kept so that a steady frame allocates nothing.
-    std::vector<Joint> _joints;
-    std::vector<Geode> _geodes;
+    std::vector<std::pair<const osg::StateSet*, bool>> _stateVerdicts; // this cull's
     std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
     std::vector<osg::Vec4> _pixelSizeVectors; // per frame, where _hasPixelSizeVector says
     std::vector<unsigned char> _hasPixelSizeVector;
-    std::vector<unsigned char> _jointCulled;
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
 };
@@ -152,14 +152,22 @@ public:
     static bool isInstanceableState(const osg::StateSet* state);
 
 private:
-    /** Lists the actor's joints and geodes if every node below it can be drawn instanced; false otherwise. */
-    bool gatherParts(ActorNode& actor);
-    bool gatherChild(osg::Node& child, int joint);
-    /** Culls one gathered actor and adds its drawables' instances; the actor's bound was found visible. */
-    void cullActor(ActorNode& actor);
-    bool isMasked(const osg::Node& node) const { return (_traversalMask & (_maskOverride | node.getNodeMask())) == 0; }
-    bool isSmallFeature(const osg::Node& node, unsigned frame);
-    void addInstance(const osg::StateSet* geodeState, const osg::Geometry& drawable, const osg::Matrixd& modelView);
+    using Step = ActorCullPlan::Step;
+
+    /** Whether the actor node itself lets its children be culled here: its own class, culled as one, no cull
+      * callback or state set, a relative frame, culling on. */
+    static bool isPlainActor(const ActorNode& actor);
+    /** Culls one actor child: instanced if its plan allows, ordinarily otherwise. */
+    void cullChild(ActorNode& actor);
+    /** Whether an actor of the plan can be drawn instanced now. */
+    bool isInstanceable(const ActorCullPlan& plan);
+    bool isInstanceableNow(const osg::StateSet* state);
+    /** Culls an instanceable actor by its plan and adds its drawables' instances; the actor's bound was found
+      * visible. */
+    void cullActor(ActorNode& actor, const ActorCullPlan& plan);
+    bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
+    bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
+    void addDrawable(const Step& step, const osg::StateSet* geodeState);
     /** One leaf per batch, with this frame's texture buffer. */
     void emitBatches(unsigned textureUnit);
     InstancedFrame* acquireFrame(unsigned textureUnit);

@@ -156,6 +156,20 @@ TEST_F(InstancedImages, ActorsThatNeedTheOrdinaryTraversalAreDrawnOrdinarily)
     expectTheSameBytes();
 }
 
+TEST_F(InstancedImages, ATextureAddedInPlaceToASharedPartsStateTakesEveryActorSharingItOffTheInstancedPath)
+{
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 8u);
+    // The clones share the head's geode and its state set; OSG lets a state set change without telling anyone.
+    osg::Node* head = prototype->getSkeletonNode("head")->getChild(0);
+    ASSERT_NE(head->getStateSet(), nullptr);
+    head->getStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D);
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
+    EXPECT_EQ(group->getStatistics().actorsOrdinary, 9u);
+    EXPECT_EQ(group->getStatistics().draws, 0u);
+}
+
 TEST_F(InstancedImages, InstancedCrowdIsTheSameBytesAsTheOrdinaryPathDrawnWithTheSameShader)
 {
     drawOrdinaryPathWithTheSameShader();
