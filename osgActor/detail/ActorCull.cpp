@@ -30,9 +30,11 @@ bool ActorCullState::Key::operator==(const Key& other) const
            binSortMode == other.binSortMode;
 }
 
-const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned planVersion)
+const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned planVersion, bool prefetch)
 {
-    if (!_plan || _planVersion != planVersion || !_plan->isCurrent())
+    const bool kept = _plan && _planVersion == planVersion;
+    if (kept && prefetch) _plan->prefetchJoints();
+    if (!kept || !_plan->isCurrent())
     {
         _plan = new ActorCullPlan(actor); // made while the old one lives: never at its address
         _planVersion = planVersion;

@@ -133,12 +133,12 @@ void InstancedCull::cullChild(ActorNode& actor)
     if (isPlainActor(actor) && actorState.tryAcquire())
     {
         const ActorCullPlan& plan =
-            actorState.currentPlan(actor, actor._cullPlanVersion.load(std::memory_order_relaxed));
-        if (isInstanceable(plan))
+            actorState.currentPlan(actor, actor._cullPlanVersion.load(std::memory_order_relaxed), true);
+        if (const InstancedCullState::PlanVerdict* verdict = instanceableVerdict(plan))
         {
             ++_state._statistics.actorsInstanced;
             // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
-            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, plan);
+            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict);
             actorState.release();
             return;
         }
@@ -148,33 +148,47 @@ void InstancedCull::cullChild(ActorNode& actor)
     actor.accept(_cv);
 }
 
-bool InstancedCull::isInstanceable(const ActorCullPlan& plan)
+const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const ActorCullPlan& plan)
 {
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
     {
-        InstancedCullState::PlanVerdict verdict{&plan, true, {}};
+        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}};
+        const osg::StateSet* geodeState = nullptr;
         for (const Step& step : plan.getSteps())
         {
-            const bool plain =
-                step.kind == ActorCullPlan::END_JOINT || step.kind == ActorCullPlan::END_GEODE ||
-                (step.kind == ActorCullPlan::JOINT && !step.stateSet) || step.kind == ActorCullPlan::GEODE ||
-                // A plain drawable of the plan is an osg::Geometry or osg::ShapeDrawable (ActorCullPlan::isPlainDrawable).
-                (step.kind == ActorCullPlan::DRAWABLE &&
-                 InstancedDraw::canDraw(*static_cast<const osg::Geometry*>(step.node->asDrawable())));
+            // A plain drawable of the plan is an osg::Geometry or osg::ShapeDrawable (ActorCullPlan::isPlainDrawable).
+            const osg::Geometry* geometry =
+                step.kind == ActorCullPlan::DRAWABLE ? static_cast<const osg::Geometry*>(step.node->asDrawable()) : nullptr;
+            const bool plain = step.kind == ActorCullPlan::END_JOINT || step.kind == ActorCullPlan::END_GEODE ||
+                               (step.kind == ActorCullPlan::JOINT && !step.stateSet) ||
+                               step.kind == ActorCullPlan::GEODE || (geometry && InstancedDraw::canDraw(*geometry));
             verdict.plain = verdict.plain && plain;
             const bool stated = step.kind == ActorCullPlan::GEODE || step.kind == ActorCullPlan::DRAWABLE;
             if (stated && step.stateSet &&
                 std::find(verdict.states.begin(), verdict.states.end(), step.stateSet) == verdict.states.end())
                 verdict.states.push_back(step.stateSet);
+            if (step.kind == ActorCullPlan::GEODE) geodeState = step.stateSet;
+            verdict.batchOfStep.push_back(geometry && verdict.plain ? batchOf(geodeState, *geometry) : 0u);
         }
         found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
     }
     const InstancedCullState::PlanVerdict& verdict = found->second;
-    if (!verdict.plain) return false;
+    if (!verdict.plain) return nullptr;
     for (const osg::StateSet* state : verdict.states)
-        if (!isInstanceableNow(state)) return false;
-    return true;
+        if (!isInstanceableNow(state)) return nullptr;
+    return &verdict;
+}
+
+unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable)
+{
+    const InstancedCullState::BatchKey key{geodeState, &drawable};
+    auto found = _state._batchOfKey.find(key);
+    if (found != _state._batchOfKey.end()) return found->second;
+    const unsigned batch = static_cast<unsigned>(_state._batches.size());
+    _state._batches.push_back({geodeState, &drawable, {}});
+    _state._batchOfKey.emplace(key, batch);
+    return batch;
 }
 
 bool InstancedCull::isInstanceableNow(const osg::StateSet* state)
@@ -199,8 +213,9 @@ bool InstancedCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned fr
     return detail::isSmallFeature(bound, _state._pixelSizeVectors[frame], _smallFeaturePixelSize);
 }
 
-void InstancedCull::cullActor(ActorNode& actor, const ActorCullPlan& plan)
+void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict)
 {
+    const ActorCullPlan& plan = *verdict.plan;
     const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
     const std::size_t numFrames = joints.size() + 1;
     std::vector<osg::Matrixd>& modelViews = _state._modelViews;
@@ -223,7 +238,6 @@ void InstancedCull::cullActor(ActorNode& actor, const ActorCullPlan& plan)
     // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
     // is in is skipped with its subtree.
     const std::vector<Step>& steps = plan.getSteps();
-    const osg::StateSet* geodeState = nullptr;
     for (std::size_t i = 0; i < steps.size();)
     {
         const Step& step = steps[i];
@@ -240,11 +254,10 @@ void InstancedCull::cullActor(ActorNode& actor, const ActorCullPlan& plan)
                 i = step.end;
                 continue;
             }
-            if (step.kind == ActorCullPlan::GEODE) geodeState = step.stateSet;
             break;
         }
         case ActorCullPlan::DRAWABLE:
-            if (!isMasked(step.mask)) addDrawable(step, geodeState);
+            if (!isMasked(step.mask)) addDrawable(step, verdict.batchOfStep[i]);
             break;
         default: break; // the ends; no ORDINARY step in an instanceable plan
         }
@@ -252,7 +265,7 @@ void InstancedCull::cullActor(ActorNode& actor, const ActorCullPlan& plan)
     }
 }
 
-void InstancedCull::addDrawable(const Step& step, const osg::StateSet* geodeState)
+void InstancedCull::addDrawable(const Step& step, unsigned batch)
 {
     const osg::Geometry& drawable = *static_cast<const osg::Geometry*>(step.node->asDrawable());
     const osg::Matrixd& modelView = _state._modelViews[static_cast<std::size_t>(step.joint + 1)];
@@ -266,10 +279,7 @@ void InstancedCull::addDrawable(const Step& step, const osg::StateSet* geodeStat
         if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
     }
     if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
-    auto found = _state._batchOfKey.emplace(InstancedCullState::BatchKey{geodeState, &drawable},
-                                            static_cast<unsigned>(_state._batches.size()));
-    if (found.second) _state._batches.push_back({geodeState, &drawable, {}});
-    std::vector<float>& matrices = _state._batches[found.first->second].matrices;
+    std::vector<float>& matrices = _state._batches[batch].matrices;
     const double* m = modelView.ptr();
     // As OSG hands a matrix to OpenGL (glLoadMatrixd, which keeps floats): each double rounded to the nearest float.
     for (int k = 0; k < 16; ++k) matrices.push_back(static_cast<float>(m[k]));

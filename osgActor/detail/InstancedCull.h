@@ -100,6 +100,8 @@ private:
         osg::ref_ptr<const ActorCullPlan> plan; // held, so that no other plan is made at its address
         bool plain;
         std::vector<const osg::StateSet*> states;
+        /** Per step, for its drawables: the batch it adds to (batches are kept, so the indices stay valid). */
+        std::vector<unsigned> batchOfStep;
     };
     /** The drawables of one (geode state set, drawable) and their instances' model-view matrices this cull. */
     struct Batch
@@ -159,15 +161,17 @@ private:
     static bool isPlainActor(const ActorNode& actor);
     /** Culls one actor child: instanced if its plan allows, ordinarily otherwise. */
     void cullChild(ActorNode& actor);
-    /** Whether an actor of the plan can be drawn instanced now. */
-    bool isInstanceable(const ActorCullPlan& plan);
+    /** What decides whether an actor of the plan can be drawn instanced now, or null if it cannot. */
+    const InstancedCullState::PlanVerdict* instanceableVerdict(const ActorCullPlan& plan);
+    /** The batch of a (geode state set, drawable), made on first use. */
+    unsigned batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable);
     bool isInstanceableNow(const osg::StateSet* state);
     /** Culls an instanceable actor by its plan and adds its drawables' instances; the actor's bound was found
       * visible. */
-    void cullActor(ActorNode& actor, const ActorCullPlan& plan);
+    void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict);
     bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
-    void addDrawable(const Step& step, const osg::StateSet* geodeState);
+    void addDrawable(const Step& step, unsigned batch);
     /** One leaf per batch, with this frame's texture buffer. */
     void emitBatches(unsigned textureUnit);
     InstancedFrame* acquireFrame(unsigned textureUnit);
