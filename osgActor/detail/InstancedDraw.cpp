@@ -75,6 +75,11 @@ InstancedDraw::InstancedDraw() : _base(0), _count(0)
 bool InstancedDraw::canDraw(const osg::Geometry& geometry)
 {
     if (geometry.getDrawCallback() || !geometry.getVertexArray()) return false;
+    // A colour per vertex reaches fixed-function lighting through colour material (OSG's viewers turn it on by
+    // default), which the program's lighting reads as the one current colour: only a colour for the whole geometry,
+    // which drawing its arrays makes current, lights alike.
+    const osg::Array* colours = geometry.getColorArray();
+    if (colours && colours->getBinding() == osg::Array::BIND_PER_VERTEX && colours->getNumElements() > 1) return false;
     for (unsigned i = 0; i < geometry.getNumPrimitiveSets(); ++i)
     {
         const osg::PrimitiveSet& primitives = *geometry.getPrimitiveSet(i);

@@ -18,7 +18,7 @@ public:
     InstancedDraw();
 
     /** Whether a geometry can be drawn instanced: primitive sets of the kinds drawn here (arrays, array lengths,
-      * elements of any index type), none instanced already, and no draw callback of its own. */
+      * elements of any index type), none instanced already, no draw callback of its own, and no colour per vertex. */
     static bool canDraw(const osg::Geometry& geometry);
 
     /** Draws geometry for count instances whose matrices start at texel base (4 per instance). */

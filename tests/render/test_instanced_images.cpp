@@ -12,6 +12,7 @@
 #include <osg/Group>
 #include <osg/Switch>
 #include <osg/Texture2D>
+#include <osgDB/ReadFile>
 
 #include <gtest/gtest.h>
 
@@ -237,4 +238,38 @@ TEST_F(InstancedImages, CrowdFromAfarDropsTheSameSmallFeatures)
     drawOrdinaryPathWithTheSameShader();
     expectTheSameBytes(0.001);
     EXPECT_LT(group->getStatistics().instances, 8u * numParts(*prototype));
+}
+
+TEST(InstancedActorText, HumanoidsOfColouredShapesAreTheOrdinaryImageUnderTheViewersColourMaterial)
+{
+    // data/humanoid.actor: shapes coloured per drawable (ShapeDrawable::setColor), lit through the colour material
+    // of OSG's default state, as osgactorviewer shows them.
+    const std::string file = std::string(OSGACTOR_TEST_DATA_DIR) + "/humanoid.actor";
+    osg::ref_ptr<ActorNode> prototype = dynamic_cast<ActorNode*>(osgDB::readRefNodeFile(file).get());
+    ASSERT_TRUE(prototype.valid()) << "cannot read " << file << " (is OSG_LIBRARY_PATH the build's lib?)";
+    std::string error;
+    osg::ref_ptr<OffscreenRenderer> renderer = OffscreenRenderer::create(320, 200, error);
+    ASSERT_TRUE(renderer) << error;
+    renderer->setBackground(kBackground);
+    osg::ref_ptr<InstancedActorGroup> group = new InstancedActorGroup;
+    for (unsigned a = 0; a < 4; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(prototype.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(osg::Vec3d(0.8 * a - 1.2, 0.0, 0.0));
+        actor->setDof(actor->getNumDofs() - 1, 0.3 * a);
+        group->addChild(actor.get());
+    }
+    renderer->setScene(group.get());
+    renderer->frameScene();
+    group->setDrawMode(InstancedActorGroup::ORDINARY);
+    const osg::ref_ptr<osg::Image> ordinary = renderer->renderFrame(0.0);
+    group->setDrawMode(InstancedActorGroup::INSTANCED);
+    const osg::ref_ptr<osg::Image> instanced = renderer->renderFrame(0.0);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 4u);
+    EXPECT_GT(group->getStatistics().instances, 4u * 10u);
+    EXPECT_TRUE(matchesReference(*instanced, "humanoids_instanced"));
+    const ImageComparison difference = compareImages(*instanced, *ordinary, 2);
+    ASSERT_TRUE(difference.comparable);
+    EXPECT_LE(difference.getShareOverTolerance(), 0.0005) << difference.numOverTolerance << " pixels over 2 levels";
+    EXPECT_GT(countDrawn(*instanced), 0.05 * instanced->s() * instanced->t());
 }
