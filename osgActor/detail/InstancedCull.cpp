@@ -310,6 +310,9 @@ void InstancedCull::emitBatches(unsigned textureUnit)
         std::copy(batch.matrices.begin(), batch.matrices.end(), out + 4 * base);
         InstancedDraw* draw = frame.draw(drawIndex++);
         draw->set(batch.drawable, static_cast<int>(base), count);
+        // A dynamic drawable makes osgViewer's next update wait until it is drawn: so does its instanced draw.
+        draw->setDataVariance(batch.drawable->getDataVariance() == osg::Object::DYNAMIC ? osg::Object::DYNAMIC
+                                                                                          : osg::Object::STATIC);
         base += 4 * count;
         // The drawable's states as the ordinary traversal pushes them (the geode's, then its own), then the frame's.
         if (batch.geodeState) _cv.pushStateSet(batch.geodeState);
