@@ -20,7 +20,6 @@
 #include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/InstancedDraw.h>
 
-#include <osg/Geode>
 #include <osg/Image>
 #include <osg/Matrixd>
 #include <osg/StateSet>
