@@ -57,6 +57,8 @@ tsan() {
     for model in DrawThreadPerContext CullDrawThreadPerContext; do
         xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_threaded_viewer" "$model" 60
     done
+    # Instanced draws: each frame's instance buffer written by one cull while the previous frame's is drawn.
+    xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_threaded_viewer" DrawThreadPerContext 60 instanced
     # Skinned meshes: per-frame buffers filled in cull by two cameras' cull threads while the draw reads the others;
     # their matrices and bounds computed on the ActorGroup's threads, and the actors' cull prepared there.
     for model in DrawThreadPerContext CullDrawThreadPerContext; do

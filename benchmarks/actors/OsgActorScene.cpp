@@ -3,6 +3,7 @@
 
 #include <osgActor/ActorGroup>
 #include <osgActor/ActorNode>
+#include <osgActor/InstancedActorGroup>
 #include <osgActor/core/ClipPlayer>
 
 #include <cmath>
@@ -45,7 +46,13 @@ osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, const OsgActorCro
         prototype->addController(controller);
     }
     osg::ref_ptr<osg::Group> scene;
-    if (threads > 0)
+    if (crowd.instanced)
+    {
+        osg::ref_ptr<osgActor::InstancedActorGroup> group = new osgActor::InstancedActorGroup;
+        group->setNumThreads(threads > 0 ? threads : 1);
+        scene = group;
+    }
+    else if (threads > 0)
     {
         osg::ref_ptr<osgActor::ActorGroup> group = new osgActor::ActorGroup;
         group->setNumThreads(threads);

@@ -28,10 +28,12 @@ namespace {
 using bench::Motion;
 
 enum class System { OsgActorAll, OsgActorAllNodeByNode, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg,
-                    OsgActorAllFollow };
+                    OsgActorAllFollow, OsgActorAllInstanced };
+constexpr int kNumSystems = 8;
 
-const char* const kNames[] = {"osgActor_all", "osgActor_all_nodebynode", "osgActor_quarter", "osgActor_idle",
-                              "osgAnimation", "plainOSG",     "osgActor_all_follow"};
+const char* const kNames[kNumSystems] = {"osgActor_all", "osgActor_all_nodebynode", "osgActor_quarter",
+                                         "osgActor_idle", "osgAnimation",            "plainOSG",
+                                         "osgActor_all_follow", "osgActor_all_instanced"};
 
 /** A system's crowd; outOfView: the share of its instances behind the camera, where osgActor's actors follow
   * ActorNode::UpdatePolicy::onlyWhenSeen (the peers have no such thing). */
@@ -53,6 +55,7 @@ osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors, double out
     case System::OsgActorAllFollow:
         crowd.bounds = bench::Bounds::FollowPose;
         return bench::makeOsgActorScene(numActors, crowd);
+    case System::OsgActorAllInstanced: crowd.instanced = true; return bench::makeOsgActorScene(numActors, crowd);
     case System::OsgAnimation: scene = bench::makeOsgAnimationScene(numActors); break;
     case System::PlainOsg: scene = bench::makePlainOsgScene(numActors); break;
     }
@@ -109,10 +112,13 @@ void registerAll(const Sweep& sweep)
     // Interleaved: for each N and mode, every system in turn, so drift in machine load hits all of them alike.
     for (bool withCull : {false, true})
         for (int n : sweep.actors)
-            for (int s = 0; s < 7; ++s)
+            for (int s = 0; s < kNumSystems; ++s)
             {
                 const System system = static_cast<System>(s);
-                if (system == System::OsgActorAllNodeByNode && !withCull) continue; // the same update as _all
+                // The node-by-node cull has the same update as _all; the instanced group (InstancedActorGroup, one
+                // thread) only another cull.
+                if ((system == System::OsgActorAllNodeByNode || system == System::OsgActorAllInstanced) && !withCull)
+                    continue;
                 const std::string name = std::string(withCull ? "update_cull/" : "update/") + kNames[s];
                 benchmark::RegisterBenchmark(name.c_str(), [system, withCull](benchmark::State& state) {
                     osg::ref_ptr<osg::Group> scene = makeScene(system, static_cast<unsigned>(state.range(0)));

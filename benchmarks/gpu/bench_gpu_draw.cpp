@@ -60,8 +60,9 @@ namespace {
 struct Options
 {
     std::vector<int> actors{1000, 10000};
-    std::vector<std::string> systems{"rigid_osgActor",       "rigid_osgActor_group", "rigid_osgAnimation",
-                                     "rigid_plainOSG",       "skinned_osgActor_gpu", "skinned_osgAnimation_hw"};
+    std::vector<std::string> systems{"rigid_osgActor",       "rigid_osgActor_group",    "rigid_osgActor_instanced",
+                                     "rigid_osgAnimation",   "rigid_plainOSG",          "skinned_osgActor_gpu",
+                                     "skinned_osgAnimation_hw"};
     double seconds = 3.0;
     int width = 1280, height = 720;
     bool drawThread = false;
@@ -102,6 +103,12 @@ osg::ref_ptr<osg::Group> makeCrowd(const std::string& system, unsigned n, const 
         bench::OsgActorCrowd group;
         group.threads = std::max(1u, std::thread::hardware_concurrency());
         crowd = bench::makeOsgActorScene(n, group);
+    }
+    else if (system == "rigid_osgActor_instanced")
+    {
+        bench::OsgActorCrowd instanced;
+        instanced.instanced = true;
+        crowd = bench::makeOsgActorScene(n, instanced);
     }
     else if (system == "rigid_osgAnimation") crowd = bench::makeOsgAnimationScene(n);
     else if (system == "rigid_plainOSG") crowd = bench::makePlainOsgScene(n);

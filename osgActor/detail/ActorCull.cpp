@@ -1,4 +1,5 @@
 #include <osgActor/detail/ActorCull.h>
+#include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/Prefetch.h>
 
 #include <osg/Math>
@@ -47,6 +48,19 @@ bool ActorCullView::isCulled(const osg::CullingSet& set, const osg::BoundingSphe
 ActorCullState::ActorCullState() : _holder(nullptr), _planVersion(0), _replayable(false)
 {
     _busy.clear();
+}
+
+const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned planVersion, bool prefetch)
+{
+    const bool kept = _plan && _planVersion == planVersion;
+    if (kept && prefetch) _plan->prefetchJoints();
+    if (!kept || !_plan->isCurrent())
+    {
+        _plan = new ActorCullPlan(actor); // made while the old one lives: never at its address
+        _planVersion = planVersion;
+        _replayable = false;
+    }
+    return *_plan;
 }
 
 ActorCullState::Key ActorCullState::keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView)
@@ -113,24 +127,6 @@ Object* ActorCullState::Pool<Object>::acquire()
 
 // --- ActorCull ---
 
-namespace {
-
-/** modelView = local * parent (OSG's row-vector order): what MatrixTransform::computeLocalToWorldMatrix() computes
-  * for a relative frame, the call the visitor makes (osg::Matrixd::preMult), term for term and in the same order,
-  * so the bits are the same; inline, into other memory than its inputs (so the compiler may take two columns at
-  * once), and without preMult's temporary copy. The file is compiled without contracting products and sums into
-  * fused multiply-adds, as OSG is. */
-inline void composeModelView(const double* __restrict local, const double* __restrict parent,
-                             double* __restrict modelView)
-{
-    for (int row = 0; row < 4; ++row)
-        for (int col = 0; col < 4; ++col)
-            modelView[row * 4 + col] = local[row * 4 + 0] * parent[0 * 4 + col] + local[row * 4 + 1] * parent[1 * 4 + col] +
-                                       local[row * 4 + 2] * parent[2 * 4 + col] + local[row * 4 + 3] * parent[3 * 4 + col];
-}
-
-} // namespace
-
 bool ActorCull::canCullAsOne(osgUtil::CullVisitor& cv)
 {
     if (typeid(cv) != typeid(osgUtil::CullVisitor)) return false;
@@ -176,13 +172,9 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     bool replayable = planKept && _replayable && _versions == versions && _key == key;
     // The joints' matrices and bounds are read after the plan is checked: ask for them now, with the flags the
     // check reads, so that all the fetches overlap.
-    if (planKept && !replayable) _plan->prefetchJoints();
-    if (!planKept || !_plan->isCurrent())
-    {
-        _plan = new ActorCullPlan(actor);
-        _planVersion = versions.plan;
-        replayable = false;
-    }
+    const ActorCullPlan* kept = _plan.get();
+    currentPlan(actor, versions.plan, !replayable);
+    if (_plan.get() != kept) replayable = false;
     _prepared = true;
     _preparedReplay = replayable;
     _preparedKey = key;
@@ -448,25 +440,13 @@ bool ActorCullState::isSmallFeature(const osg::BoundingSphere& bound, unsigned f
                                                                            _preparedModelViews->matrices[frame]);
         _hasPixelSizeVector[frame] = 1;
     }
-    // osg::CullingSet::isCulled(const BoundingSphere&)'s small-feature test, term for term.
-    return ((bound.center() * _pixelSizeVectors[frame]) * view.smallFeaturePixelSize) > bound.radius();
+    return detail::isSmallFeature(bound, _pixelSizeVectors[frame], view.smallFeaturePixelSize);
 }
 
 bool ActorCullState::isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView,
                                       const ActorCullView& view) const
 {
-    // The projection's culling set holds the frustum's planes in eye space; the visitor tests them moved into the
-    // drawable's frame. A box is outside a plane when its farthest corner along the plane's normal is, that is
-    // when all eight corners are, whichever frame they are taken in.
-    osg::Vec3d corners[8];
-    for (unsigned k = 0; k < 8; ++k) corners[k] = osg::Vec3d(box.corner(k)) * modelView;
-    for (const osg::Plane& plane : view.frustum->getPlaneList())
-    {
-        bool allOutside = true;
-        for (unsigned k = 0; k < 8 && allOutside; ++k) allOutside = plane.distance(corners[k]) < 0.0;
-        if (allOutside) return true;
-    }
-    return false;
+    return detail::isOutsideFrustum(box, modelView, *view.frustum);
 }
 
 } // namespace detail

@@ -124,6 +124,12 @@ public:
     void prepare(const ActorCullView& view, const osg::Matrixd& actorModelView, const osg::Vec4& pixelSizeVector,
                  osg::Group& actor, const Versions& versions);
 
+    /** The plan of the actor's children: the one kept if the actor's plan version is the same and it is current, or
+      * a new one (then the kept calls are not replayed). For the cull that holds the state (tryAcquire()); the
+      * instanced cull (InstancedCull) goes by it too. prefetch: ask for the kept plan's joints first, so that their
+      * fetches overlap those of the check. */
+    const ActorCullPlan& currentPlan(osg::Group& actor, unsigned planVersion, bool prefetch = false);
+
 protected:
     ~ActorCullState() override = default;
 

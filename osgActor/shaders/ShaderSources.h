@@ -1,5 +1,5 @@
 /* osgActor: the GLSL texts of osgActor/shaders, compiled into the library by CMake (ShaderSources.cpp.in). Internal:
- * SkinningShaders assembles programs from them. */
+ * SkinningShaders and InstancedActorGroup assemble programs from them. */
 #ifndef OSGACTOR_SHADERS_SHADERSOURCES_H
 #define OSGACTOR_SHADERS_SHADERSOURCES_H 1
 
@@ -10,6 +10,8 @@ extern const char* const kSkinnedMeshVertex;
 extern const char* const kSkinnedMeshFragment;
 extern const char* const kLightingCompatibility;
 extern const char* const kLightingCore;
+extern const char* const kInstancedRigidVertex;
+extern const char* const kInstancedRigidFragment;
 
 } // namespace shaders
 } // namespace osgActor

@@ -8,6 +8,7 @@
 #include <osgActor/ActorGroup>
 #include <osgActor/ActorPartsText>
 #include <osgActor/ActorSceneIO>
+#include <osgActor/InstancedActorGroup>
 #include <osgActor/core/ClipPlayer>
 #include <osgActor/io/ActorWriter>
 
@@ -325,6 +326,27 @@ TEST_P(CrowdFormats, AnEmptyGroupKeepsItsThreadCount)
     osg::ref_ptr<ActorGroup> back = dynamic_cast<ActorGroup*>(osgDB::readRefNodeFile(path).get());
     ASSERT_TRUE(back.valid()) << path;
     EXPECT_EQ(back->getNumThreads(), 7u);
+}
+
+TEST_P(CrowdFormats, AnInstancedGroupKeepsItsDrawModeLightsThreadsAndActors)
+{
+    // Values that are not the defaults, so that what comes back cannot be the constructor's.
+    osg::ref_ptr<ActorGroup> crowd = makeCrowd(2);
+    ASSERT_TRUE(crowd.valid());
+    osg::ref_ptr<InstancedActorGroup> group = new InstancedActorGroup;
+    group->setNumThreads(5);
+    group->setDrawMode(InstancedActorGroup::ORDINARY);
+    group->setLights(6);
+    for (unsigned i = 0; i < crowd->getNumChildren(); ++i) group->addChild(crowd->getChild(i));
+    const std::string path = outFile(std::string("instanced_group.") + GetParam());
+    ASSERT_TRUE(osgDB::writeNodeFile(*group, path));
+    osg::ref_ptr<InstancedActorGroup> back = dynamic_cast<InstancedActorGroup*>(osgDB::readRefNodeFile(path).get());
+    ASSERT_TRUE(back.valid()) << path;
+    EXPECT_EQ(back->getNumThreads(), 5u);
+    EXPECT_EQ(back->getDrawMode(), InstancedActorGroup::ORDINARY);
+    EXPECT_EQ(back->getLights(), 6u);
+    ASSERT_EQ(back->getNumChildren(), 2u);
+    EXPECT_NE(actorAt(*back, 1), nullptr);
 }
 
 TEST_P(CrowdFormats, FilesWrittenBeforeTheDefinitionWasSharedStillRead)

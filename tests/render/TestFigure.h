@@ -6,10 +6,13 @@
 #include <osgActor/core/ActorDefinitionBuilder>
 
 #include <osg/Geode>
+#include <osg/Image>
 #include <osg/Material>
 #include <osg/ShapeDrawable>
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace osgActor {
 namespace test {
@@ -83,6 +86,27 @@ inline osg::ref_ptr<ActorNode> makeTestFigure()
             actor->getSkeletonNode(s + joint)->addChild(makeJointBall(0.075f));
     }
     return actor;
+}
+
+/** Poses member a of a crowd of test figures apart from the others (radians): arms, a hip, a knee and the turn of
+  * the pelvis grow with a. */
+inline void poseCrowdMember(ActorNode& actor, unsigned a)
+{
+    actor.setDof("l_shoulder.ry", -0.25 * a);
+    actor.setDof("r_shoulder.rx", -0.2 * a);
+    actor.setDof("l_hip.rx", -0.1 * a);
+    actor.setDof("r_knee.rx", 0.15 * a);
+    actor.setDof("pelvis.rz", 0.2 * a - 0.6);
+}
+
+/** The pixels of an 8-bit RGB image whose blue is not the background's: what was drawn over it. */
+inline unsigned countDrawnPixels(const osg::Image& image, const osg::Vec4& background)
+{
+    const unsigned char blue = static_cast<unsigned char>(std::lround(background[2] * 255));
+    unsigned drawn = 0;
+    for (int y = 0; y < image.t(); ++y)
+        for (int x = 0; x < image.s(); ++x) drawn += image.data(x, y)[2] != blue;
+    return drawn;
 }
 
 /** A flat floor, size x size units, its top at z = 0. */

@@ -13,7 +13,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cmath>
 
 using namespace osgActor;
 using namespace osgActor::test;
@@ -32,11 +31,7 @@ osg::ref_ptr<osg::Group> makeCrowd(std::vector<osg::ref_ptr<ActorNode>>& actors)
     {
         osg::ref_ptr<ActorNode> actor = makeTestFigure();
         actor->setPreTranslation(osg::Vec3d(0.9 * a - 2.7, 0.6 * (a % 3), 0.0));
-        actor->setDof("l_shoulder.ry", -0.25 * a);
-        actor->setDof("r_shoulder.rx", -0.2 * a);
-        actor->setDof("l_hip.rx", -0.1 * a);
-        actor->setDof("r_knee.rx", 0.15 * a);
-        actor->setDof("pelvis.rz", 0.2 * a - 0.6);
+        poseCrowdMember(*actor, a);
         actors.push_back(actor);
         scene->addChild(actor.get());
     }
@@ -87,11 +82,7 @@ protected:
         EXPECT_EQ(difference.numOverTolerance, 0u);
         EXPECT_EQ(difference.maxChannelDifference, 0);
         // The test can fail: the crowd and its floor cover part of the image.
-        unsigned drawn = 0;
-        for (int y = 0; y < asOne->t(); ++y)
-            for (int x = 0; x < asOne->s(); ++x)
-                drawn += asOne->data(x, y)[2] != static_cast<unsigned char>(std::lround(kBackground[2] * 255));
-        EXPECT_GT(drawn, minCrowdShare * asOne->s() * asOne->t());
+        EXPECT_GT(countDrawnPixels(*asOne, kBackground), minCrowdShare * asOne->s() * asOne->t());
     }
 
     osg::ref_ptr<OffscreenRenderer> renderer;

@@ -1,0 +1,334 @@
+#include <osgActor/detail/InstancedCull.h>
+
+#include <osgActor/ActorNode>
+#include <osgActor/detail/ActorCull.h>
+#include <osgActor/detail/CullArithmetic.h>
+#include <osgActor/detail/JointDrawBatch.h>
+
+#include <osg/Material>
+#include <osg/TextureBuffer>
+
+#include <algorithm>
+#include <iterator>
+#include <typeinfo>
+
+namespace osgActor {
+namespace detail {
+
+// --- InstancedFrame ---
+
+InstancedFrame::InstancedFrame(osg::StateSet* programState, unsigned textureUnit)
+    : _texels(new osg::Image), _stateSet(new osg::StateSet)
+{
+    _texels->allocateImage(256, 1, 1, GL_RGBA, GL_FLOAT);
+    _texels->setInternalTextureFormat(GL_RGBA32F_ARB);
+    osg::ref_ptr<osg::TextureBuffer> buffer = new osg::TextureBuffer(_texels.get());
+    buffer->setInternalFormat(GL_RGBA32F_ARB);
+    _stateSet->setTextureAttribute(textureUnit, buffer.get());
+    _stateSet->merge(*programState);
+}
+
+bool InstancedFrame::isFree() const
+{
+    for (const osg::ref_ptr<InstancedDraw>& draw : _draws)
+        if (draw->referenceCount() != 1) return false;
+    return true;
+}
+
+float* InstancedFrame::reserveTexels(unsigned texels)
+{
+    if (static_cast<unsigned>(_texels->s()) < texels)
+    {
+        // Doubled, so that a growing crowd reallocates the buffer a few times, not every frame.
+        unsigned size = static_cast<unsigned>(_texels->s());
+        while (size < texels) size *= 2;
+        _texels->allocateImage(static_cast<int>(size), 1, 1, GL_RGBA, GL_FLOAT);
+    }
+    return reinterpret_cast<float*>(_texels->data());
+}
+
+InstancedDraw* InstancedFrame::draw(unsigned i)
+{
+    while (_draws.size() <= i) _draws.push_back(new InstancedDraw);
+    return _draws[i].get();
+}
+
+// --- InstancedCullState ---
+
+void InstancedCullState::resizeGLObjectBuffers(unsigned maxSize)
+{
+    for (const osg::ref_ptr<InstancedFrame>& frame : _frames) frame->getStateSet()->resizeGLObjectBuffers(maxSize);
+}
+
+void InstancedCullState::releaseGLObjects(osg::State* state) const
+{
+    for (const osg::ref_ptr<InstancedFrame>& frame : _frames) frame->getStateSet()->releaseGLObjects(state);
+}
+
+// --- InstancedCull ---
+
+namespace {
+
+/** Culling active at the node, but for its bound's validity, tested where the bound is used (as ActorCullPlan). */
+bool isCullingActive(const osg::Node& node)
+{
+    return node.getCullingActive() && node.getNumChildrenWithCullingDisabled() == 0;
+}
+
+} // namespace
+
+bool InstancedCull::isInstanceableState(const osg::StateSet* state)
+{
+    if (!state) return true;
+    if (!state->getTextureAttributeList().empty() || !state->getTextureModeList().empty() ||
+        !state->getUniformList().empty() || state->getRenderBinMode() != osg::StateSet::INHERIT_RENDERBIN_DETAILS ||
+        !state->getDefineList().empty())
+        return false;
+    for (const auto& attribute : state->getAttributeList())
+    {
+        const osg::Material* material = dynamic_cast<const osg::Material*>(attribute.second.first.get());
+        if (!material || material->getColorMode() != osg::Material::OFF) return false;
+    }
+    return (state->getMode(GL_LIGHTING) & osg::StateAttribute::ON) != 0 ||
+           state->getMode(GL_LIGHTING) == osg::StateAttribute::INHERIT;
+}
+
+InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state, osg::Group& group,
+                             osg::StateSet* programState, unsigned textureUnit)
+    : _cv(cv), _state(state), _programState(programState), _traversalMask(cv.getTraversalMask()),
+      _maskOverride(cv.getNodeMaskOverride()),
+      _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
+      _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
+      _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
+      _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize())
+{
+    _state._statistics = InstancedCullState::Statistics();
+    _state._stateVerdicts.clear();
+    for (InstancedCullState::Batch& batch : _state._batches) batch.matrices.clear();
+    // Verdicts of plans that only the cache still holds (their actors made new ones, or are gone) are dropped now and
+    // then, never while a plan in use could be among them.
+    if (_state._verdicts.size() > 2 * std::size_t(group.getNumChildren()) + 64)
+        for (auto it = _state._verdicts.begin(); it != _state._verdicts.end();)
+            it = it->second.plan->referenceCount() == 1 ? _state._verdicts.erase(it) : std::next(it);
+    for (unsigned i = 0; i < group.getNumChildren(); ++i)
+    {
+        osg::Node& child = *group.getChild(i);
+        if (typeid(child) == typeid(ActorNode)) cullChild(static_cast<ActorNode&>(child));
+        else child.accept(cv);
+    }
+    emitBatches(textureUnit);
+}
+
+bool InstancedCull::isPlainActor(const ActorNode& actor)
+{
+    return actor.getCullMode() == ActorNode::CULL_AS_ONE && !actor.getCullCallback() && !actor.getStateSet() &&
+           actor.getReferenceFrame() == osg::Transform::RELATIVE_RF && isCullingActive(actor);
+}
+
+void InstancedCull::cullChild(ActorNode& actor)
+{
+    // The actor's own cull state (one cull at a time: another thread may be culling the actor for another camera)
+    // gives the plan its cull as one keeps: its joints, geodes and drawables in the visitor's order.
+    ActorCullState& actorState = *actor._cullState;
+    if (isPlainActor(actor) && actorState.tryAcquire())
+    {
+        const ActorCullPlan& plan =
+            actorState.currentPlan(actor, actor._cullPlanVersion.load(std::memory_order_relaxed), true);
+        if (const InstancedCullState::PlanVerdict* verdict = instanceableVerdict(plan))
+        {
+            ++_state._statistics.actorsInstanced;
+            // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
+            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict);
+            actorState.release();
+            return;
+        }
+        actorState.release();
+    }
+    ++_state._statistics.actorsOrdinary;
+    actor.accept(_cv);
+}
+
+const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const ActorCullPlan& plan)
+{
+    auto found = _state._verdicts.find(&plan);
+    if (found == _state._verdicts.end())
+    {
+        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}};
+        const osg::StateSet* geodeState = nullptr;
+        for (const Step& step : plan.getSteps())
+        {
+            // A plain drawable of the plan is an osg::Geometry or osg::ShapeDrawable (ActorCullPlan::isPlainDrawable).
+            const osg::Geometry* geometry =
+                step.kind == ActorCullPlan::DRAWABLE ? static_cast<const osg::Geometry*>(step.node->asDrawable()) : nullptr;
+            const bool plain = step.kind == ActorCullPlan::END_JOINT || step.kind == ActorCullPlan::END_GEODE ||
+                               (step.kind == ActorCullPlan::JOINT && !step.stateSet) ||
+                               step.kind == ActorCullPlan::GEODE || (geometry && InstancedDraw::canDraw(*geometry));
+            verdict.plain = verdict.plain && plain;
+            const bool stated = step.kind == ActorCullPlan::GEODE || step.kind == ActorCullPlan::DRAWABLE;
+            if (stated && step.stateSet &&
+                std::find(verdict.states.begin(), verdict.states.end(), step.stateSet) == verdict.states.end())
+                verdict.states.push_back(step.stateSet);
+            if (step.kind == ActorCullPlan::GEODE) geodeState = step.stateSet;
+            verdict.batchOfStep.push_back(geometry && verdict.plain ? batchOf(geodeState, *geometry) : 0u);
+        }
+        found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
+    }
+    const InstancedCullState::PlanVerdict& verdict = found->second;
+    if (!verdict.plain) return nullptr;
+    for (const osg::StateSet* state : verdict.states)
+        if (!isInstanceableNow(state)) return nullptr;
+    return &verdict;
+}
+
+unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable)
+{
+    const InstancedCullState::BatchKey key{geodeState, &drawable};
+    auto found = _state._batchOfKey.find(key);
+    if (found != _state._batchOfKey.end()) return found->second;
+    const unsigned batch = static_cast<unsigned>(_state._batches.size());
+    _state._batches.push_back({geodeState, &drawable, {}});
+    _state._batchOfKey.emplace(key, batch);
+    return batch;
+}
+
+bool InstancedCull::isInstanceableNow(const osg::StateSet* state)
+{
+    for (const auto& known : _state._stateVerdicts)
+        if (known.first == state) return known.second;
+    const bool verdict = isInstanceableState(state);
+    _state._stateVerdicts.emplace_back(state, verdict);
+    return verdict;
+}
+
+bool InstancedCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame)
+{
+    if (!bound.valid()) return false; // the visitor never tests it (the node is not culling-active)
+    if (!_state._hasPixelSizeVector[frame])
+    {
+        // As osg::CullStack::pushCullingSet() makes it for this matrix.
+        _state._pixelSizeVectors[frame] = osg::CullingSet::computePixelSizeVector(
+            *_cv.getViewport(), *_cv.getProjectionMatrix(), _state._modelViews[frame]);
+        _state._hasPixelSizeVector[frame] = 1;
+    }
+    return detail::isSmallFeature(bound, _state._pixelSizeVectors[frame], _smallFeaturePixelSize);
+}
+
+void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict)
+{
+    const ActorCullPlan& plan = *verdict.plan;
+    const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
+    const std::size_t numFrames = joints.size() + 1;
+    std::vector<osg::Matrixd>& modelViews = _state._modelViews;
+    modelViews.resize(numFrames);
+    _state._hasPixelSizeVector.assign(numFrames, 0);
+    _state._pixelSizeVectors.resize(numFrames);
+    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's), then
+    // each joint's, parents first, as ActorCull composes them.
+    composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());
+    for (std::size_t j = 0; j < joints.size(); ++j)
+        composeModelView(joints[j].node->getMatrix().ptr(),
+                         modelViews[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
+    if (actor.getUpdatePolicy().onlyWhenSeen)
+    {
+        // The update policy notes the view with the actor's frame on the visitor's stack, as its own cull does.
+        _cv.pushModelViewMatrix(new osg::RefMatrix(modelViews[0]), osg::Transform::RELATIVE_RF);
+        actor.noteSeen(_cv);
+        _cv.popModelViewMatrix();
+    }
+    // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
+    // is in is skipped with its subtree.
+    const std::vector<Step>& steps = plan.getSteps();
+    for (std::size_t i = 0; i < steps.size();)
+    {
+        const Step& step = steps[i];
+        switch (step.kind)
+        {
+        case ActorCullPlan::JOINT:
+        case ActorCullPlan::GEODE:
+        {
+            const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(joints[step.joint].parent + 1)
+                                                                      : unsigned(step.joint + 1);
+            if (isMasked(step.mask) ||
+                (_smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame)))
+            {
+                i = step.end;
+                continue;
+            }
+            break;
+        }
+        case ActorCullPlan::DRAWABLE:
+            if (!isMasked(step.mask)) addDrawable(step, verdict.batchOfStep[i]);
+            break;
+        default: break; // the ends; no ORDINARY step in an instanceable plan
+        }
+        ++i;
+    }
+}
+
+void InstancedCull::addDrawable(const Step& step, unsigned batch)
+{
+    const osg::Geometry& drawable = *static_cast<const osg::Geometry*>(step.node->asDrawable());
+    const osg::Matrixd& modelView = _state._modelViews[static_cast<std::size_t>(step.joint + 1)];
+    // As ActorCull::addDrawable(): near and far from what is drawn, the box against the frustum before.
+    const osg::BoundingBox& box = drawable.getBoundingBox();
+    if (_computeNearFar && box.valid())
+    {
+        if (_frustumCulling && step.cullingActive &&
+            isOutsideFrustum(box, modelView, _cv.getProjectionCullingStack().back().getFrustum()))
+            return;
+        if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
+    }
+    if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
+    std::vector<float>& matrices = _state._batches[batch].matrices;
+    const double* m = modelView.ptr();
+    // As OSG hands a matrix to OpenGL (glLoadMatrixd, which keeps floats): each double rounded to the nearest float.
+    for (int k = 0; k < 16; ++k) matrices.push_back(static_cast<float>(m[k]));
+}
+
+InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
+{
+    for (const osg::ref_ptr<InstancedFrame>& frame : _state._frames)
+        if (frame->isFree()) return frame.get();
+    _state._frames.push_back(new InstancedFrame(_programState, textureUnit));
+    return _state._frames.back().get();
+}
+
+void InstancedCull::emitBatches(unsigned textureUnit)
+{
+    unsigned texels = 0;
+    for (const InstancedCullState::Batch& batch : _state._batches)
+        texels += static_cast<unsigned>(batch.matrices.size() / 4);
+    if (texels == 0) return;
+    InstancedFrame& frame = *acquireFrame(textureUnit);
+    float* out = frame.reserveTexels(texels);
+    unsigned base = 0, drawIndex = 0;
+    osg::RefMatrix* groupModelView = _cv.getModelViewMatrix();
+    for (const InstancedCullState::Batch& batch : _state._batches)
+    {
+        const unsigned count = static_cast<unsigned>(batch.matrices.size() / 16);
+        if (count == 0) continue;
+        std::copy(batch.matrices.begin(), batch.matrices.end(), out + 4 * base);
+        InstancedDraw* draw = frame.draw(drawIndex++);
+        draw->set(batch.drawable, static_cast<int>(base), count);
+        // A dynamic drawable makes osgViewer's next update wait until it is drawn: so does its instanced draw.
+        draw->setDataVariance(batch.drawable->getDataVariance() == osg::Object::DYNAMIC ? osg::Object::DYNAMIC
+                                                                                          : osg::Object::STATIC);
+        base += 4 * count;
+        // The drawable's states as the ordinary traversal pushes them (the geode's, then its own), then the frame's.
+        if (batch.geodeState) _cv.pushStateSet(batch.geodeState);
+        if (const osg::StateSet* own = batch.drawable->getStateSet()) _cv.pushStateSet(own);
+        _cv.pushStateSet(frame.getStateSet());
+        // The leaf's matrix is the group's: the program takes each instance's from the buffer, the projection from
+        // the leaf.
+        _cv.addDrawableAndDepth(draw, groupModelView, 0.0f);
+        _cv.popStateSet();
+        if (batch.drawable->getStateSet()) _cv.popStateSet();
+        if (batch.geodeState) _cv.popStateSet();
+        ++_state._statistics.draws;
+        _state._statistics.instances += count;
+    }
+    frame.dirty();
+}
+
+} // namespace detail
+} // namespace osgActor

@@ -1,0 +1,192 @@
+// Internal to the library (not installed, NOT API): the cull of an InstancedActorGroup's actors (issue 28).
+//
+// Per cull, every actor child that can be drawn instanced (its own class, culled as one, and a cull plan, the one its
+// cull as one keeps (ActorCullPlan), with nothing for the ordinary traversal, no state set on a joint, and state sets
+// on geodes and drawables that light as the instanced program lights) is culled as the ordinary traversal would cull
+// it, following its plan as ActorCull does (its mask and bound; each joint's and geode's mask and small-feature test
+// in its frame; while near and far are computed, each drawable's box against the frustum), its joints' model-view
+// matrices composed with the visitor's own products (CullArithmetic.h), and each drawable that survives adds one
+// instance, its joint's model-view matrix, to the batch of its (geode state set, drawable). The actors that cannot be
+// taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an
+// InstancedDraw of the drawable for all its instances, under the geode's and the drawable's state sets and the
+// frame's state set (the program and the texture buffer of all instances' matrices, as floats, 4 texels each).
+//
+// The matrices of a frame live in an InstancedFrame taken from a pool: one the render graph no longer holds (every
+// draw of it held by the pool alone), so that with osgViewer drawing on another thread the cull of the next frame
+// never writes what the draw of this one reads (each frame its own texture buffer).
+#ifndef OSGACTOR_DETAIL_INSTANCEDCULL_H
+#define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
+
+#include <osgActor/detail/ActorCullPlan.h>
+#include <osgActor/detail/InstancedDraw.h>
+
+#include <osg/Image>
+#include <osg/Matrixd>
+#include <osg/StateSet>
+#include <osgUtil/CullVisitor>
+
+#include <atomic>
+#include <unordered_map>
+#include <vector>
+
+namespace osgActor {
+
+class ActorNode;
+
+namespace detail {
+
+/** The texture buffer of one frame's instance matrices and the draws that read it. */
+class InstancedFrame : public osg::Referenced
+{
+public:
+    InstancedFrame(osg::StateSet* programState, unsigned textureUnit);
+
+    /** Whether the render graph holds none of its draws. */
+    bool isFree() const;
+    /** Room for texels RGBA32F texels, their contents kept only up to what was written. */
+    float* reserveTexels(unsigned texels);
+    /** The draw for batch i, made on first use. */
+    InstancedDraw* draw(unsigned i);
+    /** Marks the texels written for upload. */
+    void dirty() { _texels->dirty(); }
+    osg::StateSet* getStateSet() const { return _stateSet.get(); }
+
+protected:
+    ~InstancedFrame() override = default;
+
+private:
+    osg::ref_ptr<osg::Image> _texels;
+    osg::ref_ptr<osg::StateSet> _stateSet;
+    std::vector<osg::ref_ptr<InstancedDraw>> _draws;
+};
+
+/** What an InstancedActorGroup keeps from one cull to the next: the pool of frames and the cull's working space. One
+  * cull visitor at a time (tryAcquire()). */
+class InstancedCullState : public osg::Referenced
+{
+public:
+    InstancedCullState() { _busy.clear(); }
+
+    bool tryAcquire() { return !_busy.test_and_set(std::memory_order_acquire); }
+    void release() { _busy.clear(std::memory_order_release); }
+
+    /** What the last cull did: actors drawn instanced and ordinarily, instanced draws and the instances they drew. */
+    struct Statistics
+    {
+        unsigned actorsInstanced = 0;
+        unsigned actorsOrdinary = 0;
+        unsigned draws = 0;
+        unsigned instances = 0;
+    };
+    Statistics getStatistics() const { return _statistics; }
+
+    /** As osg::Node's: the frames' texture buffers. */
+    void resizeGLObjectBuffers(unsigned maxSize);
+    void releaseGLObjects(osg::State* state) const;
+
+protected:
+    ~InstancedCullState() override = default;
+
+private:
+    friend class InstancedCull;
+
+    /** What decides whether an actor of a plan can be drawn instanced, found once per plan (plans are rebuilt, not
+      * changed, when what they were made from changes): no step for the ordinary traversal, no state set on a joint,
+      * drawables InstancedDraw draws; and the distinct state sets of its geodes and drawables, whose contents OSG lets
+      * change in place, so checked at every cull (isInstanceableState(), once per state set per cull). */
+    struct PlanVerdict
+    {
+        osg::ref_ptr<const ActorCullPlan> plan; // held, so that no other plan is made at its address
+        bool plain;
+        std::vector<const osg::StateSet*> states;
+        /** Per step, for its drawables: the batch it adds to (batches are kept, so the indices stay valid). */
+        std::vector<unsigned> batchOfStep;
+    };
+    /** The drawables of one (geode state set, drawable) and their instances' model-view matrices this cull. */
+    struct Batch
+    {
+        const osg::StateSet* geodeState;
+        const osg::Geometry* drawable;
+        std::vector<float> matrices; // 16 per instance, OSG's rows one after the other
+    };
+    struct BatchKey
+    {
+        const osg::StateSet* geodeState;
+        const osg::Drawable* drawable;
+        bool operator==(const BatchKey& other) const
+        {
+            return geodeState == other.geodeState && drawable == other.drawable;
+        }
+    };
+    struct BatchKeyHash
+    {
+        std::size_t operator()(const BatchKey& key) const
+        {
+            return std::hash<const void*>()(key.geodeState) ^ (std::hash<const void*>()(key.drawable) << 1);
+        }
+    };
+
+    std::atomic_flag _busy;
+    std::vector<osg::ref_ptr<InstancedFrame>> _frames;
+    Statistics _statistics;
+    std::unordered_map<const ActorCullPlan*, PlanVerdict> _verdicts;
+    // The working space of one cull, kept so that a steady frame allocates nothing.
+    std::vector<std::pair<const osg::StateSet*, bool>> _stateVerdicts; // this cull's
+    std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
+    std::vector<osg::Vec4> _pixelSizeVectors; // per frame, where _hasPixelSizeVector says
+    std::vector<unsigned char> _hasPixelSizeVector;
+    std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
+    std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
+};
+
+class InstancedCull
+{
+public:
+    /** Culls the children of group (the visitor's model-view matrix is the group's): the actors that can be, into
+      * instanced draws under programState (the program and the sampler on textureUnit), the others ordinarily. */
+    InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state, osg::Group& group, osg::StateSet* programState,
+                  unsigned textureUnit);
+
+    /** Whether a state set (a geode's or a drawable's, or none) lights its drawables as the instanced program does:
+      * no program, textures, uniforms or render bin of its own, and no attribute but a material without colour
+      * tracking; lighting not turned off. */
+    static bool isInstanceableState(const osg::StateSet* state);
+
+private:
+    using Step = ActorCullPlan::Step;
+
+    /** Whether the actor node itself lets its children be culled here: its own class, culled as one, no cull
+      * callback or state set, a relative frame, culling on. */
+    static bool isPlainActor(const ActorNode& actor);
+    /** Culls one actor child: instanced if its plan allows, ordinarily otherwise. */
+    void cullChild(ActorNode& actor);
+    /** What decides whether an actor of the plan can be drawn instanced now, or null if it cannot. */
+    const InstancedCullState::PlanVerdict* instanceableVerdict(const ActorCullPlan& plan);
+    /** The batch of a (geode state set, drawable), made on first use. */
+    unsigned batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable);
+    bool isInstanceableNow(const osg::StateSet* state);
+    /** Culls an instanceable actor by its plan and adds its drawables' instances; the actor's bound was found
+      * visible. */
+    void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict);
+    bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
+    bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
+    void addDrawable(const Step& step, unsigned batch);
+    /** One leaf per batch, with this frame's texture buffer. */
+    void emitBatches(unsigned textureUnit);
+    InstancedFrame* acquireFrame(unsigned textureUnit);
+
+    osgUtil::CullVisitor& _cv;
+    InstancedCullState& _state;
+    osg::StateSet* _programState;
+    unsigned _traversalMask;
+    unsigned _maskOverride;
+    bool _smallFeatureCulling;
+    bool _computeNearFar;
+    bool _frustumCulling;
+    float _smallFeaturePixelSize;
+};
+
+} // namespace detail
+} // namespace osgActor
+
+#endif

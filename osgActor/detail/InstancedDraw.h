@@ -1,0 +1,48 @@
+// Internal to the library (not installed, NOT API): one geometry drawn once for many instances (InstancedActorGroup,
+// issue 28). The geometry is the user's, shared with every actor that hangs it below a joint and with the ordinary
+// path: it is not changed (no instance count set on its primitive sets, which another context or the ordinary path
+// may draw at the same moment). InstancedDraw sets up the geometry's arrays as osg::Geometry does, then issues each
+// primitive set as glDrawArraysInstanced / glDrawElementsInstanced for the instances of this frame, whose model-view
+// matrices the vertex shader reads from the frame's texture buffer from the given base (InstancedRigid.vert).
+#ifndef OSGACTOR_DETAIL_INSTANCEDDRAW_H
+#define OSGACTOR_DETAIL_INSTANCEDDRAW_H 1
+
+#include <osg/Geometry>
+
+namespace osgActor {
+namespace detail {
+
+class InstancedDraw : public osg::Drawable
+{
+public:
+    InstancedDraw();
+
+    /** Whether a geometry can be drawn instanced: primitive sets of the kinds drawn here (arrays, array lengths,
+      * elements of any index type), none instanced already, no draw callback of its own, and no colour per vertex. */
+    static bool canDraw(const osg::Geometry& geometry);
+
+    /** Draws geometry for count instances whose matrices start at texel base (4 per instance). */
+    void set(const osg::Geometry* geometry, int base, unsigned count);
+    const osg::Geometry* getGeometry() const { return _geometry.get(); }
+    unsigned getNumInstances() const { return _count; }
+
+    void drawImplementation(osg::RenderInfo& renderInfo) const override;
+
+    const char* libraryName() const override { return "osgActor"; }
+    const char* className() const override { return "InstancedDraw"; }
+    osg::Object* cloneType() const override { return new InstancedDraw; }
+    osg::Object* clone(const osg::CopyOp&) const override { return new InstancedDraw; }
+
+protected:
+    ~InstancedDraw() override = default;
+
+private:
+    osg::ref_ptr<const osg::Geometry> _geometry;
+    int _base;
+    unsigned _count;
+};
+
+} // namespace detail
+} // namespace osgActor
+
+#endif
