@@ -25,7 +25,8 @@ set(OSGACTOR_CORE_HEADERS
 set(OSGACTOR_CORE_DETAIL_HEADERS
     core/detail/AlignedAllocator
     core/detail/JointBatches
-    core/detail/LocalMatrices)
+    core/detail/LocalMatrices
+    core/detail/NameIndex)
 set(OSGACTOR_CORE_PRIVATE_HEADERS
     core/detail/AffineColumns.h
     core/detail/ByteFlags.h
@@ -80,6 +81,7 @@ set(OSGACTOR_CORE_SOURCES
     core/SamplingJob.cpp
     core/Trajectory.cpp
     core/detail/JointBatches.cpp
+    core/detail/NameIndex.cpp
     core/detail/JointChildren.cpp
     core/detail/LocalMatrices.cpp
     core/detail/SinCos.cpp

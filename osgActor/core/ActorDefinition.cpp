@@ -4,8 +4,7 @@ namespace osgActor {
 
 int ActorDefinition::findJoint(const std::string& name) const
 {
-    const auto it = _jointIndex.find(name);
-    return it == _jointIndex.end() ? -1 : static_cast<int>(it->second);
+    return _jointIndex.find(name, _jointNames);
 }
 
 int ActorDefinition::getDofIndex(unsigned joint, Dof dof) const

@@ -277,7 +277,6 @@ BuildResult ActorDefinitionBuilder::build() const
     def->_dofMasks.reserve(numJoints);
     def->_firstDofs.reserve(numJoints + 1);
     def->_kinematics.reserve(numJoints);
-    def->_jointIndex.reserve(numJoints);
     for (std::vector<double>* perDof : {&def->_dofMins, &def->_dofMaxs, &def->_dofRangeMins, &def->_dofRangeMaxs,
                                         &def->_dofDefaults, &def->_dofWeights})
         perDof->reserve(numDofs);
@@ -311,8 +310,8 @@ BuildResult ActorDefinitionBuilder::build() const
         def->_dofMasks.push_back(mask);
         def->_kinematics.push_back(makeKinematics(joint, def->_firstDofs.back(), mask));
         def->_firstDofs.push_back(static_cast<unsigned>(def->_dofJoints.size()));
-        def->_jointIndex.emplace(joint.name, i);
     }
+    def->_jointIndex.build(def->_jointNames);
     def->_jointBatches = planJointBatches(def->_kinematics);
     result.definition = def;
     return result;

@@ -49,6 +49,7 @@ struct NodeFlags : osg::Node
 ActorCullPlan::ActorCullPlan(osg::Group& actor)
 {
     for (unsigned i = 0; i < actor.getNumChildren(); ++i) addChild(*actor.getChild(i), -1);
+    std::unordered_set<const osg::Referenced*>().swap(_checked);
 }
 
 bool ActorCullPlan::isPlainJoint(const SkeletonNode& joint)
@@ -86,8 +87,9 @@ ActorCullPlan::Step& ActorCullPlan::addStep(Kind kind, osg::Node& node, int join
 
 void ActorCullPlan::addCheck(Kind kind, osg::Node& node)
 {
-    for (const NodeCheck& check : _checks)
-        if (check.node == &node) return;
+    // A skeleton node is met once per parent, nearly always once: its check is not looked up (one under two parents
+    // is checked twice, to the same effect). Geodes and state sets are often shared, by every joint at times.
+    if (kind != JOINT && !_checked.insert(&node).second) return;
     NodeCheck check;
     check.node = &node;
     check.stateSet = node.getStateSet();
@@ -113,9 +115,7 @@ void ActorCullPlan::addCheck(Kind kind, osg::Node& node)
 
 void ActorCullPlan::addStateCheck(const osg::StateSet* state)
 {
-    if (!state) return;
-    for (const StateCheck& check : _stateChecks)
-        if (check.stateSet == state) return;
+    if (!state || !_checked.insert(state).second) return;
     _stateChecks.push_back({state, state->getRenderBinMode(), state->getBinNumber(), state->getBinName(),
                             state->getNestRenderBins(), state->getDataVariance()});
 }
