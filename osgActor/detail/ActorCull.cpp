@@ -40,7 +40,7 @@ bool ActorCullView::isCulled(const osg::CullingSet& set, const osg::BoundingSphe
         }
     }
     if ((mask & osg::CullingSet::SMALL_FEATURE_CULLING) &&
-        ((bound.center() * set.getPixelSizeVector()) * set.getSmallFeatureCullingPixelSize()) > bound.radius())
+        detail::isSmallFeature(bound, set.getPixelSizeVector(), set.getSmallFeatureCullingPixelSize()))
         return true;
     return false; // no occluders where an actor is culled as one (ActorCull::canCullAsOne())
 }
@@ -196,10 +196,8 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
 
     const std::size_t numFrames = joints.size() + 1;
     _leafMatrices.assign(numFrames, nullptr);
-    _hasPixelSizeVector.assign(numFrames, 0);
-    _pixelSizeVectors.resize(numFrames);
-    _pixelSizeVectors[0] = pixelSizeVector;
-    _hasPixelSizeVector[0] = 1;
+    _pixelSizeVectors.reset(numFrames);
+    _pixelSizeVectors.set(0, pixelSizeVector);
 
     // What the visitor would cull and the drawables' depths.
     const std::vector<ActorCullPlan::Step>& steps = _plan->getSteps();
@@ -432,15 +430,8 @@ void ActorCull::closeBatch(osgUtil::StateGraph* graph)
 
 bool ActorCullState::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame, const ActorCullView& view)
 {
-    if (!bound.valid()) return false; // the visitor never tests it (the node is not culling-active)
-    if (!_hasPixelSizeVector[frame])
-    {
-        // As osg::CullStack::pushCullingSet() makes it for this matrix.
-        _pixelSizeVectors[frame] = osg::CullingSet::computePixelSizeVector(*view.viewport, view.projection,
-                                                                           _preparedModelViews->matrices[frame]);
-        _hasPixelSizeVector[frame] = 1;
-    }
-    return detail::isSmallFeature(bound, _pixelSizeVectors[frame], view.smallFeaturePixelSize);
+    return _pixelSizeVectors.isSmallFeature(bound, frame, *view.viewport, view.projection,
+                                            _preparedModelViews->matrices[frame], view.smallFeaturePixelSize);
 }
 
 bool ActorCullState::isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView,

@@ -37,6 +37,7 @@
 #define OSGACTOR_DETAIL_ACTORCULL_H 1
 
 #include <osgActor/detail/ActorCullPlan.h>
+#include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/JointDrawBatch.h>
 
 #include <osg/Matrixd>
@@ -207,10 +208,9 @@ private:
     std::vector<unsigned char> _stepCulled;
     std::vector<float> _stepDepths;
     // A cull's working space, kept so that a frame allocates nothing. Per frame (the actor's, then each planned
-    // joint's): its matrix for the render graph, or null; its pixel-size vector, valid where the flag says.
+    // joint's): its matrix for the render graph, or null; its pixel-size vector.
     std::vector<osg::RefMatrix*> _leafMatrices;
-    std::vector<osg::Vec4> _pixelSizeVectors;
-    std::vector<unsigned char> _hasPixelSizeVector;
+    FramePixelSizeVectors _pixelSizeVectors;
     std::vector<osg::StateSet*> _wantedStates;
     std::vector<osg::StateSet*> _appliedStates;
 };

@@ -7,8 +7,13 @@
 
 #include <osg/BoundingBox>
 #include <osg/BoundingSphere>
+#include <osg/CullingSet>
 #include <osg/Matrixd>
 #include <osg/Polytope>
+#include <osg/Viewport>
+
+#include <cstddef>
+#include <vector>
 
 namespace osgActor {
 namespace detail {
@@ -34,6 +39,39 @@ inline bool isSmallFeature(const osg::BoundingSphere& bound, const osg::Vec4& pi
 {
     return ((bound.center() * pixelSizeVector) * pixelSize) > bound.radius();
 }
+
+/** The pixel-size vectors of an actor's frames (the actor's, then each planned joint's), each made the first time a
+  * small-feature test in that frame needs it, as osg::CullStack::pushCullingSet() makes it for the frame's model-view
+  * matrix. Kept from cull to cull, so that a steady frame allocates nothing. */
+class FramePixelSizeVectors
+{
+public:
+    /** Forgets every frame's vector, for numFrames frames. */
+    void reset(std::size_t numFrames)
+    {
+        _known.assign(numFrames, 0);
+        _vectors.resize(numFrames);
+    }
+    /** Gives a frame its vector (one the visitor computed already). */
+    void set(std::size_t frame, const osg::Vec4& vector)
+    {
+        _vectors[frame] = vector;
+        _known[frame] = 1;
+    }
+    /** isSmallFeature() in the frame whose model-view matrix is given; a bound that is not valid never is one (the
+      * visitor never tests it: the node is not culling-active). */
+    bool isSmallFeature(const osg::BoundingSphere& bound, std::size_t frame, const osg::Viewport& viewport,
+                        const osg::Matrixd& projection, const osg::Matrixd& modelView, float pixelSize)
+    {
+        if (!bound.valid()) return false;
+        if (!_known[frame]) set(frame, osg::CullingSet::computePixelSizeVector(viewport, projection, modelView));
+        return detail::isSmallFeature(bound, _vectors[frame], pixelSize);
+    }
+
+private:
+    std::vector<osg::Vec4> _vectors;
+    std::vector<unsigned char> _known;
+};
 
 /** Whether a box in a frame lies wholly outside one plane of a frustum given in eye space (the projection's culling
   * set's). The visitor tests the planes moved into the box's frame; a box is outside a plane when its farthest corner

@@ -202,15 +202,8 @@ bool InstancedCull::isInstanceableNow(const osg::StateSet* state)
 
 bool InstancedCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame)
 {
-    if (!bound.valid()) return false; // the visitor never tests it (the node is not culling-active)
-    if (!_state._hasPixelSizeVector[frame])
-    {
-        // As osg::CullStack::pushCullingSet() makes it for this matrix.
-        _state._pixelSizeVectors[frame] = osg::CullingSet::computePixelSizeVector(
-            *_cv.getViewport(), *_cv.getProjectionMatrix(), _state._modelViews[frame]);
-        _state._hasPixelSizeVector[frame] = 1;
-    }
-    return detail::isSmallFeature(bound, _state._pixelSizeVectors[frame], _smallFeaturePixelSize);
+    return _state._pixelSizeVectors.isSmallFeature(bound, frame, *_cv.getViewport(), *_cv.getProjectionMatrix(),
+                                                   _state._modelViews[frame], _smallFeaturePixelSize);
 }
 
 void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict)
@@ -220,8 +213,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     const std::size_t numFrames = joints.size() + 1;
     std::vector<osg::Matrixd>& modelViews = _state._modelViews;
     modelViews.resize(numFrames);
-    _state._hasPixelSizeVector.assign(numFrames, 0);
-    _state._pixelSizeVectors.resize(numFrames);
+    _state._pixelSizeVectors.reset(numFrames);
     // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's), then
     // each joint's, parents first, as ActorCull composes them.
     composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());

@@ -18,6 +18,7 @@
 #define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
 
 #include <osgActor/detail/ActorCullPlan.h>
+#include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/InstancedDraw.h>
 
 #include <osg/Image>
@@ -133,8 +134,7 @@ private:
     // The working space of one cull, kept so that a steady frame allocates nothing.
     std::vector<std::pair<const osg::StateSet*, bool>> _stateVerdicts; // this cull's
     std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
-    std::vector<osg::Vec4> _pixelSizeVectors; // per frame, where _hasPixelSizeVector says
-    std::vector<unsigned char> _hasPixelSizeVector;
+    FramePixelSizeVectors _pixelSizeVectors;  // per frame, made where a test needs it
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
 };
