@@ -33,7 +33,7 @@ osg::ref_ptr<osg::Program> InstancedActorGroup::createRigidProgram(bool instance
     osg::ref_ptr<osg::Program> program = new osg::Program;
     program->setName(instanced ? "osgActor instanced rigid parts" : "osgActor rigid parts, one at a time");
     program->addShader(new osg::Shader(
-        osg::Shader::VERTEX, prelude + shaders::kLightingCompatibility + shaders::kInstancedRigidVertex));
+        osg::Shader::VERTEX, prelude + shaders::kLightingCompatibility + shaders::kInstanceData + shaders::kInstancedRigidVertex));
     program->addShader(
         new osg::Shader(osg::Shader::FRAGMENT, std::string("#version 150 compatibility\n") + shaders::kInstancedRigidFragment));
     return program;
@@ -69,6 +69,8 @@ InstancedActorGroup::Statistics InstancedActorGroup::getStatistics() const
     statistics.actorsOrdinary = s.actorsOrdinary;
     statistics.draws = s.draws;
     statistics.instances = s.instances;
+    statistics.skinnedDraws = s.skinnedDraws;
+    statistics.skinnedInstances = s.skinnedInstances;
     return statistics;
 }
 

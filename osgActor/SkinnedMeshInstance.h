@@ -76,6 +76,11 @@ public:
     /** Model space, as of the last updateMatrices(). */
     const osg::BoundingBox& getBound() const { return _bound; }
 
+    /** The palette rows of a program variant (writeSkinPaletteRows()) from the current matrices, at rows. */
+    void writePaletteRows(const SkinningProgramKey& key, float* rows) const
+    {
+        writeSkinPaletteRows(paletteLayoutOf(key), _matrices, _normalMatrices, _dualQuaternions, rows);
+    }
     /** This frame's palette state set, filled from the matrices the first time a frame asks. */
     osg::StateSet* preparePalette(unsigned frame, const SkinningProgramKey& key, const Skin& skin);
     /** This frame's skinned geometry, skinned on the CPU the first time a frame asks. */

@@ -59,7 +59,8 @@ layout(location = 0) out vec4 osgActor_fragColour;
 const char* versionLine(const SkinningProgramKey& key)
 {
     if (key.profile == SkinningProfile::Core) return "#version 330\n";
-    const bool buffer = key.skinning && key.palette == SkinPaletteStorage::TextureBuffer;
+    const bool buffer = key.skinning && (key.palette == SkinPaletteStorage::TextureBuffer ||
+                                         key.instancing == SkinInstancing::PerInstance);
     return buffer ? "#version 150 compatibility\n" : "#version 120\n";
 }
 
@@ -79,6 +80,8 @@ std::string variantDefines(const SkinningProgramKey& key)
     out << ")\n";
     out << "#define OSGACTOR_FIXED_FUNCTION_OUTPUTS " << (key.fragmentProgram ? 1 : 0) << "\n";
     out << "#define OSGACTOR_EYE_LINEAR_UNITS " << static_cast<unsigned>(key.eyeLinearTexGenUnits) << "\n";
+    out << "#define OSGACTOR_INSTANCED_ARITHMETIC " << (key.instancing != SkinInstancing::None ? 1 : 0) << "\n";
+    out << "#define OSGACTOR_INSTANCED " << (key.instancing == SkinInstancing::PerInstance ? 1 : 0) << "\n";
     return out.str();
 }
 
@@ -100,7 +103,10 @@ SkinningProgramKey canonical(SkinningProgramKey key)
     {
         key.lights = SkinningProgramKey().lights;
         key.fragmentProgram = nullptr;
+        key.instancing = SkinInstancing::None;
     }
+    // An instance's palette is in the instances' buffer, whatever the mesh's storage.
+    if (key.instancing == SkinInstancing::PerInstance) key.palette = SkinPaletteStorage::TextureBuffer;
     if (!key.fragmentProgram) key.eyeLinearTexGenUnits = 0;
     key.eyeLinearTexGenUnits &= 0xfe; // unit 0's coordinates are the mesh's own
     if (key.influences != 8) key.influences = 4;
@@ -127,7 +133,7 @@ bool SkinningProgramKey::operator<(const SkinningProgramKey& other) const
 {
     auto tie = [](const SkinningProgramKey& k) {
         return std::make_tuple(k.profile, k.skinning, k.method, k.inverseTranspose, k.influences, k.palette, k.lights,
-                               k.fragmentProgram, k.eyeLinearTexGenUnits);
+                               k.fragmentProgram, k.eyeLinearTexGenUnits, k.instancing);
     };
     return tie(*this) < tie(other);
 }
@@ -156,6 +162,7 @@ std::string skinningShaderSource(const SkinningProgramKey& given, osg::Shader::T
         source += core ? kCoreVertexNames : kCompatibilityNames;
         source += variantDefines(key);
         source += core ? shaders::kLightingCore : shaders::kLightingCompatibility;
+        if (key.instancing != SkinInstancing::None) source += shaders::kInstanceData;
         source += shaders::kSkinnedMeshVertex;
     }
     else
@@ -175,7 +182,11 @@ osg::ref_ptr<osg::Program> createSkinningProgram(const SkinningProgramKey& given
     if (key.skinning)
         name << ", " << (key.method == SkinningMethod::DualQuaternion ? "dual quaternions" : "linear blend")
              << (key.inverseTranspose ? ", inverse-transposed normals" : "") << ", " << key.influences
-             << " influences, " << (key.palette == SkinPaletteStorage::TextureBuffer ? "texture buffer" : "uniforms");
+             << " influences, "
+             << (key.instancing == SkinInstancing::PerInstance      ? "instanced"
+                 : key.palette == SkinPaletteStorage::TextureBuffer ? "texture buffer"
+                                                                    : "uniforms")
+             << (key.instancing == SkinInstancing::OneAtATime ? ", the instanced arithmetic one at a time" : "");
     else
         name << ", no skinning";
     if (key.fragmentProgram) name << ", with the fragment shaders of '" << key.fragmentProgram->getName() << "'";
@@ -250,8 +261,9 @@ osg::StateSet* getSkinningProgramStateSet(const SkinningProgramKey& given)
         entry.fragmentProgram = key.fragmentProgram;
         stateSet = new osg::StateSet;
         stateSet->setAttribute(createSkinningProgram(key).get());
+        const char* sampler = key.instancing == SkinInstancing::PerInstance ? "osgActor_instances" : "osgActor_palette";
         if (key.skinning && key.palette == SkinPaletteStorage::TextureBuffer)
-            stateSet->addUniform(new osg::Uniform("osgActor_palette", static_cast<int>(kSkinPaletteTextureUnit)));
+            stateSet->addUniform(new osg::Uniform(sampler, static_cast<int>(kSkinPaletteTextureUnit)));
     }
     return stateSet.get();
 }

@@ -64,6 +64,10 @@ tsan() {
     for model in DrawThreadPerContext CullDrawThreadPerContext; do
         xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" "$model" 40
     done
+    # Skinned instancing: each frame's palettes written into its instance buffer by one cull while the previous frame's
+    # are drawn.
+    xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" DrawThreadPerContext 40 \
+        instanced
     # OSG's own race between that model's second camera's cull and the next update: the file says which and why.
     # (TSan reads one suppressions file: the common one and this one together.)
     cat "$supp/tsan.supp" "$supp/tsan-cull-thread-per-camera.supp" > "$build/tsan-cull-thread-per-camera.supp"

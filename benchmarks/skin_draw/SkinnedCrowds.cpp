@@ -1,6 +1,7 @@
 #include "SkinnedCrowds"
 
 #include <osgActor/GlmOsg>
+#include <osgActor/InstancedActorGroup>
 #include <osgActor/RiggedGeometry>
 #include <osgActor/RiggedModelActor>
 #include <osgActor/import/RiggedModelFile>
@@ -25,7 +26,9 @@ namespace bench {
 
 namespace {
 
-osg::ref_ptr<osg::Group> makeOsgActorCrowd(unsigned n, bool cpu, const std::string& file)
+/** group: null for a plain group of the file's scene nodes, else the group to put the actors in. */
+osg::ref_ptr<osg::Group> makeOsgActorCrowd(unsigned n, bool cpu, const std::string& file,
+                                           osgActor::InstancedActorGroup* group = nullptr)
 {
     osgActor::RiggedModelActorOptions options;
     options.skinning = cpu ? osgActor::SkinnedMesh::CPU_SKINNING : osgActor::SkinnedMesh::GPU_SKINNING;
@@ -37,8 +40,33 @@ osg::ref_ptr<osg::Group> makeOsgActorCrowd(unsigned n, bool cpu, const std::stri
         return nullptr;
     }
     osg::ref_ptr<osg::Group> crowd = new osg::Group;
-    for (unsigned a = 0; a < n; ++a) crowd->addChild(osg::clone(read.sceneNode.get(), osg::CopyOp::SHALLOW_COPY));
+    if (!group)
+    {
+        for (unsigned a = 0; a < n; ++a) crowd->addChild(osg::clone(read.sceneNode.get(), osg::CopyOp::SHALLOW_COPY));
+        return crowd;
+    }
+    // The group's children must be the actors: the file's root scale (a transform above the actor, if any) goes
+    // above the group.
+    group->setNumThreads(1);
+    for (unsigned a = 0; a < n; ++a) group->addChild(osg::clone(read.actor.get(), osg::CopyOp::SHALLOW_COPY));
+    if (read.sceneNode == read.actor)
+    {
+        crowd->addChild(group);
+        return crowd;
+    }
+    osg::ref_ptr<osg::Group> above = static_cast<osg::Group*>(read.sceneNode->clone(osg::CopyOp::SHALLOW_COPY));
+    above->removeChildren(0, above->getNumChildren());
+    above->addChild(group);
+    crowd->addChild(above.get());
     return crowd;
+}
+
+osg::ref_ptr<osg::Group> makeOsgActorGroupCrowd(unsigned n, osgActor::InstancedActorGroup::DrawMode mode,
+                                                const std::string& file)
+{
+    osg::ref_ptr<osgActor::InstancedActorGroup> group = new osgActor::InstancedActorGroup;
+    group->setDrawMode(mode);
+    return makeOsgActorCrowd(n, false, file, group.get());
 }
 
 bool isUnit(const glm::dvec3& scale) { return glm::length(scale - glm::dvec3(1.0)) < 1e-5; }
@@ -204,6 +232,8 @@ const char* nameOf(SkinnedSystem system)
     {
     case SkinnedSystem::OsgActorGpu: return "osgActor_gpu";
     case SkinnedSystem::OsgActorCpu: return "osgActor_cpu";
+    case SkinnedSystem::OsgActorGpuGroup: return "osgActor_gpu_group";
+    case SkinnedSystem::OsgActorGpuInstanced: return "osgActor_gpu_instanced";
     case SkinnedSystem::OsgAnimationSoftware: return "osgAnimation_software";
     case SkinnedSystem::OsgAnimationHardware: return "osgAnimation_hardware";
     }
@@ -216,6 +246,10 @@ osg::ref_ptr<osg::Group> makeSkinnedCrowd(SkinnedSystem system, unsigned n, cons
     {
     case SkinnedSystem::OsgActorGpu: return makeOsgActorCrowd(n, false, file);
     case SkinnedSystem::OsgActorCpu: return makeOsgActorCrowd(n, true, file);
+    case SkinnedSystem::OsgActorGpuGroup:
+        return makeOsgActorGroupCrowd(n, osgActor::InstancedActorGroup::ORDINARY, file);
+    case SkinnedSystem::OsgActorGpuInstanced:
+        return makeOsgActorGroupCrowd(n, osgActor::InstancedActorGroup::INSTANCED, file);
     case SkinnedSystem::OsgAnimationSoftware: return makeOsgAnimationCrowd(n, false, file);
     case SkinnedSystem::OsgAnimationHardware: return makeOsgAnimationCrowd(n, true, file);
     }

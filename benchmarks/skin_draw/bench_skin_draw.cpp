@@ -1,14 +1,16 @@
 // Skinned characters, the whole frame, osgActor against osgAnimation in one run (issue 26, item 10): N = 1, 100 and
-// 1000 Cesium Men playing the file's walk, built from the same import of the same file (SkinnedCrowds), in four
-// systems: osgActor's SkinnedMesh on the GPU and on the CPU path, osgAnimation's RigGeometry with RigTransformSoftware
-// and with RigTransformHardware. Two modes:
+// 1000 Cesium Men playing the file's walk, built from the same import of the same file (SkinnedCrowds), in six
+// systems: osgActor's SkinnedMesh on the GPU and on the CPU path, the GPU path in an InstancedActorGroup drawing
+// ordinarily and instanced (skinned instancing, issue 28), osgAnimation's RigGeometry with RigTransformSoftware and
+// with RigTransformHardware. Two modes:
 //   update_cull  the update and cull traversals (osgUtil::SceneView, no graphics context): osgActor's skinning
 //                matrices and bounds in update, its CPU skinning or palette upload in cull; osgAnimation's skinning
 //                or palette in update;
 //   frame_draw   update, cull and draw through OSMesa (llvmpipe, 320 x 240), the pixels read back: the GPU paths'
 //                vertex shaders run on the CPU here. With OSGACTOR_BENCH_OUT set, each system's first frame is
 //                written there as a PNG, to see that the peers draw the same crowd.
-// Reported per frame; the run ends with a table of each system's time over osgAnimation's at the same N and mode.
+// Reported per frame; the run ends with a table of each system's time over osgAnimation's, and over the ordinary
+// group's, at the same N and mode.
 #include "SkinnedCrowds"
 
 #include "../actors/FrameLoop"
@@ -30,7 +32,8 @@ namespace {
 
 using bench::SkinnedSystem;
 
-const SkinnedSystem kSystems[] = {SkinnedSystem::OsgActorGpu, SkinnedSystem::OsgActorCpu,
+const SkinnedSystem kSystems[] = {SkinnedSystem::OsgActorGpu,          SkinnedSystem::OsgActorCpu,
+                                  SkinnedSystem::OsgActorGpuGroup,     SkinnedSystem::OsgActorGpuInstanced,
                                   SkinnedSystem::OsgAnimationSoftware, SkinnedSystem::OsgAnimationHardware};
 
 std::string cesiumManFile() { return std::string(OSGACTOR_BENCH_DATA_DIR) + "/models/CesiumMan/CesiumMan.gltf"; }
@@ -57,7 +60,8 @@ void updateAndCull(benchmark::State& state, SkinnedSystem system)
     }
     bench::FrameLoop loop(crowd.get(), true);
     for (int i = 0; i < 3; ++i) loop.frame(); // osgAnimation links its channels and builds its rigs on first frames
-    if (loop.lastDrawables() != n)
+    // Instanced, one draw holds them all.
+    if (loop.lastDrawables() != (system == SkinnedSystem::OsgActorGpuInstanced ? 1u : n))
     {
         state.SkipWithError("not every character was culled in");
         return;
@@ -120,17 +124,21 @@ public:
 
     void printRatios() const
     {
-        std::printf("\n%-12s %6s %-22s %16s %12s %12s\n", "mode", "N", "system", "ns/frame", "/osgAnim sw",
-                    "/osgAnim hw");
+        std::printf("\n%-12s %6s %-22s %16s %12s %12s %12s\n", "mode", "N", "system", "ns/frame", "/osgAnim sw",
+                    "/osgAnim hw", "/gpu group");
         for (const auto& entry : _nsPerFrame)
         {
             const std::string& mode = std::get<0>(entry.first);
             const long n = std::get<1>(entry.first);
             const auto software = _nsPerFrame.find(std::make_tuple(mode, n, std::string("osgAnimation_software")));
             const auto hardware = _nsPerFrame.find(std::make_tuple(mode, n, std::string("osgAnimation_hardware")));
-            std::printf("%-12s %6ld %-22s %16.0f %12.3f %12.3f\n", mode.c_str(), n, std::get<2>(entry.first).c_str(),
-                        entry.second, software != _nsPerFrame.end() ? entry.second / software->second : 0.0,
-                        hardware != _nsPerFrame.end() ? entry.second / hardware->second : 0.0);
+            // Instanced against the same group drawing ordinarily.
+            const auto group = _nsPerFrame.find(std::make_tuple(mode, n, std::string("osgActor_gpu_group")));
+            std::printf("%-12s %6ld %-22s %16.0f %12.3f %12.3f %12.3f\n", mode.c_str(), n,
+                        std::get<2>(entry.first).c_str(), entry.second,
+                        software != _nsPerFrame.end() ? entry.second / software->second : 0.0,
+                        hardware != _nsPerFrame.end() ? entry.second / hardware->second : 0.0,
+                        group != _nsPerFrame.end() ? entry.second / group->second : 0.0);
         }
     }
 

@@ -3,7 +3,11 @@
 #include <osgActor/ActorNode>
 #include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/CullArithmetic.h>
+#include <osgActor/detail/InstancedSkin.h>
 #include <osgActor/detail/JointDrawBatch.h>
+#include <osgActor/SkinnedMesh>
+
+#include "../SkinnedMeshDrawState.h"
 
 #include <osg/Material>
 #include <osg/TextureBuffer>
@@ -18,13 +22,14 @@ namespace detail {
 // --- InstancedFrame ---
 
 InstancedFrame::InstancedFrame(osg::StateSet* programState, unsigned textureUnit)
-    : _texels(new osg::Image), _stateSet(new osg::StateSet)
+    : _texels(new osg::Image), _stateSet(new osg::StateSet), _bufferStateSet(new osg::StateSet)
 {
     _texels->allocateImage(256, 1, 1, GL_RGBA, GL_FLOAT);
     _texels->setInternalTextureFormat(GL_RGBA32F_ARB);
     osg::ref_ptr<osg::TextureBuffer> buffer = new osg::TextureBuffer(_texels.get());
     buffer->setInternalFormat(GL_RGBA32F_ARB);
     _stateSet->setTextureAttribute(textureUnit, buffer.get());
+    _bufferStateSet->setTextureAttribute(textureUnit, buffer.get());
     _stateSet->merge(*programState);
 }
 
@@ -104,7 +109,13 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
 {
     _state._statistics = InstancedCullState::Statistics();
     _state._stateVerdicts.clear();
-    for (InstancedCullState::Batch& batch : _state._batches) batch.matrices.clear();
+    _state._skinStateVerdicts.clear();
+    for (InstancedCullState::Batch& batch : _state._batches)
+    {
+        batch.data.clear();
+        // A skinned mesh's setup may change between culls: found again when an actor first needs it.
+        batch.texelsKnown = !batch.mesh;
+    }
     // Verdicts of plans that only the cache still holds (their actors made new ones, or are gone) are dropped now and
     // then, never while a plan in use could be among them.
     if (_state._verdicts.size() > 2 * std::size_t(group.getNumChildren()) + 64)
@@ -134,7 +145,8 @@ void InstancedCull::cullChild(ActorNode& actor)
     {
         const ActorCullPlan& plan =
             actorState.currentPlan(actor, actor._cullPlanVersion.load(std::memory_order_relaxed), true);
-        if (const InstancedCullState::PlanVerdict* verdict = instanceableVerdict(plan))
+        const InstancedCullState::PlanVerdict* verdict = instanceableVerdict(plan);
+        if (verdict && canInstanceSkins(actor, *verdict))
         {
             ++_state._statistics.actorsInstanced;
             // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
@@ -153,23 +165,31 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
     {
-        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}};
+        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}};
         const osg::StateSet* geodeState = nullptr;
+        auto note = [](std::vector<const osg::StateSet*>& states, const osg::StateSet* state) {
+            if (state && std::find(states.begin(), states.end(), state) == states.end()) states.push_back(state);
+        };
         for (const Step& step : plan.getSteps())
         {
             // A plain drawable of the plan is an osg::Geometry or osg::ShapeDrawable (ActorCullPlan::isPlainDrawable).
             const osg::Geometry* geometry =
                 step.kind == ActorCullPlan::DRAWABLE ? static_cast<const osg::Geometry*>(step.node->asDrawable()) : nullptr;
+            SkinnedMesh* mesh = InstancedSkin::meshOfStep(step);
             const bool plain = step.kind == ActorCullPlan::END_JOINT || step.kind == ActorCullPlan::END_GEODE ||
                                (step.kind == ActorCullPlan::JOINT && !step.stateSet) ||
-                               step.kind == ActorCullPlan::GEODE || (geometry && InstancedDraw::canDraw(*geometry));
+                               step.kind == ActorCullPlan::GEODE || (geometry && InstancedDraw::canDraw(*geometry)) ||
+                               mesh;
             verdict.plain = verdict.plain && plain;
-            const bool stated = step.kind == ActorCullPlan::GEODE || step.kind == ActorCullPlan::DRAWABLE;
-            if (stated && step.stateSet &&
-                std::find(verdict.states.begin(), verdict.states.end(), step.stateSet) == verdict.states.end())
-                verdict.states.push_back(step.stateSet);
+            // The state sets a drawable is drawn with: its geode's and its own, checked as its kind is drawn.
+            if (geometry) note(verdict.states, geodeState), note(verdict.states, step.stateSet);
+            if (mesh) note(verdict.skinStates, geodeState); // the mesh's own is checked at each cull
             if (step.kind == ActorCullPlan::GEODE) geodeState = step.stateSet;
-            verdict.batchOfStep.push_back(geometry && verdict.plain ? batchOf(geodeState, *geometry) : 0u);
+            if (step.kind == ActorCullPlan::END_GEODE) geodeState = nullptr;
+            unsigned batch = 0;
+            if (verdict.plain && geometry) batch = batchOf(geodeState, *geometry);
+            if (verdict.plain && mesh) verdict.skinBatches.push_back(batch = skinBatchOf(geodeState, *mesh));
+            verdict.batchOfStep.push_back(batch);
         }
         found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
     }
@@ -177,7 +197,33 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
     if (!verdict.plain) return nullptr;
     for (const osg::StateSet* state : verdict.states)
         if (!isInstanceableNow(state)) return nullptr;
+    for (const osg::StateSet* state : verdict.skinStates)
+        if (!isSkinInstanceableNow(state)) return nullptr;
     return &verdict;
+}
+
+bool InstancedCull::canInstanceSkins(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict)
+{
+    _state._skinInstances.clear();
+    if (verdict.skinBatches.empty()) return true;
+    // The instanced program is of the compatibility profile (GLSL 1.50 compatibility).
+    if (skinningProfileOf(_cv.getState()) != SkinningProfile::Compatibility) return false;
+    for (unsigned b : verdict.skinBatches)
+    {
+        InstancedCullState::Batch& batch = _state._batches[b];
+        if (!batch.texelsKnown)
+        {
+            batch.texels = InstancedSkin::texelsPerInstance(*batch.mesh);
+            batch.texelsKnown = true;
+        }
+        // The mesh's cull callback and state set, which the plan does not watch (the mesh is not a node it plans).
+        SkinnedMesh& mesh = *batch.mesh;
+        if (!batch.texels || mesh.getCullCallback() || !isSkinInstanceableNow(mesh.getStateSet())) return false;
+        const SkinnedMeshInstance* instance = InstancedSkin::instanceOf(mesh, actor);
+        if (!instance) return false;
+        _state._skinInstances.push_back(instance);
+    }
+    return true;
 }
 
 unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable)
@@ -186,7 +232,18 @@ unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geom
     auto found = _state._batchOfKey.find(key);
     if (found != _state._batchOfKey.end()) return found->second;
     const unsigned batch = static_cast<unsigned>(_state._batches.size());
-    _state._batches.push_back({geodeState, &drawable, {}});
+    _state._batches.push_back({geodeState, &drawable, nullptr, {}, 4u, true});
+    _state._batchOfKey.emplace(key, batch);
+    return batch;
+}
+
+unsigned InstancedCull::skinBatchOf(const osg::StateSet* geodeState, SkinnedMesh& mesh)
+{
+    const InstancedCullState::BatchKey key{geodeState, &mesh};
+    auto found = _state._batchOfKey.find(key);
+    if (found != _state._batchOfKey.end()) return found->second;
+    const unsigned batch = static_cast<unsigned>(_state._batches.size());
+    _state._batches.push_back({geodeState, nullptr, &mesh, {}, 0u, false});
     _state._batchOfKey.emplace(key, batch);
     return batch;
 }
@@ -197,6 +254,15 @@ bool InstancedCull::isInstanceableNow(const osg::StateSet* state)
         if (known.first == state) return known.second;
     const bool verdict = isInstanceableState(state);
     _state._stateVerdicts.emplace_back(state, verdict);
+    return verdict;
+}
+
+bool InstancedCull::isSkinInstanceableNow(const osg::StateSet* state)
+{
+    for (const auto& known : _state._skinStateVerdicts)
+        if (known.first == state) return known.second;
+    const bool verdict = InstancedSkin::isInstanceableState(state);
+    _state._skinStateVerdicts.emplace_back(state, verdict);
     return verdict;
 }
 
@@ -230,6 +296,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
     // is in is skipped with its subtree.
     const std::vector<Step>& steps = plan.getSteps();
+    unsigned skin = 0; // the next of the actor's skinned meshes
     for (std::size_t i = 0; i < steps.size();)
     {
         const Step& step = steps[i];
@@ -251,7 +318,13 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         case ActorCullPlan::DRAWABLE:
             if (!isMasked(step.mask)) addDrawable(step, verdict.batchOfStep[i]);
             break;
-        default: break; // the ends; no ORDINARY step in an instanceable plan
+        case ActorCullPlan::ORDINARY:
+            // A skinned mesh (the only ORDINARY step of an instanceable plan): its mask now, as its accept() tests it
+            // (the plan does not watch it).
+            if (!isMasked(step.node->getNodeMask())) addSkinned(*_state._skinInstances[skin], verdict.batchOfStep[i]);
+            ++skin;
+            break;
+        default: break; // the ends
         }
         ++i;
     }
@@ -271,10 +344,34 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
         if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
     }
     if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
-    std::vector<float>& matrices = _state._batches[batch].matrices;
+    std::vector<float>& matrices = _state._batches[batch].data;
     const double* m = modelView.ptr();
     // As OSG hands a matrix to OpenGL (glLoadMatrixd, which keeps floats): each double rounded to the nearest float.
     for (int k = 0; k < 16; ++k) matrices.push_back(static_cast<float>(m[k]));
+}
+
+void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
+{
+    InstancedCullState::Batch& batch = _state._batches[b];
+    SkinnedMesh& mesh = *batch.mesh;
+    // As SkinnedMesh's cull: drawn from the actor's first update on, its bound (model space, the actor's frame)
+    // against the view.
+    if (!InstancedSkin::hasMatrices(instance)) return;
+    const osg::Matrixd& modelView = _state._modelViews[0];
+    const osg::Polytope& frustum = _cv.getProjectionCullingStack().back().getFrustum();
+    if (_frustumCulling && mesh.isCullingActive() && isOutsideFrustum(InstancedSkin::boundOf(instance), modelView, frustum))
+        return;
+    // Then what the visitor does with the bind-pose geometry it is handed, whose box is the union of the actors'
+    // bounds: the box against the frustum, near and far from it, its depth.
+    const osg::Geometry& geometry = *InstancedSkin::geometryOf(mesh);
+    const osg::BoundingBox& box = geometry.getBoundingBox();
+    if (_frustumCulling && geometry.isCullingActive() && isOutsideFrustum(box, modelView, frustum)) return;
+    if (_computeNearFar && box.valid() && !_cv.updateCalculatedNearFar(modelView, geometry, true)) return;
+    if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return;
+    std::vector<float>& data = batch.data;
+    const std::size_t at = data.size();
+    data.resize(at + 4 * std::size_t(batch.texels));
+    InstancedSkin::writeInstance(mesh, instance, modelView, data.data() + at);
 }
 
 InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
@@ -287,39 +384,70 @@ InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
 
 void InstancedCull::emitBatches(unsigned textureUnit)
 {
-    unsigned texels = 0;
-    for (const InstancedCullState::Batch& batch : _state._batches)
-        texels += static_cast<unsigned>(batch.matrices.size() / 4);
+    std::size_t texels = 0;
+    for (const InstancedCullState::Batch& batch : _state._batches) texels += batch.data.size() / 4;
     if (texels == 0) return;
     InstancedFrame& frame = *acquireFrame(textureUnit);
-    float* out = frame.reserveTexels(texels);
+    float* out = frame.reserveTexels(static_cast<unsigned>(texels));
     unsigned base = 0, drawIndex = 0;
-    osg::RefMatrix* groupModelView = _cv.getModelViewMatrix();
     for (const InstancedCullState::Batch& batch : _state._batches)
     {
-        const unsigned count = static_cast<unsigned>(batch.matrices.size() / 16);
+        const unsigned count = batch.data.empty() ? 0u : static_cast<unsigned>(batch.data.size() / (4 * batch.texels));
         if (count == 0) continue;
-        std::copy(batch.matrices.begin(), batch.matrices.end(), out + 4 * base);
-        InstancedDraw* draw = frame.draw(drawIndex++);
-        draw->set(batch.drawable, static_cast<int>(base), count);
+        std::copy(batch.data.begin(), batch.data.end(), out + 4 * std::size_t(base));
+        InstancedDraw& draw = *frame.draw(drawIndex++);
+        const osg::Geometry* geometry = batch.mesh ? InstancedSkin::geometryOf(*batch.mesh) : batch.drawable;
+        draw.set(geometry, static_cast<int>(base), count, static_cast<int>(batch.texels));
         // A dynamic drawable makes osgViewer's next update wait until it is drawn: so does its instanced draw.
-        draw->setDataVariance(batch.drawable->getDataVariance() == osg::Object::DYNAMIC ? osg::Object::DYNAMIC
-                                                                                          : osg::Object::STATIC);
-        base += 4 * count;
-        // The drawable's states as the ordinary traversal pushes them (the geode's, then its own), then the frame's.
-        if (batch.geodeState) _cv.pushStateSet(batch.geodeState);
-        if (const osg::StateSet* own = batch.drawable->getStateSet()) _cv.pushStateSet(own);
-        _cv.pushStateSet(frame.getStateSet());
-        // The leaf's matrix is the group's: the program takes each instance's from the buffer, the projection from
-        // the leaf.
-        _cv.addDrawableAndDepth(draw, groupModelView, 0.0f);
-        _cv.popStateSet();
-        if (batch.drawable->getStateSet()) _cv.popStateSet();
-        if (batch.geodeState) _cv.popStateSet();
-        ++_state._statistics.draws;
-        _state._statistics.instances += count;
+        const osg::Drawable& drawn = batch.mesh ? static_cast<const osg::Drawable&>(*batch.mesh) : *batch.drawable;
+        draw.setDataVariance(drawn.getDataVariance() == osg::Object::DYNAMIC ? osg::Object::DYNAMIC
+                                                                              : osg::Object::STATIC);
+        base += batch.texels * count;
+        emitLeaf(batch, draw, frame);
+        if (batch.mesh)
+        {
+            ++_state._statistics.skinnedDraws;
+            _state._statistics.skinnedInstances += count;
+        }
+        else
+        {
+            ++_state._statistics.draws;
+            _state._statistics.instances += count;
+        }
     }
     frame.dirty();
+}
+
+void InstancedCull::emitLeaf(const InstancedCullState::Batch& batch, InstancedDraw& draw, InstancedFrame& frame)
+{
+    // The drawable's states as the ordinary traversal pushes them (the geode's, then its own), then the frame's.
+    unsigned pushed = 0;
+    auto push = [&](const osg::StateSet* state) {
+        if (!state) return;
+        _cv.pushStateSet(state);
+        ++pushed;
+    };
+    push(batch.geodeState);
+    if (batch.mesh)
+    {
+        // As SkinnedMesh's cull: its own state set, then the program of the variant the state in effect asks for
+        // (the lights on, a fragment-only program), here its instanced variant, which reads the palettes from the
+        // frame's buffer.
+        push(batch.mesh->getStateSet());
+        SkinningProgramKey key = InstancedSkin::programKey(*batch.mesh);
+        applyDrawState(_cv.getCurrentStateGraph(), key);
+        push(getSkinningProgramStateSet(key));
+        push(frame.getBufferStateSet());
+    }
+    else
+    {
+        push(batch.drawable->getStateSet());
+        push(frame.getStateSet());
+    }
+    // The leaf's matrix is the group's: the program takes each instance's from the buffer, the projection from the
+    // leaf.
+    _cv.addDrawableAndDepth(&draw, _cv.getModelViewMatrix(), 0.0f);
+    for (unsigned i = 0; i < pushed; ++i) _cv.popStateSet();
 }
 
 } // namespace detail

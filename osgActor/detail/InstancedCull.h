@@ -10,6 +10,9 @@
 // taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an
 // InstancedDraw of the drawable for all its instances, under the geode's and the drawable's state sets and the
 // frame's state set (the program and the texture buffer of all instances' matrices, as floats, 4 texels each).
+// A skinned mesh in the actor's frame (InstancedSkin.h) adds one instance to the batch of its (geode state set, mesh):
+// its model-view matrix and its palette, drawn by one instanced draw of the mesh's bind-pose geometry under the mesh's
+// instanced program, in the same texture buffer after the rigid parts' matrices.
 //
 // The matrices of a frame live in an InstancedFrame taken from a pool: one the render graph no longer holds (every
 // draw of it held by the pool alone), so that with osgViewer drawing on another thread the cull of the next frame
@@ -33,6 +36,8 @@
 namespace osgActor {
 
 class ActorNode;
+class SkinnedMesh;
+class SkinnedMeshInstance;
 
 namespace detail {
 
@@ -50,7 +55,10 @@ public:
     InstancedDraw* draw(unsigned i);
     /** Marks the texels written for upload. */
     void dirty() { _texels->dirty(); }
+    /** The texture buffer and the rigid parts' program. */
     osg::StateSet* getStateSet() const { return _stateSet.get(); }
+    /** The texture buffer alone, for the skinned meshes' draws, under their own programs. */
+    osg::StateSet* getBufferStateSet() const { return _bufferStateSet.get(); }
 
 protected:
     ~InstancedFrame() override = default;
@@ -58,6 +66,7 @@ protected:
 private:
     osg::ref_ptr<osg::Image> _texels;
     osg::ref_ptr<osg::StateSet> _stateSet;
+    osg::ref_ptr<osg::StateSet> _bufferStateSet;
     std::vector<osg::ref_ptr<InstancedDraw>> _draws;
 };
 
@@ -71,13 +80,16 @@ public:
     bool tryAcquire() { return !_busy.test_and_set(std::memory_order_acquire); }
     void release() { _busy.clear(std::memory_order_release); }
 
-    /** What the last cull did: actors drawn instanced and ordinarily, instanced draws and the instances they drew. */
+    /** What the last cull did: actors drawn instanced and ordinarily, instanced draws of rigid parts and of skinned
+      * meshes and the instances they drew. */
     struct Statistics
     {
         unsigned actorsInstanced = 0;
         unsigned actorsOrdinary = 0;
         unsigned draws = 0;
         unsigned instances = 0;
+        unsigned skinnedDraws = 0;
+        unsigned skinnedInstances = 0;
     };
     Statistics getStatistics() const { return _statistics; }
 
@@ -93,22 +105,33 @@ private:
 
     /** What decides whether an actor of a plan can be drawn instanced, found once per plan (plans are rebuilt, not
       * changed, when what they were made from changes): no step for the ordinary traversal, no state set on a joint,
-      * drawables InstancedDraw draws; and the distinct state sets of its geodes and drawables, whose contents OSG lets
-      * change in place, so checked at every cull (isInstanceableState(), once per state set per cull). */
+      * drawables InstancedDraw draws, skinned meshes InstancedSkin may take; and the distinct state sets of its geodes,
+      * drawables and skinned meshes, whose contents OSG lets change in place, so checked at every cull
+      * (isInstanceableState() or InstancedSkin::isInstanceableState(), once per state set per cull). */
     struct PlanVerdict
     {
         osg::ref_ptr<const ActorCullPlan> plan; // held, so that no other plan is made at its address
         bool plain;
         std::vector<const osg::StateSet*> states;
-        /** Per step, for its drawables: the batch it adds to (batches are kept, so the indices stay valid). */
+        std::vector<const osg::StateSet*> skinStates;
+        /** Per step, for its drawables and skinned meshes: the batch it adds to (batches are kept, so the indices stay
+          * valid). */
         std::vector<unsigned> batchOfStep;
+        /** The batches of its skinned meshes, in step order. */
+        std::vector<unsigned> skinBatches;
     };
-    /** The drawables of one (geode state set, drawable) and their instances' model-view matrices this cull. */
+    /** The drawables of one (geode state set, drawable) and their instances' data this cull: a rigid part's
+      * (drawable) model-view matrices, or a skinned mesh's (mesh) matrices and palettes. */
     struct Batch
     {
         const osg::StateSet* geodeState;
         const osg::Geometry* drawable;
-        std::vector<float> matrices; // 16 per instance, OSG's rows one after the other
+        SkinnedMesh* mesh;
+        std::vector<float> data; // texels * 4 floats per instance: OSG's rows one after the other, then a palette
+        /** Skinned: this cull's InstancedSkin::texelsPerInstance() (0: the mesh cannot be drawn instanced), once
+          * found (texelsKnown). Rigid: 4. */
+        unsigned texels;
+        bool texelsKnown;
     };
     struct BatchKey
     {
@@ -133,6 +156,8 @@ private:
     std::unordered_map<const ActorCullPlan*, PlanVerdict> _verdicts;
     // The working space of one cull, kept so that a steady frame allocates nothing.
     std::vector<std::pair<const osg::StateSet*, bool>> _stateVerdicts; // this cull's
+    std::vector<std::pair<const osg::StateSet*, bool>> _skinStateVerdicts; // this cull's
+    std::vector<const SkinnedMeshInstance*> _skinInstances; // the actor's, in step order
     std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
     FramePixelSizeVectors _pixelSizeVectors;  // per frame, made where a test needs it
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
@@ -162,17 +187,27 @@ private:
     void cullChild(ActorNode& actor);
     /** What decides whether an actor of the plan can be drawn instanced now, or null if it cannot. */
     const InstancedCullState::PlanVerdict* instanceableVerdict(const ActorCullPlan& plan);
-    /** The batch of a (geode state set, drawable), made on first use. */
+    /** The batch of a (geode state set, drawable) or (geode state set, skinned mesh), made on first use. */
     unsigned batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable);
+    unsigned skinBatchOf(const osg::StateSet* geodeState, SkinnedMesh& mesh);
     bool isInstanceableNow(const osg::StateSet* state);
+    bool isSkinInstanceableNow(const osg::StateSet* state);
+    /** Whether each of the actor's skinned meshes (the verdict's) draws it instanced this cull: their states in
+      * _skinInstances, in step order. */
+    bool canInstanceSkins(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict);
     /** Culls an instanceable actor by its plan and adds its drawables' instances; the actor's bound was found
       * visible. */
     void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict);
     bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
     void addDrawable(const Step& step, unsigned batch);
+    /** The actor's instance of a skinned mesh, culled as the mesh's own cull culls it. */
+    void addSkinned(const SkinnedMeshInstance& instance, unsigned batch);
     /** One leaf per batch, with this frame's texture buffer. */
     void emitBatches(unsigned textureUnit);
+    /** Pushes the state sets a batch's drawable is drawn with (the geode's and its own; a skinned mesh's program),
+      * adds its leaf, pops them. */
+    void emitLeaf(const InstancedCullState::Batch& batch, InstancedDraw& draw, InstancedFrame& frame);
     InstancedFrame* acquireFrame(unsigned textureUnit);
 
     osgUtil::CullVisitor& _cv;

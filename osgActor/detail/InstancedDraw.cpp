@@ -63,7 +63,7 @@ void drawInstanced(osg::State& state, const osg::PrimitiveSet& primitives, bool 
 
 } // namespace
 
-InstancedDraw::InstancedDraw() : _base(0), _count(0)
+InstancedDraw::InstancedDraw() : _base(0), _count(0), _texelsPerInstance(4)
 {
     // Drawn afresh every frame from the geometry's arrays: nothing of its own to compile or cache.
     setUseDisplayList(false);
@@ -97,23 +97,28 @@ bool InstancedDraw::canDraw(const osg::Geometry& geometry)
     return true;
 }
 
-void InstancedDraw::set(const osg::Geometry* geometry, int base, unsigned count)
+void InstancedDraw::set(const osg::Geometry* geometry, int base, unsigned count, int texelsPerInstance)
 {
     _geometry = geometry;
     _base = base;
     _count = count;
+    _texelsPerInstance = texelsPerInstance;
 }
 
 void InstancedDraw::drawImplementation(osg::RenderInfo& renderInfo) const
 {
     if (!_geometry || _count == 0) return;
     osg::State& state = *renderInfo.getState();
-    // The base is this draw's alone, not state OSG sorts by: set on the program the state graph applied.
+    // The base and the texels per instance are this draw's alone, not state OSG sorts by: set on the program the
+    // state graph applied.
     static const unsigned baseName = osg::Uniform::getNameID("osgActor_instanceBase");
+    static const unsigned texelsName = osg::Uniform::getNameID("osgActor_instanceTexels");
     if (const osg::Program::PerContextProgram* program = state.getLastAppliedProgramObject())
     {
-        const GLint location = program->getUniformLocation(baseName);
-        if (location >= 0) state.get<osg::GLExtensions>()->glUniform1i(location, _base);
+        const GLint base = program->getUniformLocation(baseName);
+        if (base >= 0) state.get<osg::GLExtensions>()->glUniform1i(base, _base);
+        const GLint texels = program->getUniformLocation(texelsName);
+        if (texels >= 0) state.get<osg::GLExtensions>()->glUniform1i(texels, _texelsPerInstance);
     }
     // What osg::Geometry::drawImplementation() does around its primitives, without a vertex array object of its own
     // (one per geometry and context would be the geometry's, which the ordinary path may be using).

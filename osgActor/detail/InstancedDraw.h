@@ -2,8 +2,9 @@
 // issue 28). The geometry is the user's, shared with every actor that hangs it below a joint and with the ordinary
 // path: it is not changed (no instance count set on its primitive sets, which another context or the ordinary path
 // may draw at the same moment). InstancedDraw sets up the geometry's arrays as osg::Geometry does, then issues each
-// primitive set as glDrawArraysInstanced / glDrawElementsInstanced for the instances of this frame, whose model-view
-// matrices the vertex shader reads from the frame's texture buffer from the given base (InstancedRigid.vert).
+// primitive set as glDrawArraysInstanced / glDrawElementsInstanced for the instances of this frame, whose data (a
+// model-view matrix, and a skinned mesh's palette after it) the vertex shader reads from the frame's texture buffer
+// from the given base (InstanceData.glsl).
 #ifndef OSGACTOR_DETAIL_INSTANCEDDRAW_H
 #define OSGACTOR_DETAIL_INSTANCEDDRAW_H 1
 
@@ -21,8 +22,8 @@ public:
       * elements of any index type), none instanced already, no draw callback of its own, and no colour per vertex. */
     static bool canDraw(const osg::Geometry& geometry);
 
-    /** Draws geometry for count instances whose matrices start at texel base (4 per instance). */
-    void set(const osg::Geometry* geometry, int base, unsigned count);
+    /** Draws geometry for count instances whose data start at texel base, texelsPerInstance texels each. */
+    void set(const osg::Geometry* geometry, int base, unsigned count, int texelsPerInstance = 4);
     const osg::Geometry* getGeometry() const { return _geometry.get(); }
     unsigned getNumInstances() const { return _count; }
 
@@ -40,6 +41,7 @@ private:
     osg::ref_ptr<const osg::Geometry> _geometry;
     int _base;
     unsigned _count;
+    int _texelsPerInstance;
 };
 
 } // namespace detail

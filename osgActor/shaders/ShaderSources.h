@@ -12,6 +12,7 @@ extern const char* const kLightingCompatibility;
 extern const char* const kLightingCore;
 extern const char* const kInstancedRigidVertex;
 extern const char* const kInstancedRigidFragment;
+extern const char* const kInstanceData;
 
 } // namespace shaders
 } // namespace osgActor

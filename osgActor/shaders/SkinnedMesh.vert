@@ -14,6 +14,14 @@
 //                                for a fragment shader of someone else's (osgShadow's, for one) linked with this one:
 //                                gl_FrontColor, gl_TexCoord[0] and the eye-linear texture coordinates of the units in
 //                                OSGACTOR_EYE_LINEAR_UNITS (a bit per unit), each through its texture matrix
+//   OSGACTOR_INSTANCED_ARITHMETIC  compatibility profile, 1: the instanced draws' arithmetic (InstancedActorGroup):
+//                                the eye position by osgActor_modelView() (InstanceData.glsl, which the prelude then
+//                                puts before this file), then the projection; the normal by the model-view matrix's
+//                                linear part (rigid or uniformly scaled frames: an actor's and the view's), normalised
+//   OSGACTOR_INSTANCED           with it, 1: the model-view matrix and the palette of instance gl_InstanceID from the
+//                                instances' texture buffer (its palette in the texels after its matrix); 0: OpenGL's
+//                                model-view matrix and the palette storage's palette (the same pixels, drawn one
+//                                mesh at a time)
 //
 // The palette holds, per skin joint j, OSGACTOR_PALETTE_STRIDE rows from row j * stride:
 //   linear blend:  rows 0..2 the first three rows of the skinning matrix (model x inverse bind: bind space to model
@@ -27,7 +35,10 @@
 // values (light 0 of OSG's viewers).
 
 #if OSGACTOR_SKINNING
-#if OSGACTOR_PALETTE_BUFFER
+#if OSGACTOR_INSTANCED
+// The instance's palette follows its model-view matrix in its data (InstanceData.glsl).
+vec4 osgActor_paletteRow(int row) { return texelFetch(osgActor_instances, osgActor_instanceTexel() + 4 + row); }
+#elif OSGACTOR_PALETTE_BUFFER
 uniform samplerBuffer osgActor_palette;
 vec4 osgActor_paletteRow(int row) { return texelFetch(osgActor_palette, row); }
 #else
@@ -167,9 +178,16 @@ void main()
 #endif
     osgActor_modelPosition = position;
     vec4 modelPosition = vec4(position, 1.0);
+#if OSGACTOR_INSTANCED_ARITHMETIC
+    mat4 modelView = osgActor_modelView();
+    vec4 eyePosition = modelView * modelPosition;
+    gl_Position = gl_ProjectionMatrix * eyePosition;
+    vec3 eyeNormal = normalize(mat3(modelView) * normal);
+#else
     gl_Position = OSGACTOR_MODEL_VIEW_PROJECTION * modelPosition;
     vec4 eyePosition = OSGACTOR_MODEL_VIEW * modelPosition;
     vec3 eyeNormal = normalize(OSGACTOR_NORMAL_MATRIX * normal);
+#endif
     osgActor_colour = osgActor_lighting(eyeNormal, eyePosition);
     osgActor_texCoord = OSGACTOR_TEXCOORD0.xy;
 #if OSGACTOR_FIXED_FUNCTION_OUTPUTS

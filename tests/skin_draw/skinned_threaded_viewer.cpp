@@ -7,11 +7,15 @@
  * at a time; the other's serially); the main thread turns actors' paths between frames. The slave is added before
  * the viewer starts its threads, so that each camera is culled where the model says (a camera added later is culled
  * on the draw thread, alongside the next frame's update). Run under xvfb-run by ctest and under ThreadSanitizer by
- * scripts/test-sanitizers.sh. Exit status 0 after the frames (and every actor's mesh skinned or uploaded once per
- * frame it was seen), 1 otherwise. */
+ * scripts/test-sanitizers.sh. With "instanced" after the frame count, an InstancedActorGroup: the GPU-skinned actors'
+ * meshes drawn with one instanced draw from per-frame texture buffers of their palettes, which the next frame's cull
+ * must not write while this one draws them, and actors going to the ordinary path and back as they change path.
+ * Exit status 0 after the frames (and every actor's mesh skinned or uploaded once per frame it was seen), 1
+ * otherwise. */
 #include "ViewerThreadingModel"
 
 #include <osgActor/ActorGroup>
+#include <osgActor/InstancedActorGroup>
 #include <osgActor/RiggedModelActor>
 
 #include <osgViewer/Renderer>
@@ -51,7 +55,8 @@ int main(int argc, char** argv)
         return 1;
     }
     figure.actor->removeChild(figureSkins); // rigid: the stick figure on the joints only
-    osg::ref_ptr<ActorGroup> actors = new ActorGroup;
+    const bool instanced = argc > 3 && std::string(argv[3]) == "instanced";
+    osg::ref_ptr<ActorGroup> actors = instanced ? new InstancedActorGroup : new ActorGroup;
     actors->setNumThreads(2);
     actors->setMinActorsForParallelCull(1);
     const int numSkinned = 12;
@@ -115,9 +120,24 @@ int main(int argc, char** argv)
             return 1;
         }
     }
-    std::cout << "skinned_threaded_viewer: " << modelName << ", " << viewer.getFrameStamp()->getFrameNumber()
-              << " frames, " << updates << " matrix updates, " << work << " skinnings or uploads, "
-              << actors->getNumParallelCulls() << " culls prepared on the group's threads\n";
+    std::cout << "skinned_threaded_viewer: " << modelName << (instanced ? ", instanced, " : ", ")
+              << viewer.getFrameStamp()->getFrameNumber() << " frames, " << updates << " matrix updates, " << work
+              << " skinnings or uploads, " << actors->getNumParallelCulls() << " culls prepared on the group's threads\n";
+    if (instanced)
+    {
+        // The group's cull takes its actors itself (a camera whose cull meets it while another culls it gets the
+        // ordinary traversal): the last cull drew the GPU-skinned men instanced and the others ordinarily.
+        const InstancedActorGroup::Statistics statistics = static_cast<InstancedActorGroup&>(*actors).getStatistics();
+        std::cout << "last cull: " << statistics.actorsInstanced << " actors instanced, " << statistics.actorsOrdinary
+                  << " ordinarily, " << statistics.skinnedDraws << " skinned draws of " << statistics.skinnedInstances
+                  << " instances\n";
+        if (statistics.skinnedDraws == 0 || statistics.skinnedInstances == 0 || statistics.actorsOrdinary == 0)
+        {
+            std::cerr << "the skinned meshes were not drawn instanced\n";
+            return 1;
+        }
+        return work > 0 ? 0 : 1;
+    }
     if (actors->getNumParallelCulls() == 0)
     {
         std::cerr << "no cull was prepared on the group's threads\n";

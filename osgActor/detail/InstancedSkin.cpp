@@ -1,0 +1,71 @@
+#include <osgActor/detail/InstancedSkin.h>
+
+#include <osgActor/ActorNode>
+#include <osgActor/SkinnedMesh>
+#include <osgActor/SkinnedMeshInstance.h>
+#include <osgActor/detail/InstancedDraw.h>
+
+#include <typeinfo>
+
+namespace osgActor {
+namespace detail {
+
+SkinnedMesh* InstancedSkin::meshOfStep(const ActorCullPlan::Step& step)
+{
+    if (step.kind != ActorCullPlan::ORDINARY || step.joint != -1 || typeid(*step.node) != typeid(SkinnedMesh))
+        return nullptr;
+    return static_cast<SkinnedMesh*>(step.node);
+}
+
+unsigned InstancedSkin::texelsPerInstance(SkinnedMesh& mesh)
+{
+    if (!mesh.getSetupError().empty() || !mesh.gpuCanSkin()) return 0;
+    const SkinningProgramKey key = programKey(mesh);
+    if (key.method != SkinningMethod::LinearBlend || key.influences != 4) return 0;
+    const osg::Geometry* geometry = geometryOf(mesh);
+    if (!geometry || !InstancedDraw::canDraw(*geometry)) return 0;
+    return 4 + mesh.getSkin()->getNumJoints() * paletteStride(key);
+}
+
+bool InstancedSkin::isInstanceableState(const osg::StateSet* state)
+{
+    if (!state) return true;
+    if (state->getRenderBinMode() != osg::StateSet::INHERIT_RENDERBIN_DETAILS) return false;
+    const osg::StateSet::TextureAttributeList& textures = state->getTextureAttributeList();
+    return textures.size() <= kSkinPaletteTextureUnit || textures[kSkinPaletteTextureUnit].empty();
+}
+
+const SkinnedMeshInstance* InstancedSkin::instanceOf(SkinnedMesh& mesh, ActorNode& actor)
+{
+    const SkinnedMeshInstance* instance = mesh.instanceFor(actor);
+    if (!instance) return nullptr;
+    const SkinnedMesh::SkinningPath path = instance->hasOwnPath ? instance->ownPath : mesh.getSkinningPath();
+    return path == SkinnedMesh::GPU_SKINNING ? instance : nullptr;
+}
+
+bool InstancedSkin::hasMatrices(const SkinnedMeshInstance& instance) { return instance.hasMatrices(); }
+
+const osg::BoundingBox& InstancedSkin::boundOf(const SkinnedMeshInstance& instance) { return instance.getBound(); }
+
+void InstancedSkin::writeInstance(const SkinnedMesh& mesh, const SkinnedMeshInstance& instance,
+                                  const osg::Matrixd& modelView, float* out)
+{
+    const double* m = modelView.ptr();
+    for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
+    instance.writePaletteRows(programKey(mesh), out + 16);
+}
+
+SkinningProgramKey InstancedSkin::programKey(const SkinnedMesh& mesh)
+{
+    SkinningProgramKey key = mesh.getProgramKey(SkinningProfile::Compatibility);
+    key.instancing = SkinInstancing::PerInstance;
+    return key;
+}
+
+osg::Geometry* InstancedSkin::geometryOf(SkinnedMesh& mesh)
+{
+    return mesh.getBindPoseGeometry(SkinningProfile::Compatibility);
+}
+
+} // namespace detail
+} // namespace osgActor

@@ -1,0 +1,235 @@
+// Skinned instancing (InstancedActorGroup, issue 28): on OSMesa, clones of one skinned actor in different poses drawn
+// with one instanced draw of their shared SkinnedMesh, against the same crowd drawn ordinarily, each mesh by itself
+// on the GPU path. Drawn with the same arithmetic (the skinning program's SkinInstancing::OneAtATime variant on the
+// ordinary path) the images are the same bytes: the same instances culled, the same palettes, the same model-view
+// matrices. Against the ordinary program (OpenGL's model-view-projection and normal matrices) they differ within a
+// bound. Actors whose meshes cannot be drawn instanced are drawn ordinarily, in the same image.
+#include "ImageCompare.h"
+#include "SkinDrawTestUtil"
+#include "TestFigure.h"
+
+#include <osgActor/InstancedActorGroup>
+#include <osgActor/Offscreen/ImageComparison>
+#include <osgActor/Offscreen/OffscreenRenderer>
+
+#include <osg/Geode>
+#include <osg/Material>
+#include <osg/Texture2D>
+
+#include <gtest/gtest.h>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+const osg::Vec4 kBackground(0.55f, 0.65f, 0.8f, 1.0f);
+constexpr unsigned kClones = 8;
+
+class InstancedSkinnedImages : public ::testing::Test
+{
+protected:
+    void SetUp() override
+    {
+        std::string error;
+        renderer = OffscreenRenderer::create(320, 200, error);
+        ASSERT_TRUE(renderer) << error;
+        renderer->setBackground(kBackground);
+        group = new InstancedActorGroup;
+        group->setNumThreads(1);
+        // Eight clones of a chain of 8 joints wrapped in a tube (they share its geode and SkinnedMesh), each in a pose
+        // of its own, in two rows; the last one stands behind the camera.
+        prototype = makeChainActor(8);
+        osg::ref_ptr<osg::Material> material = new osg::Material;
+        material->setDiffuse(osg::Material::FRONT_AND_BACK, osg::Vec4(0.9f, 0.5f, 0.3f, 1.0f));
+        material->setAmbient(osg::Material::FRONT_AND_BACK, osg::Vec4(0.3f, 0.15f, 0.1f, 1.0f));
+        prototype.mesh->getOrCreateStateSet()->setAttributeAndModes(material.get());
+        for (unsigned a = 0; a < kClones; ++a)
+        {
+            osg::ref_ptr<ActorNode> actor = osg::clone(prototype.actor.get(), osg::CopyOp::SHALLOW_COPY);
+            const bool behind = a == kClones - 1;
+            actor->setPreTranslation(osg::Vec3d(0.25 * (a % 4) - 0.45, behind ? -3.0 : 0.3 * (a / 4), 0.0));
+            poseSynthetic(*actor, 0.9 * a);
+            actors.push_back(actor);
+            group->addChild(actor.get());
+        }
+        renderer->setScene(group.get());
+        renderer->setViewMatrixAsLookAt(osg::Vec3d(0.0, -1.6, 0.9), osg::Vec3d(0.0, 0.15, 0.0),
+                                        osg::Vec3d(0.0, 0.0, 1.0));
+    }
+
+    osg::ref_ptr<osg::Image> renderWith(InstancedActorGroup::DrawMode mode)
+    {
+        group->setDrawMode(mode);
+        return renderer->renderFrame(0.0);
+    }
+
+    /** The ordinary path drawn with the instanced draws' arithmetic: the mesh's program variant OneAtATime, put over
+      * the one the mesh pushes by the state set of its geode (which the clones share). */
+    osg::ref_ptr<osg::Image> renderOrdinaryWithTheSameArithmetic()
+    {
+        SkinningProgramKey key = prototype.mesh->getProgramKey(SkinningProfile::Compatibility);
+        key.instancing = SkinInstancing::OneAtATime;
+        osg::StateSet* geodeState = prototype.mesh->getParent(0)->getOrCreateStateSet();
+        geodeState->setAttribute(createSkinningProgram(key).get(), osg::StateAttribute::OVERRIDE);
+        osg::ref_ptr<osg::Image> image = renderWith(InstancedActorGroup::ORDINARY);
+        geodeState->removeAttribute(osg::StateAttribute::PROGRAM);
+        return image;
+    }
+
+    /** The instanced image is the bytes of the ordinary path drawn with the same arithmetic; minShare: the least share
+      * of the image the crowd covers. */
+    void expectTheSameBytes(double minShare = 0.02)
+    {
+        const osg::ref_ptr<osg::Image> ordinary = renderOrdinaryWithTheSameArithmetic();
+        const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
+        const ImageComparison difference = compareImages(*instanced, *ordinary, 0);
+        ASSERT_TRUE(difference.comparable);
+        EXPECT_EQ(difference.numOverTolerance, 0u);
+        EXPECT_EQ(difference.maxChannelDifference, 0);
+        // The test can fail: the crowd covers part of the image.
+        EXPECT_GT(countDrawnPixels(*instanced, kBackground), minShare * instanced->s() * instanced->t());
+    }
+
+    osg::ref_ptr<OffscreenRenderer> renderer;
+    osg::ref_ptr<InstancedActorGroup> group;
+    SyntheticActor prototype;
+    std::vector<osg::ref_ptr<ActorNode>> actors;
+};
+
+} // namespace
+
+TEST_F(InstancedSkinnedImages, AnActorSkinnedOnTheCpuIsDrawnOrdinarilyAndTheOthersInstanced)
+{
+    setSkinningPath(*actors[1], SkinnedMesh::CPU_SKINNING);
+    const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
+    const InstancedActorGroup::Statistics statistics = group->getStatistics();
+    EXPECT_EQ(statistics.actorsOrdinary, 1u);
+    EXPECT_EQ(statistics.actorsInstanced, kClones - 1);
+    EXPECT_EQ(statistics.skinnedDraws, 1u);
+    EXPECT_EQ(statistics.skinnedInstances, kClones - 2); // the one behind the camera is culled
+    // The CPU-skinned actor is drawn: hidden, pixels change.
+    actors[1]->setNodeMask(0u);
+    const osg::ref_ptr<osg::Image> without = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_GT(compareImages(*instanced, *without, 8).numOverTolerance, 100u);
+    // And the image is the ordinary path's within the programs' arithmetic (the CPU path is the same on both).
+    actors[1]->setNodeMask(~0u);
+    const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
+    EXPECT_LE(compareImages(*instanced, *ordinary, 2).getShareOverTolerance(), 0.001);
+}
+
+TEST_F(InstancedSkinnedImages, AMeshOfDualQuaternionsOrOfItsOwnRenderBinTakesEveryActorWearingItOffTheInstancedPath)
+{
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
+    // A render bin of its own (a transparent mesh sorted by depth): the instances of one draw cannot be sorted.
+    prototype.mesh->getStateSet()->setRenderingHint(osg::StateSet::TRANSPARENT_BIN);
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
+    EXPECT_EQ(group->getStatistics().actorsOrdinary, kClones);
+    EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
+    prototype.mesh->getStateSet()->setRenderingHint(osg::StateSet::DEFAULT_BIN);
+    prototype.mesh->getStateSet()->setRenderBinToInherit();
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
+    // Dual quaternion skinning, which the instanced variant does not draw.
+    SyntheticActor dual = makeChainActor(8, SkinningMethod::DualQuaternion);
+    group->removeChildren(0, group->getNumChildren());
+    for (unsigned a = 0; a < 3; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(dual.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(osg::Vec3d(0.25 * a - 0.25, 0.0, 0.0));
+        group->addChild(actor.get());
+    }
+    const osg::ref_ptr<osg::Image> image = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
+    EXPECT_EQ(group->getStatistics().actorsOrdinary, 3u);
+    EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
+    EXPECT_GT(countDrawnPixels(*image, kBackground), 500u); // drawn ordinarily
+}
+
+TEST_F(InstancedSkinnedImages, ClonesInDifferentPosesAreTheSameBytesAsTheOrdinaryPathDrawnWithTheSameArithmetic)
+{
+    expectTheSameBytes();
+    const InstancedActorGroup::Statistics statistics = group->getStatistics();
+    // Every clone instanced; the one behind the camera culled: one draw of the shared mesh for seven instances.
+    EXPECT_EQ(statistics.actorsInstanced, kClones);
+    EXPECT_EQ(statistics.actorsOrdinary, 0u);
+    EXPECT_EQ(statistics.skinnedDraws, 1u);
+    EXPECT_EQ(statistics.skinnedInstances, kClones - 1);
+    EXPECT_EQ(statistics.draws, 0u);
+}
+
+TEST_F(InstancedSkinnedImages, APaletteInATextureBufferOnTheOrdinaryPathGivesTheSameBytesToo)
+{
+    // The ordinary path's palette in a texture buffer rather than uniforms: the instanced one is in the instances'
+    // buffer either way.
+    prototype.mesh->setPaletteStorage(SkinPaletteStorage::TextureBuffer);
+    expectTheSameBytes();
+    EXPECT_EQ(group->getStatistics().skinnedInstances, kClones - 1);
+}
+
+TEST_F(InstancedSkinnedImages, InstancedClonesAreTheOrdinaryProgramsImageWithinTheArithmeticsRounding)
+{
+    const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
+    const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
+    // The ordinary program projects with OpenGL's model-view-projection product and turns normals by its normal
+    // matrix; the instanced one projects its eye position and turns normals by the model-view matrix's linear part:
+    // a few pixels a level apart, a few edge pixels covered or not.
+    const ImageComparison difference = compareImages(*instanced, *ordinary, 2);
+    ASSERT_TRUE(difference.comparable);
+    EXPECT_LE(difference.getShareOverTolerance(), 0.001) << difference.numOverTolerance << " pixels over 2 levels";
+    EXPECT_GT(difference.psnr, 40.0);
+    EXPECT_GT(countDrawnPixels(*instanced, kBackground), 0.02 * instanced->s() * instanced->t());
+}
+
+TEST_F(InstancedSkinnedImages, PosesChangedBetweenFramesShowInTheInstancedImageFrameAfterFrame)
+{
+    // The instances' buffers come from a pool, one per frame in flight: later frames reuse them, with new palettes.
+    const osg::ref_ptr<osg::Image> before = renderWith(InstancedActorGroup::INSTANCED);
+    for (int frame = 0; frame < 3; ++frame)
+        EXPECT_EQ(compareImages(*renderWith(InstancedActorGroup::INSTANCED), *before, 0).numOverTolerance, 0u);
+    poseSynthetic(*actors[2], 4.0);
+    poseSynthetic(*actors[5], 7.0);
+    const osg::ref_ptr<osg::Image> after = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_GT(compareImages(*after, *before, 8).numOverTolerance, 100u);
+    expectTheSameBytes();
+}
+
+TEST_F(InstancedSkinnedImages, ActorsOutOfViewAndMaskedMeshesAddNoInstance)
+{
+    // Every clone but one moved far to the side.
+    for (unsigned a = 0; a < kClones; ++a)
+        if (a != 3) actors[a]->setPreTranslation(osg::Vec3d(50.0 + a, 0.0, 0.0));
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().skinnedInstances, 1u);
+    // The mesh masked out (the traversal mask of the viewer's camera is ~0 but for bits a node mask of 0 lacks).
+    prototype.mesh->setNodeMask(0u);
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().skinnedInstances, 0u);
+    EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
+}
+
+TEST_F(InstancedSkinnedImages, RigidPartsAndSkinnedMeshesOfOneActorShareTheFramesBuffer)
+{
+    // A ball on one joint of every clone (the clones share it): a rigid instanced draw beside the skinned one, their
+    // data one after the other in one texture buffer.
+    prototype.actor->getSkeletonNode("j4")->addChild(makeJointBall(0.03f));
+    group->removeChildren(0, group->getNumChildren());
+    actors.clear();
+    for (unsigned a = 0; a < 4; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(prototype.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(osg::Vec3d(0.25 * a - 0.45, 0.0, 0.0));
+        poseSynthetic(*actor, 1.3 * a);
+        actors.push_back(actor);
+        group->addChild(actor.get());
+    }
+    group->getOrCreateStateSet()->setAttributeAndModes(InstancedActorGroup::createRigidProgram(false).get());
+    expectTheSameBytes(0.01);
+    EXPECT_EQ(group->getStatistics().draws, 1u);
+    EXPECT_EQ(group->getStatistics().instances, 4u);
+    EXPECT_EQ(group->getStatistics().skinnedDraws, 1u);
+    EXPECT_EQ(group->getStatistics().skinnedInstances, 4u);
+}
