@@ -11,12 +11,16 @@
 #include <osgActor/InstancedActorGroup>
 #include <osgActor/Offscreen/ImageComparison>
 #include <osgActor/Offscreen/OffscreenRenderer>
+#include <osgActor/core/ClipPlayer>
 
 #include <osg/Geode>
 #include <osg/Material>
 #include <osg/Texture2D>
 
 #include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
 
 using namespace osgActor;
 using namespace osgActor::test;
@@ -232,4 +236,60 @@ TEST_F(InstancedSkinnedImages, RigidPartsAndSkinnedMeshesOfOneActorShareTheFrame
     EXPECT_EQ(group->getStatistics().instances, 4u);
     EXPECT_EQ(group->getStatistics().skinnedDraws, 1u);
     EXPECT_EQ(group->getStatistics().skinnedInstances, 4u);
+}
+
+TEST(InstancedSkinnedCesiumMen, TexturedMenWalkingAtTheirOwnPacesAreTheSameBytesAsTheOrdinaryPathDrawnAlike)
+{
+    // Five clones of Cesium Man (one textured SkinnedMesh, 19 joints), each playing the walk at its own speed: at
+    // 0.5 s each is in a pose of its own.
+    const RiggedModelActor read = readCesiumMan();
+    ASSERT_TRUE(read.actor);
+    osg::ref_ptr<InstancedActorGroup> group = new InstancedActorGroup;
+    group->setNumThreads(1);
+    for (unsigned a = 0; a < 5; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(read.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(osg::Vec3d(0.8 * a - 1.6, 0.5 * (a % 2), 0.0));
+        for (const ControllerPtr& controller : actor->getControllers())
+            if (ClipPlayer* player = dynamic_cast<ClipPlayer*>(controller.get())) player->setSpeed(0.5 + 0.4 * a);
+        group->addChild(actor.get());
+    }
+    // The file's root scale, a transform above the actor where it has one, goes above the group.
+    osg::ref_ptr<osg::Group> scene = group;
+    if (read.sceneNode != read.actor)
+    {
+        scene = static_cast<osg::Group*>(read.sceneNode->clone(osg::CopyOp::SHALLOW_COPY));
+        scene->removeChildren(0, scene->getNumChildren());
+        scene->addChild(group.get());
+    }
+    std::string error;
+    osg::ref_ptr<OffscreenRenderer> renderer = OffscreenRenderer::create(320, 200, error);
+    ASSERT_TRUE(renderer) << error;
+    renderer->setBackground(kBackground);
+    renderer->setScene(scene.get());
+    renderer->stepTo(0.5, 30.0);
+    renderer->frameScene();
+    // The ordinary path with the instanced arithmetic, put over the mesh's program by its geode's state set.
+    SkinningProgramKey key = read.skinnedMeshes[0]->getProgramKey(SkinningProfile::Compatibility);
+    key.instancing = SkinInstancing::OneAtATime;
+    osg::StateSet* skinsState = read.skinnedMeshes[0]->getParent(0)->getOrCreateStateSet();
+    skinsState->setAttribute(createSkinningProgram(key).get(), osg::StateAttribute::OVERRIDE);
+    group->setDrawMode(InstancedActorGroup::ORDINARY);
+    const osg::ref_ptr<osg::Image> ordinary = renderer->draw();
+    skinsState->removeAttribute(osg::StateAttribute::PROGRAM);
+    group->setDrawMode(InstancedActorGroup::INSTANCED);
+    const osg::ref_ptr<osg::Image> instanced = renderer->draw();
+    EXPECT_EQ(group->getStatistics().skinnedDraws, 1u);
+    EXPECT_EQ(group->getStatistics().skinnedInstances, 5u);
+    const ImageComparison difference = compareImages(*instanced, *ordinary, 0);
+    ASSERT_TRUE(difference.comparable);
+    EXPECT_EQ(difference.numOverTolerance, 0u);
+    EXPECT_GT(countDrawnPixels(*instanced, kBackground), 0.05 * instanced->s() * instanced->t());
+    // And the men are in poses of their own: the first and the last differ in some DOF by more than 0.1 rad.
+    const ActorNode& first = static_cast<const ActorNode&>(*group->getChild(0));
+    const ActorNode& last = static_cast<const ActorNode&>(*group->getChild(4));
+    double largest = 0.0;
+    for (unsigned d = 0; d < first.getNumDofs(); ++d)
+        largest = std::max(largest, std::abs(first.getDof(d) - last.getDof(d)));
+    EXPECT_GT(largest, 0.1);
 }
