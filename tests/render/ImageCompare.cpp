@@ -1,4 +1,5 @@
 #include "ImageCompare.h"
+#include "TestFigure.h"
 
 #include <osgDB/FileUtils>
 #include <osgDB/WriteFile>
@@ -55,6 +56,20 @@ bool writePng(const osg::Image& image, const std::string& file)
     const osg::ref_ptr<osg::Image> diff = makeDiffImage(actual, *reference, threshold);
     if (diff) failure << ", diff image: " << (writePng(*diff, diffFile) ? diffFile : "(could not be written)");
     return failure;
+}
+
+::testing::AssertionResult isTheSameBytesCovering(const osg::Image& actual, const osg::Image& expected,
+                                                  const osg::Vec4& background, double minShare)
+{
+    const ImageComparison difference = compareImages(actual, expected, 0);
+    if (!difference.comparable) return ::testing::AssertionFailure() << "the images cannot be compared";
+    if (difference.numOverTolerance != 0 || difference.maxChannelDifference != 0)
+        return ::testing::AssertionFailure() << difference.numOverTolerance << " pixels differ, by up to "
+                                             << difference.maxChannelDifference;
+    const unsigned drawn = countDrawnPixels(actual, background);
+    if (drawn <= minShare * actual.s() * actual.t())
+        return ::testing::AssertionFailure() << "the same bytes, but only " << drawn << " pixels are drawn";
+    return ::testing::AssertionSuccess();
 }
 
 } // namespace test

@@ -23,6 +23,12 @@ namespace test {
 ::testing::AssertionResult matchesReference(const osg::Image& actual, const std::string& name, int threshold = 24,
                                             double maxFraction = 0.003);
 
+/** Whether two renders of one scene by two paths are the same bytes (no channel of any pixel differs), and the first
+  * draws something other than the background over at least minShare of its pixels, so that the comparison could
+  * fail. */
+::testing::AssertionResult isTheSameBytesCovering(const osg::Image& actual, const osg::Image& expected,
+                                                  const osg::Vec4& background, double minShare);
+
 } // namespace test
 } // namespace osgActor
 

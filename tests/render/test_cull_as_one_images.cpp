@@ -77,12 +77,8 @@ protected:
     {
         const osg::ref_ptr<osg::Image> ordinary = renderWith(ActorNode::CULL_NODE_BY_NODE);
         const osg::ref_ptr<osg::Image> asOne = renderWith(ActorNode::CULL_AS_ONE);
-        const ImageComparison difference = compareImages(*asOne, *ordinary, 0);
-        ASSERT_TRUE(difference.comparable);
-        EXPECT_EQ(difference.numOverTolerance, 0u);
-        EXPECT_EQ(difference.maxChannelDifference, 0);
         // The test can fail: the crowd and its floor cover part of the image.
-        EXPECT_GT(countDrawnPixels(*asOne, kBackground), minCrowdShare * asOne->s() * asOne->t());
+        EXPECT_TRUE(isTheSameBytesCovering(*asOne, *ordinary, kBackground, minCrowdShare));
     }
 
     osg::ref_ptr<OffscreenRenderer> renderer;
