@@ -21,7 +21,8 @@ unsigned InstancedSkin::texelsPerInstance(SkinnedMesh& mesh)
 {
     if (!mesh.getSetupError().empty() || !mesh.gpuCanSkin()) return 0;
     const SkinningProgramKey key = programKey(mesh);
-    if (key.method != SkinningMethod::LinearBlend || key.influences != 4) return 0;
+    // Dual quaternions need the skin's bind scale as a uniform, which the ordinary path keeps with each palette.
+    if (key.method != SkinningMethod::LinearBlend) return 0;
     const osg::Geometry* geometry = geometryOf(mesh);
     if (!geometry || !InstancedDraw::canDraw(*geometry)) return 0;
     return 4 + mesh.getSkin()->getNumJoints() * paletteStride(key);

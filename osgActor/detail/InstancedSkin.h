@@ -8,8 +8,8 @@
 //
 // What an instanced actor's mesh must be, else the whole actor is drawn ordinarily: a SkinnedMesh of that exact class
 // in the actor's own frame (below it, or in a geode below it), with no cull callback, that can draw (set up, its
-// skin bound to the actor's definition), drawn on the GPU path for that actor, with linear blend skinning of up to 4
-// influences, in the compatibility profile, of a bind-pose geometry InstancedDraw can draw.
+// skin bound to the actor's definition), drawn on the GPU path for that actor, with linear blend skinning (4 or 8
+// influences), in the compatibility profile, of a bind-pose geometry InstancedDraw can draw.
 #ifndef OSGACTOR_DETAIL_INSTANCEDSKIN_H
 #define OSGACTOR_DETAIL_INSTANCEDSKIN_H 1
 
@@ -37,7 +37,8 @@ public:
     static SkinnedMesh* meshOfStep(const ActorCullPlan::Step& step);
 
     /** Texels per instance of the mesh drawn instanced (its matrix and its palette), or 0 when the mesh cannot be
-      * (setup error, dual quaternions, 8 influences, a bind-pose geometry InstancedDraw does not draw); from what the
+      * (setup error, dual quaternions, a skin the GPU path does not draw, a bind-pose geometry InstancedDraw does not
+      * draw); from what the
       * mesh is now, so asked once per cull. */
     static unsigned texelsPerInstance(SkinnedMesh& mesh);
 

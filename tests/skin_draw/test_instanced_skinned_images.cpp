@@ -177,6 +177,28 @@ TEST_F(InstancedSkinnedImages, APaletteInATextureBufferOnTheOrdinaryPathGivesThe
     EXPECT_EQ(group->getStatistics().skinnedInstances, kClones - 1);
 }
 
+TEST_F(InstancedSkinnedImages, ASkinOfEightInfluencesIsInstancedWithTheSameBytes)
+{
+    // Random vertices each following 8 random joints of a random tree of 20 (two joints per index component): a
+    // mesh of its own, worn by three clones in poses of their own in place of the chains.
+    SyntheticActor random = makeRandomActor(20, 600, 8, 5u);
+    ASSERT_EQ(random.mesh->getProgramKey(SkinningProfile::Compatibility).influences, 8u);
+    group->removeChildren(0, group->getNumChildren());
+    for (unsigned a = 0; a < 3; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(random.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(osg::Vec3d(0.3 * a - 0.3, 0.0, 0.0));
+        poseSynthetic(*actor, 1.1 * a);
+        group->addChild(actor.get());
+    }
+    // Its own material, as a model's meshes have (see the class comment of InstancedActorGroup on colour material).
+    random.mesh->setStateSet(prototype.mesh->getStateSet());
+    prototype = random;
+    expectTheSameBytes();
+    EXPECT_EQ(group->getStatistics().skinnedDraws, 1u);
+    EXPECT_EQ(group->getStatistics().skinnedInstances, 3u);
+}
+
 TEST_F(InstancedSkinnedImages, InstancedClonesAreTheOrdinaryProgramsImageWithinTheArithmeticsRounding)
 {
     const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
