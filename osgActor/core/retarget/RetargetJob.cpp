@@ -354,10 +354,6 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
     const bool parentExact = !hasParent || w.targetExact[p] != 0;
     const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
     const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
-    if (k.hasTranslation)
-        for (unsigned axis = 0; axis < 3; ++axis)
-            if (k.translationDof[axis] >= 0)
-                targetValues[k.translationDof[axis]] = rest[static_cast<unsigned>(k.translationDof[axis])];
 
     RotationColumns rotation;
     bool exact = false;
@@ -451,6 +447,8 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
 {
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
+    const double* const rest = rig.getTargetRestDofs().data();
+    for (const std::uint32_t dof : tables.translationDofs) targetValues[dof] = rest[dof];
     unsigned numInexact = 0;
     for (std::size_t level = 0; level + 1 < tables.levelJoints.size(); ++level)
     {
