@@ -767,15 +767,9 @@ struct RetargetRigBuilder
     {
         const ActorDefinition& t = *target.definition;
         const JointKinematics& k = t.getKinematics(joint);
-        const unsigned i = k.rotationAxis[0], j = k.rotationAxis[1], l = k.rotationAxis[2];
-        // m(row, column) is element 4 column + row of a rotation stored as columns of four.
-        const auto at = [](unsigned row, unsigned column) { return static_cast<std::uint8_t>(4 * column + row); };
+        const unsigned i = k.rotationAxis[0], j = k.rotationAxis[1];
         batch.joints[lane] = joint;
-        batch.element[RetargetEulerBatch::kII][lane] = at(i, i);
-        batch.element[RetargetEulerBatch::kIJ][lane] = at(i, j);
-        batch.element[RetargetEulerBatch::kIK][lane] = at(i, l);
-        batch.element[RetargetEulerBatch::kJK][lane] = at(j, l);
-        batch.element[RetargetEulerBatch::kKK][lane] = at(l, l);
+        for (unsigned r = 0; r < 3; ++r) batch.axes[r][lane] = static_cast<std::uint8_t>(k.rotationAxis[r]);
         batch.parity[lane] = j == (i + 1) % 3 ? 1.0 : -1.0;
         for (unsigned r = 0; r < 3; ++r)
         {
