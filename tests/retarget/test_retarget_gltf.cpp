@@ -35,6 +35,26 @@ ActorDefinitionPtr cesiumMan()
     return actor.definition;
 }
 
+/** CMU's 01_01.bvh and a rig retargeting it onto Cesium Man; rig is null (and the test failed) where either could
+  * not be read or the rig not built. */
+struct WalkOntoCesiumMan
+{
+    MocapImport walk;
+    ActorDefinitionPtr cesium;
+    RetargetRigPtr rig;
+};
+
+WalkOntoCesiumMan walkOntoCesiumMan()
+{
+    WalkOntoCesiumMan onto;
+    onto.cesium = cesiumMan();
+    if (!onto.cesium) return onto;
+    onto.walk = readBvhScaled(assimpBvh("01_01.bvh"));
+    onto.rig = buildRig(skeleton(onto.walk.definition), skeleton(onto.cesium));
+    EXPECT_TRUE(onto.rig);
+    return onto;
+}
+
 } // namespace
 
 TEST(RetargetOntoGltf, TheGuessFindsCesiumMansBodyByItsShape)
@@ -60,11 +80,10 @@ TEST(RetargetOntoGltf, TheGuessFindsCesiumMansBodyByItsShape)
 
 TEST(RetargetOntoGltf, CmuWalksOntoCesiumManKeepFeetPlantedAndEndsInPlace)
 {
-    const ActorDefinitionPtr cesium = cesiumMan();
-    ASSERT_TRUE(cesium);
-    const MocapImport walk = readBvhScaled(assimpBvh("01_01.bvh"));
-    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(cesium));
-    ASSERT_TRUE(rig);
+    const WalkOntoCesiumMan onto = walkOntoCesiumMan();
+    ASSERT_TRUE(onto.rig);
+    const MocapImport& walk = onto.walk;
+    const RetargetRigPtr& rig = onto.rig;
     RetargetClipOptions options;
     options.ik = true;
     const RetargetClipResult planted = retargetClip(*rig, *walk.clip, options);
@@ -85,11 +104,11 @@ TEST(RetargetOntoGltf, EveryJointsSlideButTheRootsComesBackToRestWhateverTheFram
     // The job's target values are in/out: slides moved away (a caller's own edits, another clip's frame) come back to
     // the rest pose's on the next frame, on all 18 of Cesium Man's sliding joints below the root, so bones keep their
     // lengths; the root's are placed where the source's root goes.
-    const ActorDefinitionPtr cesium = cesiumMan();
-    ASSERT_TRUE(cesium);
-    const MocapImport walk = readBvhScaled(assimpBvh("01_01.bvh"));
-    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(cesium));
-    ASSERT_TRUE(rig);
+    const WalkOntoCesiumMan onto = walkOntoCesiumMan();
+    ASSERT_TRUE(onto.rig);
+    const MocapImport& walk = onto.walk;
+    const ActorDefinitionPtr& cesium = onto.cesium;
+    const RetargetRigPtr& rig = onto.rig;
     const std::vector<double>& rest = rig->getTargetRestDofs();
     std::vector<double> values = rest;
     unsigned moved = 0;
