@@ -9,6 +9,8 @@
 #include <osgActor/import/RiggedModelFile>
 #include <osgActor/import/RiggedMotionFile>
 
+#include <glm/geometric.hpp>
+
 #include <map>
 
 using namespace osgActor;
@@ -31,6 +33,26 @@ ActorDefinitionPtr cesiumMan()
     const RiggedActor actor = buildRiggedActor(read.model, options);
     EXPECT_TRUE(actor) << actor.error;
     return actor.definition;
+}
+
+/** CMU's 01_01.bvh and a rig retargeting it onto Cesium Man; rig is null (and the test failed) where either could
+  * not be read or the rig not built. */
+struct WalkOntoCesiumMan
+{
+    MocapImport walk;
+    ActorDefinitionPtr cesium;
+    RetargetRigPtr rig;
+};
+
+WalkOntoCesiumMan walkOntoCesiumMan()
+{
+    WalkOntoCesiumMan onto;
+    onto.cesium = cesiumMan();
+    if (!onto.cesium) return onto;
+    onto.walk = readBvhScaled(assimpBvh("01_01.bvh"));
+    onto.rig = buildRig(skeleton(onto.walk.definition), skeleton(onto.cesium));
+    EXPECT_TRUE(onto.rig);
+    return onto;
 }
 
 } // namespace
@@ -58,11 +80,10 @@ TEST(RetargetOntoGltf, TheGuessFindsCesiumMansBodyByItsShape)
 
 TEST(RetargetOntoGltf, CmuWalksOntoCesiumManKeepFeetPlantedAndEndsInPlace)
 {
-    const ActorDefinitionPtr cesium = cesiumMan();
-    ASSERT_TRUE(cesium);
-    const MocapImport walk = readBvhScaled(assimpBvh("01_01.bvh"));
-    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(cesium));
-    ASSERT_TRUE(rig);
+    const WalkOntoCesiumMan onto = walkOntoCesiumMan();
+    ASSERT_TRUE(onto.rig);
+    const MocapImport& walk = onto.walk;
+    const RetargetRigPtr& rig = onto.rig;
     RetargetClipOptions options;
     options.ik = true;
     const RetargetClipResult planted = retargetClip(*rig, *walk.clip, options);
@@ -76,6 +97,48 @@ TEST(RetargetOntoGltf, CmuWalksOntoCesiumManKeepFeetPlantedAndEndsInPlace)
         EXPECT_LE(end.largestError, 0.01 * measures.targetHeight) << end.limb;
     // Every joint of Cesium Man slides (tx, ty, tz): only the root's move, so its bones keep their lengths.
     EXPECT_LE(measures.largestLengthChange, 1e-9);
+}
+
+TEST(RetargetOntoGltf, EveryJointsSlideButTheRootsComesBackToRestWhateverTheFrameBrings)
+{
+    // The job's target values are in/out: slides moved away (a caller's own edits, another clip's frame) come back to
+    // the rest pose's on the next frame, on all 18 of Cesium Man's sliding joints below the root, so bones keep their
+    // lengths; the root's are placed where the source's root goes.
+    const WalkOntoCesiumMan onto = walkOntoCesiumMan();
+    ASSERT_TRUE(onto.rig);
+    const MocapImport& walk = onto.walk;
+    const ActorDefinitionPtr& cesium = onto.cesium;
+    const RetargetRigPtr& rig = onto.rig;
+    const std::vector<double>& rest = rig->getTargetRestDofs();
+    std::vector<double> values = rest;
+    unsigned moved = 0;
+    for (unsigned j = 0; j < cesium->getNumJoints(); ++j)
+        for (const int dof : cesium->getKinematics(j).translationDof)
+            if (dof >= 0)
+            {
+                values[static_cast<unsigned>(dof)] += 0.25;
+                ++moved;
+            }
+    EXPECT_GE(moved, 3u * 19u);
+    RetargetWorkspace workspace;
+    const unsigned frame = 100;
+    RetargetJob job =
+        retargetJob(*rig, Span<const double>(walk.clip->getFrame(frame), walk.clip->getNumChannels()), values, workspace);
+    ASSERT_TRUE(job.run());
+    const unsigned root = static_cast<unsigned>(rig->getTargetRoot());
+    unsigned atRest = 0;
+    for (unsigned j = 0; j < cesium->getNumJoints(); ++j)
+        for (const int dof : cesium->getKinematics(j).translationDof)
+        {
+            if (dof < 0 || j == root) continue;
+            EXPECT_EQ(values[static_cast<unsigned>(dof)], rest[static_cast<unsigned>(dof)])
+                << cesium->getJointName(j) << " DOF " << dof;
+            ++atRest;
+        }
+    EXPECT_GE(atRest, 3u * 18u);
+    // The root sits where the source's goes (mapped), not 0.25 off it.
+    const glm::dvec3 goal = rig->mapPosition(workspace.sourcePosition(static_cast<unsigned>(rig->getSourceRoot())));
+    EXPECT_LE(glm::length(workspace.targetPosition(root) - goal), 1e-9);
 }
 
 TEST(RetargetFromGltf, ReadingAModelAsMotionRefusesWhatItCannotRead)

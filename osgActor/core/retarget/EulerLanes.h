@@ -10,6 +10,7 @@
 #include <osgActor/core/retarget/RetargetRig>
 
 #include "../detail/Column.h"
+#include "RotationColumns.h"
 
 #include <cmath>
 #include <cstdint>
@@ -91,26 +92,44 @@ struct EulerArctangents
     LaneMask invalid;
 };
 
-/** The arctangents' inputs of a batch's joints (see RetargetEulerBatch), each joint's local rotation given as columns
-  * of four (12 doubles, local[lane]), for the decomposition's first solution (the middle angle within
-  * [-pi/2, pi/2]). */
-OSGACTOR_INLINE EulerArctangents eulerArctangents(const RetargetEulerBatch& batch, const double* const local[4])
+/** What a lane's joint's Euler decomposition reads, in its axes (i, j, k) in product order: columns a_0, a_1, a_2
+  * (a_0 = i, ...) of its frame F (the parent's desired model rotation times the joint's offset rotation) and of its
+  * desired model rotation D, each (x, y, z, 0). Its local rotation is m = F^T D, so m(a_r, a_c) = F_{a_r} . D_{a_c}:
+  * the five elements the decomposition reads come straight from these registers, no local rotation stored and
+  * gathered back. */
+struct EulerLaneColumns
 {
-    using E = RetargetEulerBatch;
-    const auto element = [&](E::Element e) OSGACTOR_INLINE_LAMBDA {
-        const std::uint8_t* at = batch.element[e];
-        return Column{local[0][at[0]], local[1][at[1]], local[2][at[2]], local[3][at[3]]};
+    Column frame[3], desired[3];
+};
+
+/** The arctangents' inputs of a batch's joints (see RetargetEulerBatch), from each lane's columns, for the
+  * decomposition's first solution (the middle angle within [-pi/2, pi/2]). */
+OSGACTOR_INLINE EulerArctangents eulerArctangents(const RetargetEulerBatch& batch,
+                                                  const EulerLaneColumns (&lanes)[RetargetEulerBatch::kWidth])
+{
+    // Per axis place r: the x, y, z of F_{a_r} and of D_{a_r} across the lanes.
+    Column fx[3], fy[3], fz[3], dx[3], dy[3], dz[3];
+    for (unsigned r = 0; r < 3; ++r)
+    {
+        const Column f[4] = {lanes[0].frame[r], lanes[1].frame[r], lanes[2].frame[r], lanes[3].frame[r]};
+        const Column d[4] = {lanes[0].desired[r], lanes[1].desired[r], lanes[2].desired[r], lanes[3].desired[r]};
+        transposeToLanes(f, fx[r], fy[r], fz[r]);
+        transposeToLanes(d, dx[r], dy[r], dz[r]);
+    }
+    // m(a_row, a_column), lane by lane, in the order of a product of rotations (x terms first).
+    const auto element = [&](unsigned row, unsigned column) OSGACTOR_INLINE_LAMBDA {
+        return fx[row] * dx[column] + fy[row] * dy[column] + fz[row] * dz[column];
     };
     const Column parity = loadColumn(batch.parity);
-    const Column mii = element(E::kII), mij = element(E::kIJ);
+    const Column mii = element(0, 0), mij = element(0, 1);
     const Column squared = mii * mii + mij * mij;
     const Column cosMiddle = {std::sqrt(squared[0]), std::sqrt(squared[1]), std::sqrt(squared[2]),
                               std::sqrt(squared[3])};
     EulerArctangents in;
     in.invalid = !(cosMiddle > 1e-12);
-    in.y[0] = -parity * element(E::kJK);
-    in.x[0] = element(E::kKK);
-    in.y[1] = parity * element(E::kIK);
+    in.y[0] = -parity * element(1, 2);
+    in.x[0] = element(2, 2);
+    in.y[1] = parity * element(0, 2);
     in.x[1] = cosMiddle;
     in.y[2] = -parity * mij;
     in.x[2] = mii;

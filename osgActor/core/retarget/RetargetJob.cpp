@@ -49,7 +49,6 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     scratch.sourceLocalChanged.assign(numSource, 0);
     scratch.sourceModelStale.assign(numSource, 1);
     scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
-    scratch.local.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
     scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
     scratch.laneFitted.assign(numTarget, 0);
     scratch.laneCosSin.assign(std::size_t(numTarget) * 4, 0.0);
@@ -68,7 +67,7 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
            s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
-           s.local.size() == numTarget * kRotationDoubles && s.laneAngles.size() == numTarget * 3 &&
+           s.laneAngles.size() == numTarget * 3 &&
            s.laneFitted.size() == numTarget && s.laneCosSin.size() == numTarget * 4 &&
            s.asDesired.size() == numTarget;
 }
@@ -190,6 +189,10 @@ OSGACTOR_INLINE RotationColumns jointFrame(const RetargetJobTables& tables, unsi
     return hasParent ? multiply(parentRotation, offset) : offset;
 }
 
+/** The identity as columns of four, for a root's parent rotation read from memory at a runtime column. */
+alignas(32) constexpr double kIdentityColumns[kRotationDoubles] = {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
+                                                                   0.0, 0.0, 1.0, 0.0};
+
 /** Pass 3: the Euler fits of the batches' joints, four at a time, each under its parent's desired rotation. Batches go
   * in groups: the group's arctangents (each a long chain of dependent operations: divisions, a polynomial) run one
   * after another, so the processor overlaps them, which it cannot do across one batch's whole fit. */
@@ -207,22 +210,37 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
         for (std::size_t b = 0; b < numInGroup; ++b)
         {
             const RetargetEulerBatch& batch = batches[first + b];
-            const double* local[RetargetEulerBatch::kWidth];
-            for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+            EulerLaneColumns lanes[RetargetEulerBatch::kWidth];
+            for (unsigned lane = 0; lane < RetargetEulerBatch::kWidth; ++lane)
             {
+                // Lanes past the last joint repeat it (their results are never written).
+                if (lane >= batch.numJoints)
+                {
+                    lanes[lane] = lanes[batch.numJoints - 1];
+                    continue;
+                }
+                // The joint's frame (jointFrame) is its parent's desired rotation times its offset rotation.
                 const unsigned t = batch.joints[lane];
                 const int parent = target.getParent(t);
-                const RotationColumns parentDesired =
-                    parent >= 0 ? loadRotation(&s.desired[static_cast<unsigned>(parent) * kRotationDoubles])
-                                : identityColumns();
-                const RotationColumns frame = jointFrame(tables, t, parent >= 0, parentDesired);
-                double* const out = &s.local[t * kRotationDoubles];
-                storeRotation(out, multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
-                local[lane] = out;
+                const double* const desired = &s.desired[t * kRotationDoubles];
+                const double* const parentDesired =
+                    parent >= 0 ? &s.desired[static_cast<unsigned>(parent) * kRotationDoubles] : kIdentityColumns;
+                for (unsigned r = 0; r < 3; ++r) lanes[lane].desired[r] = loadColumn(desired + 4 * batch.axes[r][lane]);
+                if (tables.offsetIsIdentity[t])
+                    for (unsigned r = 0; r < 3; ++r)
+                        lanes[lane].frame[r] = loadColumn(parentDesired + 4 * batch.axes[r][lane]);
+                else
+                {
+                    const RotationColumns parentRotation = loadRotation(parentDesired);
+                    const double* const offset = &tables.offsetRotations[t * kRotationDoubles];
+                    for (unsigned r = 0; r < 3; ++r)
+                    {
+                        const double* const column = offset + 4 * batch.axes[r][lane];
+                        lanes[lane].frame[r] = combine(parentRotation, column[0], column[1], column[2]);
+                    }
+                }
             }
-            for (unsigned lane = batch.numJoints; lane < RetargetEulerBatch::kWidth; ++lane)
-                local[lane] = local[batch.numJoints - 1];
-            in[b] = eulerArctangents(batch, local);
+            in[b] = eulerArctangents(batch, lanes);
         }
         Column angles[kGroup][3];
         for (std::size_t b = 0; b < numInGroup; ++b)
@@ -354,10 +372,6 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
     const bool parentExact = !hasParent || w.targetExact[p] != 0;
     const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
     const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
-    if (k.hasTranslation)
-        for (unsigned axis = 0; axis < 3; ++axis)
-            if (k.translationDof[axis] >= 0)
-                targetValues[k.translationDof[axis]] = rest[static_cast<unsigned>(k.translationDof[axis])];
 
     RotationColumns rotation;
     bool exact = false;
@@ -413,11 +427,7 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
     else
     {
         const RotationColumns frame = jointFrame(tables, t, hasParent, parentRotation);
-        // A batch's joint under a parent that took its desired rotation has its local rotation worked out.
-        const RotationColumns local = tables.inEulerBatch[t] && parentAsDesired
-                                          ? loadRotation(&s.local[t * kRotationDoubles])
-                                          : multiply(transpose(frame), desired);
-        exact = fitJointRotationDofs(target, t, toMat3(local), targetValues);
+        exact = fitJointRotationDofs(target, t, toMat3(multiply(transpose(frame), desired)), targetValues);
         rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
     }
     const bool counted = !exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0;
@@ -451,6 +461,8 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
 {
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
+    const double* const rest = rig.getTargetRestDofs().data();
+    for (const std::uint32_t dof : tables.translationDofs) targetValues[dof] = rest[dof];
     unsigned numInexact = 0;
     for (std::size_t level = 0; level + 1 < tables.levelJoints.size(); ++level)
     {

@@ -589,6 +589,7 @@ struct RetargetRigBuilder
         tables.origins.assign(std::size_t(numTarget) * 4, 0.0);
         tables.originMoves.assign(numTarget, 0);
         tables.inEulerBatch.assign(numTarget, 0);
+        tables.translationDofs.clear();
         markSourceJointsRead(tables.sourceJointsRead);
         const unsigned numSource = source.definition->getNumJoints();
         tables.sourcePosed.clear();
@@ -611,6 +612,9 @@ struct RetargetRigBuilder
             storeRotation(&tables.restLocalRotations[j * kRotationDoubles], rig->_targetRestLocals[j]);
             tables.offsetIsIdentity[j] = rig->_targetOffsets[j] == glm::dmat3(1.0) ? 1 : 0;
             const JointKinematics& k = t.getKinematics(j);
+            for (unsigned axis = 0; axis < 3; ++axis)
+                if (k.translationDof[axis] >= 0)
+                    tables.translationDofs.push_back(static_cast<std::uint32_t>(k.translationDof[axis]));
             const bool carriesTravel = static_cast<int>(j) == rig->_targetRoot && rig->_sourceRoot >= 0;
             tables.originMoves[j] =
                 k.hasTranslation && (carriesTravel || k.translationMode == TranslationMode::AfterRotation) ? 1 : 0;
@@ -763,15 +767,9 @@ struct RetargetRigBuilder
     {
         const ActorDefinition& t = *target.definition;
         const JointKinematics& k = t.getKinematics(joint);
-        const unsigned i = k.rotationAxis[0], j = k.rotationAxis[1], l = k.rotationAxis[2];
-        // m(row, column) is element 4 column + row of a rotation stored as columns of four.
-        const auto at = [](unsigned row, unsigned column) { return static_cast<std::uint8_t>(4 * column + row); };
+        const unsigned i = k.rotationAxis[0], j = k.rotationAxis[1];
         batch.joints[lane] = joint;
-        batch.element[RetargetEulerBatch::kII][lane] = at(i, i);
-        batch.element[RetargetEulerBatch::kIJ][lane] = at(i, j);
-        batch.element[RetargetEulerBatch::kIK][lane] = at(i, l);
-        batch.element[RetargetEulerBatch::kJK][lane] = at(j, l);
-        batch.element[RetargetEulerBatch::kKK][lane] = at(l, l);
+        for (unsigned r = 0; r < 3; ++r) batch.axes[r][lane] = static_cast<std::uint8_t>(k.rotationAxis[r]);
         batch.parity[lane] = j == (i + 1) % 3 ? 1.0 : -1.0;
         for (unsigned r = 0; r < 3; ++r)
         {

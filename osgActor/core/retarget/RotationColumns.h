@@ -83,6 +83,19 @@ OSGACTOR_INLINE RotationColumns transpose(const RotationColumns& a)
              __builtin_shufflevector(lowerLeft, a.c[2], 0, 1, 6, 7)}}; // a20 a21 a22 0
 }
 
+/** Four columns (x, y, z, 0), one per lane, as three columns of their x, y and z: the 4x4 transpose, less its last
+  * row. Shuffle indices count the lanes of both arguments, the second's from 4. */
+OSGACTOR_INLINE void transposeToLanes(const Column v[4], Column& x, Column& y, Column& z)
+{
+    const Column xz01 = __builtin_shufflevector(v[0], v[1], 0, 4, 2, 6); // x0 x1 z0 z1
+    const Column y01 = __builtin_shufflevector(v[0], v[1], 1, 5, 3, 7);  // y0 y1 0 0
+    const Column xz23 = __builtin_shufflevector(v[2], v[3], 0, 4, 2, 6); // x2 x3 z2 z3
+    const Column y23 = __builtin_shufflevector(v[2], v[3], 1, 5, 3, 7);  // y2 y3 0 0
+    x = __builtin_shufflevector(xz01, xz23, 0, 1, 4, 5);
+    y = __builtin_shufflevector(y01, y23, 0, 1, 4, 5);
+    z = __builtin_shufflevector(xz01, xz23, 2, 3, 6, 7);
+}
+
 /** m * R_axis(angle), from its cosine and sine: the columns the axis rotation mixes (X: y and z, Y: z and x, Z: x
   * and y). */
 template <unsigned I, unsigned J>
