@@ -44,6 +44,7 @@
 #include <osgUtil/CullVisitor>
 
 #include <atomic>
+#include <cstdint>
 #include <vector>
 
 namespace osgActor {
@@ -136,6 +137,7 @@ protected:
 
 private:
     friend class ActorCull;
+    friend class InstancedCull;
 
     /** What the calls depend on beyond the actor: the visitor's settings and where it enters the actor. */
     struct Key
@@ -211,8 +213,19 @@ private:
     // joint's): its matrix for the render graph, or null; its pixel-size vector.
     std::vector<osg::RefMatrix*> _leafMatrices;
     FramePixelSizeVectors _pixelSizeVectors;
+    SmallFeatureProof _smallFeatureProof;
     std::vector<osg::StateSet*> _wantedStates;
     std::vector<osg::StateSet*> _appliedStates;
+    /** What the last InstancedActorGroup cull to take the actor found for its plan (InstancedCull), so that the
+      * next cull of that group finds it without a lookup: the group's cull state (its serial), the plan (held, so
+      * that no other plan is made at its address while it is named here), and the verdict. */
+    struct InstancedVerdict
+    {
+        std::uint64_t serial = 0;
+        osg::ref_ptr<const ActorCullPlan> plan;
+        const void* verdict = nullptr;
+    };
+    InstancedVerdict _instancedVerdict;
 };
 
 class ActorCull

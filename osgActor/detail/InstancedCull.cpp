@@ -47,6 +47,16 @@ float* InstancedFrame::reserveTexels(unsigned texels)
     return reinterpret_cast<float*>(_texels->data());
 }
 
+float* InstancedFrame::growTexels(unsigned texels)
+{
+    if (static_cast<unsigned>(_texels->s()) >= texels) return reinterpret_cast<float*>(_texels->data());
+    const float* data = reinterpret_cast<const float*>(_texels->data());
+    const std::vector<float> kept(data, data + 4 * static_cast<std::size_t>(_texels->s()));
+    float* out = reserveTexels(texels);
+    std::copy(kept.begin(), kept.end(), out);
+    return out;
+}
+
 InstancedDraw* InstancedFrame::draw(unsigned i)
 {
     while (_draws.size() <= i) _draws.push_back(new InstancedDraw);
@@ -54,6 +64,15 @@ InstancedDraw* InstancedFrame::draw(unsigned i)
 }
 
 // --- InstancedCullState ---
+
+InstancedCullState::InstancedCullState()
+    : _serial([] {
+          static std::atomic<std::uint64_t> counter{0};
+          return counter.fetch_add(1, std::memory_order_relaxed) + 1; // 0: no state
+      }())
+{
+    _busy.clear();
+}
 
 void InstancedCullState::resizeGLObjectBuffers(unsigned maxSize)
 {
@@ -100,11 +119,11 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
-      _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize())
+      _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false)
 {
     _state._statistics = InstancedCullState::Statistics();
     _state._stateVerdicts.clear();
-    for (InstancedCullState::Batch& batch : _state._batches) batch.matrices.clear();
+    placeBatches(textureUnit);
     // Verdicts of plans that only the cache still holds (their actors made new ones, or are gone) are dropped now and
     // then, never while a plan in use could be among them.
     if (_state._verdicts.size() > 2 * std::size_t(group.getNumChildren()) + 64)
@@ -116,7 +135,8 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
         if (typeid(child) == typeid(ActorNode)) cullChild(static_cast<ActorNode&>(child));
         else child.accept(cv);
     }
-    emitBatches(textureUnit);
+    if (_overflowed) gatherOverflow(textureUnit);
+    emitBatches();
 }
 
 bool InstancedCull::isPlainActor(const ActorNode& actor)
@@ -134,7 +154,13 @@ void InstancedCull::cullChild(ActorNode& actor)
     {
         const ActorCullPlan& plan =
             actorState.currentPlan(actor, actor._cullPlanVersion.load(std::memory_order_relaxed), true);
-        if (const InstancedCullState::PlanVerdict* verdict = instanceableVerdict(plan))
+        // The verdict the actor kept from this group's last cull, if made for the same plan; looked up otherwise.
+        ActorCullState::InstancedVerdict& kept = actorState._instancedVerdict;
+        const InstancedCullState::PlanVerdict* verdict =
+            kept.serial == _state._serial && kept.plan == &plan
+                ? instanceableNow(*static_cast<const InstancedCullState::PlanVerdict*>(kept.verdict))
+                : instanceableVerdict(plan, kept);
+        if (verdict)
         {
             ++_state._statistics.actorsInstanced;
             // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
@@ -148,7 +174,8 @@ void InstancedCull::cullChild(ActorNode& actor)
     actor.accept(_cv);
 }
 
-const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const ActorCullPlan& plan)
+const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const ActorCullPlan& plan,
+                                                                         ActorCullState::InstancedVerdict& kept)
 {
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
@@ -173,7 +200,15 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
         }
         found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
     }
-    const InstancedCullState::PlanVerdict& verdict = found->second;
+    // The map's entries stay where they are until erased, which the plan held here prevents.
+    kept.serial = _state._serial;
+    kept.plan = &plan;
+    kept.verdict = &found->second;
+    return instanceableNow(found->second);
+}
+
+const InstancedCullState::PlanVerdict* InstancedCull::instanceableNow(const InstancedCullState::PlanVerdict& verdict)
+{
     if (!verdict.plain) return nullptr;
     for (const osg::StateSet* state : verdict.states)
         if (!isInstanceableNow(state)) return nullptr;
@@ -186,7 +221,10 @@ unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geom
     auto found = _state._batchOfKey.find(key);
     if (found != _state._batchOfKey.end()) return found->second;
     const unsigned batch = static_cast<unsigned>(_state._batches.size());
-    _state._batches.push_back({geodeState, &drawable, {}});
+    InstancedCullState::Batch made;
+    made.geodeState = geodeState;
+    made.drawable = &drawable;
+    _state._batches.push_back(std::move(made));
     _state._batchOfKey.emplace(key, batch);
     return batch;
 }
@@ -206,6 +244,11 @@ bool InstancedCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned fr
                                                    _state._modelViews[frame], _smallFeaturePixelSize);
 }
 
+const osg::Vec4& InstancedCull::actorPixelSizeVector()
+{
+    return _state._pixelSizeVectors.vector(0, *_cv.getViewport(), *_cv.getProjectionMatrix(), _state._modelViews[0]);
+}
+
 void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict)
 {
     const ActorCullPlan& plan = *verdict.plan;
@@ -217,9 +260,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's), then
     // each joint's, parents first, as ActorCull composes them.
     composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());
-    for (std::size_t j = 0; j < joints.size(); ++j)
-        composeModelView(joints[j].node->getMatrix().ptr(),
-                         modelViews[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
+    plan.composeModelViews(modelViews.data(), _smallFeatureCulling ? &_state._smallFeatureProof : nullptr);
     if (actor.getUpdatePolicy().onlyWhenSeen)
     {
         // The update policy notes the view with the actor's frame on the visitor's stack, as its own cull does.
@@ -230,6 +271,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
     // is in is skipped with its subtree.
     const std::vector<Step>& steps = plan.getSteps();
+    std::size_t provenUntil = 0; // the steps before it are below a joint with no small feature below it
     for (std::size_t i = 0; i < steps.size();)
     {
         const Step& step = steps[i];
@@ -240,12 +282,15 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         {
             const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(joints[step.joint].parent + 1)
                                                                       : unsigned(step.joint + 1);
-            if (isMasked(step.mask) ||
-                (_smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame)))
+            const bool tested = _smallFeatureCulling && i >= provenUntil;
+            if (isMasked(step.mask) || (tested && step.cullingActive && isSmallFeature(step.node->getBound(), frame)))
             {
                 i = step.end;
                 continue;
             }
+            if (tested && plan.provesNoSmallFeatureBelow(step, _state._smallFeatureProof, actorPixelSizeVector(),
+                                                         _smallFeaturePixelSize))
+                provenUntil = step.end;
             break;
         }
         case ActorCullPlan::DRAWABLE:
@@ -271,10 +316,20 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
         if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
     }
     if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
-    std::vector<float>& matrices = _state._batches[batch].matrices;
+    InstancedCullState::Batch& into = _state._batches[batch];
+    float* out;
+    if (into.count < into.capacity)
+        out = _state._texels + 16 * std::size_t(into.base + into.count);
+    else
+    {
+        into.overflow.resize(into.overflow.size() + 16);
+        out = into.overflow.data() + into.overflow.size() - 16;
+        _overflowed = true;
+    }
+    ++into.count;
     const double* m = modelView.ptr();
     // As OSG hands a matrix to OpenGL (glLoadMatrixd, which keeps floats): each double rounded to the nearest float.
-    for (int k = 0; k < 16; ++k) matrices.push_back(static_cast<float>(m[k]));
+    for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
 }
 
 InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
@@ -285,27 +340,63 @@ InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
     return _state._frames.back().get();
 }
 
-void InstancedCull::emitBatches(unsigned textureUnit)
+void InstancedCull::placeBatches(unsigned textureUnit)
 {
-    unsigned texels = 0;
+    unsigned instances = 0;
+    for (InstancedCullState::Batch& batch : _state._batches)
+    {
+        batch.base = instances;
+        batch.capacity = batch.count;
+        batch.count = 0;
+        batch.overflow.clear();
+        instances += batch.capacity;
+    }
+    _state._frame = instances ? acquireFrame(textureUnit) : nullptr;
+    _state._texels = instances ? _state._frame->reserveTexels(4 * instances) : nullptr;
+}
+
+void InstancedCull::gatherOverflow(unsigned textureUnit)
+{
+    // Each batch that overflowed is moved whole past every region; the next cull's regions are this cull's counts.
+    unsigned end = 0, instances = 0;
     for (const InstancedCullState::Batch& batch : _state._batches)
-        texels += static_cast<unsigned>(batch.matrices.size() / 4);
-    if (texels == 0) return;
-    InstancedFrame& frame = *acquireFrame(textureUnit);
-    float* out = frame.reserveTexels(texels);
-    unsigned base = 0, drawIndex = 0;
+    {
+        end += batch.capacity;
+        if (!batch.overflow.empty()) instances += batch.count;
+    }
+    if (!_state._frame) _state._frame = acquireFrame(textureUnit);
+    float* texels = _state._frame->growTexels(4 * (end + instances));
+    for (InstancedCullState::Batch& batch : _state._batches)
+    {
+        if (batch.overflow.empty()) continue;
+        float* out = texels + 16 * std::size_t(end);
+        out = std::copy_n(texels + 16 * std::size_t(batch.base), 16 * std::size_t(batch.capacity), out);
+        std::copy(batch.overflow.begin(), batch.overflow.end(), out);
+        batch.base = end;
+        end += batch.count;
+    }
+}
+
+void InstancedCull::emitBatches()
+{
+    if (!_state._frame) return;
+    InstancedFrame& frame = *_state._frame;
+    _state._frame = nullptr;
+    _state._texels = nullptr;
+    unsigned drawIndex = 0;
+    if (std::none_of(_state._batches.begin(), _state._batches.end(),
+                     [](const InstancedCullState::Batch& batch) { return batch.count != 0; }))
+        return;
     osg::RefMatrix* groupModelView = _cv.getModelViewMatrix();
     for (const InstancedCullState::Batch& batch : _state._batches)
     {
-        const unsigned count = static_cast<unsigned>(batch.matrices.size() / 16);
+        const unsigned count = batch.count;
         if (count == 0) continue;
-        std::copy(batch.matrices.begin(), batch.matrices.end(), out + 4 * base);
         InstancedDraw* draw = frame.draw(drawIndex++);
-        draw->set(batch.drawable, static_cast<int>(base), count);
+        draw->set(batch.drawable, static_cast<int>(4 * batch.base), count);
         // A dynamic drawable makes osgViewer's next update wait until it is drawn: so does its instanced draw.
         draw->setDataVariance(batch.drawable->getDataVariance() == osg::Object::DYNAMIC ? osg::Object::DYNAMIC
                                                                                           : osg::Object::STATIC);
-        base += 4 * count;
         // The drawable's states as the ordinary traversal pushes them (the geode's, then its own), then the frame's.
         if (batch.geodeState) _cv.pushStateSet(batch.geodeState);
         if (const osg::StateSet* own = batch.drawable->getStateSet()) _cv.pushStateSet(own);

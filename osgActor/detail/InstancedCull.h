@@ -17,6 +17,7 @@
 #ifndef OSGACTOR_DETAIL_INSTANCEDCULL_H
 #define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
 
+#include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/InstancedDraw.h>
@@ -27,6 +28,7 @@
 #include <osgUtil/CullVisitor>
 
 #include <atomic>
+#include <cstdint>
 #include <unordered_map>
 #include <vector>
 
@@ -44,8 +46,10 @@ public:
 
     /** Whether the render graph holds none of its draws. */
     bool isFree() const;
-    /** Room for texels RGBA32F texels, their contents kept only up to what was written. */
+    /** Room for texels RGBA32F texels; what was written before is lost if the buffer grows. */
     float* reserveTexels(unsigned texels);
+    /** The same, keeping what was written. */
+    float* growTexels(unsigned texels);
     /** The draw for batch i, made on first use. */
     InstancedDraw* draw(unsigned i);
     /** Marks the texels written for upload. */
@@ -66,7 +70,7 @@ private:
 class InstancedCullState : public osg::Referenced
 {
 public:
-    InstancedCullState() { _busy.clear(); }
+    InstancedCullState();
 
     bool tryAcquire() { return !_busy.test_and_set(std::memory_order_acquire); }
     void release() { _busy.clear(std::memory_order_release); }
@@ -103,12 +107,18 @@ private:
         /** Per step, for its drawables: the batch it adds to (batches are kept, so the indices stay valid). */
         std::vector<unsigned> batchOfStep;
     };
-    /** The drawables of one (geode state set, drawable) and their instances' model-view matrices this cull. */
+    /** The drawables of one (geode state set, drawable) and their instances' model-view matrices this cull, 16
+      * floats per instance, OSG's rows one after the other. They are written where the draw reads them, in the
+      * frame's texture buffer, in a region as large as the batch's count of the previous cull; those that do not
+      * fit wait in overflow, and the batch is moved to the buffer's end before it is drawn. */
     struct Batch
     {
         const osg::StateSet* geodeState;
         const osg::Geometry* drawable;
-        std::vector<float> matrices; // 16 per instance, OSG's rows one after the other
+        unsigned base = 0;     // the region's first instance in the buffer
+        unsigned capacity = 0; // the region's size in instances
+        unsigned count = 0;    // this cull's instances
+        std::vector<float> overflow;
     };
     struct BatchKey
     {
@@ -128,6 +138,8 @@ private:
     };
 
     std::atomic_flag _busy;
+    /** Tells this state from every other, for the verdict an actor keeps (ActorCullState::InstancedVerdict). */
+    const std::uint64_t _serial;
     std::vector<osg::ref_ptr<InstancedFrame>> _frames;
     Statistics _statistics;
     std::unordered_map<const ActorCullPlan*, PlanVerdict> _verdicts;
@@ -135,8 +147,11 @@ private:
     std::vector<std::pair<const osg::StateSet*, bool>> _stateVerdicts; // this cull's
     std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
     FramePixelSizeVectors _pixelSizeVectors;  // per frame, made where a test needs it
+    SmallFeatureProof _smallFeatureProof;
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
+    InstancedFrame* _frame = nullptr; // this cull's, if any batch has a region
+    float* _texels = nullptr;         // its buffer
 };
 
 class InstancedCull
@@ -160,8 +175,12 @@ private:
     static bool isPlainActor(const ActorNode& actor);
     /** Culls one actor child: instanced if its plan allows, ordinarily otherwise. */
     void cullChild(ActorNode& actor);
-    /** What decides whether an actor of the plan can be drawn instanced now, or null if it cannot. */
-    const InstancedCullState::PlanVerdict* instanceableVerdict(const ActorCullPlan& plan);
+    /** What decides whether an actor of the plan can be drawn instanced now, or null if it cannot; kept: where the
+      * actor keeps it for the next cull. */
+    const InstancedCullState::PlanVerdict* instanceableVerdict(const ActorCullPlan& plan,
+                                                               ActorCullState::InstancedVerdict& kept);
+    /** The verdict if its state sets light as the instanced program does now, or null. */
+    const InstancedCullState::PlanVerdict* instanceableNow(const InstancedCullState::PlanVerdict& verdict);
     /** The batch of a (geode state set, drawable), made on first use. */
     unsigned batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable);
     bool isInstanceableNow(const osg::StateSet* state);
@@ -170,9 +189,15 @@ private:
     void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict);
     bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
+    /** The pixel-size vector of the actor's own frame. */
+    const osg::Vec4& actorPixelSizeVector();
     void addDrawable(const Step& step, unsigned batch);
+    /** Gives each batch its region in a frame's buffer, as large as its count of the previous cull. */
+    void placeBatches(unsigned textureUnit);
+    /** Moves the batches that overflowed their regions to the buffer's end, whole. */
+    void gatherOverflow(unsigned textureUnit);
     /** One leaf per batch, with this frame's texture buffer. */
-    void emitBatches(unsigned textureUnit);
+    void emitBatches();
     InstancedFrame* acquireFrame(unsigned textureUnit);
 
     osgUtil::CullVisitor& _cv;
@@ -184,6 +209,7 @@ private:
     bool _computeNearFar;
     bool _frustumCulling;
     float _smallFeaturePixelSize;
+    bool _overflowed;
 };
 
 } // namespace detail
