@@ -99,14 +99,14 @@ public:
     void reset(std::size_t numJoints)
     {
         _reach.resize(numJoints);
-        _rigid = true;
+        _deviation = 0.0;
         _maxReach = 0.0;
     }
     /** A planned joint's local matrix (in its parent's frame), parents first (parent -1: the actor's frame). */
     void addJoint(std::size_t joint, int parent, const osg::Matrixd& local)
     {
         const double* m = local.ptr();
-        _rigid = _rigid && isRigid(m);
+        _deviation += deviationFromRigid(m);
         // How far the joint's origin can be from the actor's (actor units, frames rigid): the sum of the
         // translations' lengths on the way, each at most its components' absolute sum.
         const double reach = (parent < 0 ? 0.0 : _reach[static_cast<std::size_t>(parent)]) + std::abs(m[12]) +
@@ -119,7 +119,8 @@ public:
     bool holds(const osg::BoundingSphere& top, const osg::Vec4& actorVector, float pixelSize,
                double smallestRadius) const
     {
-        if (!_rigid || !top.valid() || !(pixelSize > 0.0f)) return false;
+        // Every joint's rows orthonormal and last column (0, 0, 0, 1) to within 1e-9 (NaN fails too).
+        if (!(_deviation < 1e-18) || !top.valid() || !(pixelSize > 0.0f)) return false;
         const double gradient = osg::Vec3d(actorVector.x(), actorVector.y(), actorVector.z()).length();
         const osg::Vec3d centre(top.center());
         const double extent = centre.length() + top.radius() + 2.0 * _maxReach; // coordinates in any frame below
@@ -136,22 +137,25 @@ private:
       * so that only spheres within this share of the threshold are tested exactly. */
     static constexpr double kRelativeTolerance = 1e-4;
 
-    /** Rotation and translation only (the last column 0, 0, 0, 1), to well within rounding. */
-    static bool isRigid(const double* m)
+    /** How far a matrix is from rotation and translation only: the sum of the squares of its rows' dot products'
+      * departures from orthonormal and of its last column's from (0, 0, 0, 1). Without branches: it is summed over
+      * every joint of every actor, and compared once. */
+    static double deviationFromRigid(const double* m)
     {
-        if (m[3] != 0.0 || m[7] != 0.0 || m[11] != 0.0 || m[15] != 1.0) return false;
+        double sum = m[3] * m[3] + m[7] * m[7] + m[11] * m[11] + (m[15] - 1.0) * (m[15] - 1.0);
         for (int a = 0; a < 3; ++a)
             for (int b = a; b < 3; ++b)
             {
                 const double dot = m[4 * a] * m[4 * b] + m[4 * a + 1] * m[4 * b + 1] + m[4 * a + 2] * m[4 * b + 2];
-                if (!(std::abs(dot - (a == b ? 1.0 : 0.0)) < 1e-9)) return false;
+                const double departure = dot - (a == b ? 1.0 : 0.0);
+                sum += departure * departure;
             }
-        return true;
+        return sum;
     }
 
     std::vector<double> _reach;
     double _maxReach = 0.0;
-    bool _rigid = true;
+    double _deviation = 0.0;
 };
 
 /** Whether a box in a frame lies wholly outside one plane of a frustum given in eye space (the projection's culling
