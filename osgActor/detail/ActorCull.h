@@ -119,6 +119,11 @@ public:
             return plan == other.plan && pose == other.pose && bound == other.bound;
         }
     };
+    /** An actor's counters now, read from its atomic ones. */
+    static Versions versionsOf(const std::atomic<unsigned>& plan, unsigned pose, const std::atomic<unsigned>& bound)
+    {
+        return {plan.load(std::memory_order_relaxed), pose, bound.load(std::memory_order_relaxed)};
+    }
 
     /** Everything of the actor's cull that does not touch the visitor, for a view and the actor's model-view
       * matrix (eye space) and pixel-size vector (as the visitor computes them on its way into the actor), with
@@ -224,6 +229,14 @@ private:
         std::uint64_t serial = 0;
         osg::ref_ptr<const ActorCullPlan> plan;
         const void* verdict = nullptr;
+        // The actor's instances of that cull, each its batch and its matrix (16 floats), kept where it had not
+        // changed since the cull before, and added again while nothing they depend on changes (the counters and the
+        // key, as the calls of the cull as one are replayed): an idle actor before a still camera.
+        Versions versions;
+        bool kept = false;
+        Key key;
+        std::vector<unsigned> batches;
+        std::vector<float> matrices;
     };
     InstancedVerdict _instancedVerdict;
 };

@@ -119,7 +119,8 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
-      _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false)
+      _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false),
+      _view(cv), _recording(nullptr)
 {
     _state._statistics = InstancedCullState::Statistics();
     _state._stateVerdicts.clear();
@@ -164,7 +165,7 @@ void InstancedCull::cullChild(ActorNode& actor)
         {
             ++_state._statistics.actorsInstanced;
             // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
-            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict);
+            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict, kept);
             actorState.release();
             return;
         }
@@ -249,7 +250,8 @@ const osg::Vec4& InstancedCull::actorPixelSizeVector()
     return _state._pixelSizeVectors.vector(0, *_cv.getViewport(), *_cv.getProjectionMatrix(), _state._modelViews[0]);
 }
 
-void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict)
+void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
+                              ActorCullState::InstancedVerdict& kept)
 {
     const ActorCullPlan& plan = *verdict.plan;
     const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
@@ -257,10 +259,8 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     std::vector<osg::Matrixd>& modelViews = _state._modelViews;
     modelViews.resize(numFrames);
     _state._pixelSizeVectors.reset(numFrames);
-    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's), then
-    // each joint's, parents first, as ActorCull composes them.
+    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's).
     composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());
-    plan.composeModelViews(modelViews.data(), _smallFeatureCulling ? &_state._smallFeatureProof : nullptr);
     if (actor.getUpdatePolicy().onlyWhenSeen)
     {
         // The update policy notes the view with the actor's frame on the visitor's stack, as its own cull does.
@@ -268,6 +268,10 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         actor.noteSeen(_cv);
         _cv.popModelViewMatrix();
     }
+    if (replayKept(kept, ActorCullState::versionsOf(actor._cullPlanVersion, actor._poseVersion, actor._boundVersion)))
+        return;
+    // Each joint's frame, parents first, as ActorCull composes them.
+    plan.composeModelViews(modelViews.data(), _smallFeatureCulling ? &_state._smallFeatureProof : nullptr);
     // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
     // is in is skipped with its subtree.
     const std::vector<Step>& steps = plan.getSteps();
@@ -300,6 +304,37 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         }
         ++i;
     }
+    _recording = nullptr;
+}
+
+bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions)
+{
+    // Near and far computed from what is drawn would need each drawable's box again: kept only without them.
+    const bool unchanged = kept.versions == versions && !_computeNearFar;
+    kept.versions = versions;
+    if (!unchanged)
+    {
+        kept.kept = false;
+        return false;
+    }
+    const ActorCullState::Key key = ActorCullState::keyOf(_view, _state._modelViews[0]);
+    if (kept.kept && kept.key == key)
+    {
+        const float* matrix = kept.matrices.data();
+        for (unsigned batch : kept.batches)
+        {
+            std::copy_n(matrix, 16, nextInstance(batch));
+            matrix += 16;
+        }
+        return true;
+    }
+    // Unchanged since the cull before, but not kept, or kept for another view: culled now, and kept.
+    kept.kept = true;
+    kept.key = key;
+    kept.batches.clear();
+    kept.matrices.clear();
+    _recording = &kept;
+    return false;
 }
 
 void InstancedCull::addDrawable(const Step& step, unsigned batch)
@@ -316,6 +351,19 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
         if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
     }
     if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
+    float* out = nextInstance(batch);
+    const double* m = modelView.ptr();
+    // As OSG hands a matrix to OpenGL (glLoadMatrixd, which keeps floats): each double rounded to the nearest float.
+    for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
+    if (_recording)
+    {
+        _recording->batches.push_back(batch);
+        _recording->matrices.insert(_recording->matrices.end(), out, out + 16);
+    }
+}
+
+float* InstancedCull::nextInstance(unsigned batch)
+{
     InstancedCullState::Batch& into = _state._batches[batch];
     float* out;
     if (into.count < into.capacity)
@@ -327,9 +375,7 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
         _overflowed = true;
     }
     ++into.count;
-    const double* m = modelView.ptr();
-    // As OSG hands a matrix to OpenGL (glLoadMatrixd, which keeps floats): each double rounded to the nearest float.
-    for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
+    return out;
 }
 
 InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)

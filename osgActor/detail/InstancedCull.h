@@ -186,12 +186,17 @@ private:
     bool isInstanceableNow(const osg::StateSet* state);
     /** Culls an instanceable actor by its plan and adds its drawables' instances; the actor's bound was found
       * visible. */
-    void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict);
+    void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
+                   ActorCullState::InstancedVerdict& kept);
+    /** Adds the kept instances of an actor that did not change, if they hold for this cull. */
+    bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
     bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
     /** The pixel-size vector of the actor's own frame. */
     const osg::Vec4& actorPixelSizeVector();
     void addDrawable(const Step& step, unsigned batch);
+    /** Where the next instance of a batch goes: its region, or its overflow. */
+    float* nextInstance(unsigned batch);
     /** Gives each batch its region in a frame's buffer, as large as its count of the previous cull. */
     void placeBatches(unsigned textureUnit);
     /** Moves the batches that overflowed their regions to the buffer's end, whole. */
@@ -210,6 +215,9 @@ private:
     bool _frustumCulling;
     float _smallFeaturePixelSize;
     bool _overflowed;
+    const ActorCullView _view;
+    /** The actor's kept instances being recorded, or null. */
+    ActorCullState::InstancedVerdict* _recording;
 };
 
 } // namespace detail
