@@ -143,6 +143,7 @@ protected:
 private:
     friend class ActorCull;
     friend class InstancedCull;
+    friend class InstancedCullState;
 
     /** What the calls depend on beyond the actor: the visitor's settings and where it enters the actor. */
     struct Key
@@ -230,11 +231,13 @@ private:
         osg::ref_ptr<const ActorCullPlan> plan;
         const void* verdict = nullptr;
         // The actor's instances of that cull, each its batch and its matrix (16 floats), kept where it had not
-        // changed since the cull before, and added again while nothing they depend on changes (the counters and the
-        // key, as the calls of the cull as one are replayed): an idle actor before a still camera.
+        // changed since the cull before, and added again while nothing they depend on changes (the counters, the
+        // actor's model-view matrix and the rest of the key, the view's, which the group's cull state numbers): an
+        // idle actor before a still camera.
         Versions versions;
         bool kept = false;
-        Key key;
+        std::uint64_t view = 0;
+        osg::Matrixd actorModelView;
         std::vector<unsigned> batches;
         std::vector<float> matrices;
     };

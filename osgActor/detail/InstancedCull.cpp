@@ -4,11 +4,13 @@
 #include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/JointDrawBatch.h>
+#include <osgActor/detail/Prefetch.h>
 
 #include <osg/Material>
 #include <osg/TextureBuffer>
 
 #include <algorithm>
+#include <cstring>
 #include <iterator>
 #include <typeinfo>
 
@@ -122,6 +124,12 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false),
       _view(cv), _recording(nullptr)
 {
+    const ActorCullState::Key viewKey = ActorCullState::keyOf(_view, osg::Matrixd::identity());
+    if (_state._view == 0 || !(viewKey == _state._viewKey))
+    {
+        _state._viewKey = viewKey;
+        ++_state._view;
+    }
     _state._statistics = InstancedCullState::Statistics();
     _state._stateVerdicts.clear();
     placeBatches(textureUnit);
@@ -153,10 +161,19 @@ void InstancedCull::cullChild(ActorNode& actor)
     ActorCullState& actorState = *actor._cullState;
     if (isPlainActor(actor) && actorState.tryAcquire())
     {
-        const ActorCullPlan& plan =
-            actorState.currentPlan(actor, actor._cullPlanVersion.load(std::memory_order_relaxed), true);
-        // The verdict the actor kept from this group's last cull, if made for the same plan; looked up otherwise.
         ActorCullState::InstancedVerdict& kept = actorState._instancedVerdict;
+        const ActorCullState::Versions versions =
+            ActorCullState::versionsOf(actor._cullPlanVersion, actor._poseVersion, actor._boundVersion);
+        // The joints' matrices and bounds are asked for with the plan's check, or the kept instances where they may
+        // do, so that the fetches overlap.
+        const bool replayable = mayReplay(kept, versions);
+        if (replayable)
+        {
+            prefetchForRead(kept.batches.data(), kept.batches.size() * sizeof(unsigned));
+            prefetchForRead(kept.matrices.data(), kept.matrices.size() * sizeof(float));
+        }
+        const ActorCullPlan& plan = actorState.currentPlan(actor, versions.plan, !replayable);
+        // The verdict the actor kept from this group's last cull, if made for the same plan; looked up otherwise.
         const InstancedCullState::PlanVerdict* verdict =
             kept.serial == _state._serial && kept.plan == &plan
                 ? instanceableNow(*static_cast<const InstancedCullState::PlanVerdict*>(kept.verdict))
@@ -165,7 +182,7 @@ void InstancedCull::cullChild(ActorNode& actor)
         {
             ++_state._statistics.actorsInstanced;
             // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
-            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict, kept);
+            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict, kept, versions);
             actorState.release();
             return;
         }
@@ -205,6 +222,7 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
     kept.serial = _state._serial;
     kept.plan = &plan;
     kept.verdict = &found->second;
+    kept.kept = false; // instances of another group's cull, or of another plan
     return instanceableNow(found->second);
 }
 
@@ -251,7 +269,7 @@ const osg::Vec4& InstancedCull::actorPixelSizeVector()
 }
 
 void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
-                              ActorCullState::InstancedVerdict& kept)
+                              ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions)
 {
     const ActorCullPlan& plan = *verdict.plan;
     const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
@@ -268,8 +286,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         actor.noteSeen(_cv);
         _cv.popModelViewMatrix();
     }
-    if (replayKept(kept, ActorCullState::versionsOf(actor._cullPlanVersion, actor._poseVersion, actor._boundVersion)))
-        return;
+    if (replayKept(kept, versions)) return;
     // Each joint's frame, parents first, as ActorCull composes them.
     plan.composeModelViews(modelViews.data(), _smallFeatureCulling ? &_state._smallFeatureProof : nullptr);
     // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
@@ -317,20 +334,22 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
         kept.kept = false;
         return false;
     }
-    const ActorCullState::Key key = ActorCullState::keyOf(_view, _state._modelViews[0]);
-    if (kept.kept && kept.key == key)
+    const osg::Matrixd& actorModelView = _state._modelViews[0];
+    if (mayReplay(kept, versions) &&
+        std::memcmp(kept.actorModelView.ptr(), actorModelView.ptr(), sizeof(osg::Matrixd)) == 0)
     {
         const float* matrix = kept.matrices.data();
         for (unsigned batch : kept.batches)
         {
-            std::copy_n(matrix, 16, nextInstance(batch));
+            std::memcpy(nextInstance(batch), matrix, 16 * sizeof(float));
             matrix += 16;
         }
         return true;
     }
     // Unchanged since the cull before, but not kept, or kept for another view: culled now, and kept.
     kept.kept = true;
-    kept.key = key;
+    kept.view = _state._view;
+    kept.actorModelView = actorModelView;
     kept.batches.clear();
     kept.matrices.clear();
     _recording = &kept;

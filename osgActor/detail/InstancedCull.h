@@ -152,6 +152,10 @@ private:
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
     InstancedFrame* _frame = nullptr; // this cull's, if any batch has a region
     float* _texels = nullptr;         // its buffer
+    /** The view of the last cull (the key of an actor culled as one, but for the actor's model-view matrix), and
+      * its number, which changes with it. */
+    ActorCullState::Key _viewKey;
+    std::uint64_t _view = 0;
 };
 
 class InstancedCull
@@ -187,7 +191,14 @@ private:
     /** Culls an instanceable actor by its plan and adds its drawables' instances; the actor's bound was found
       * visible. */
     void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
-                   ActorCullState::InstancedVerdict& kept);
+                   ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
+    /** Whether the kept instances of an actor with these counters may hold for this cull (its model-view matrix
+      * still to compare). */
+    bool mayReplay(const ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions) const
+    {
+        return kept.kept && kept.serial == _state._serial && kept.view == _state._view && kept.versions == versions &&
+               !_computeNearFar;
+    }
     /** Adds the kept instances of an actor that did not change, if they hold for this cull. */
     bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
     bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }

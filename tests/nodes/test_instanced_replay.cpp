@@ -75,16 +75,8 @@ struct Scene
 
     Scene()
     {
-        for (unsigned a = 0; a < 4; ++a)
-        {
-            osg::ref_ptr<ActorNode> actor = makeTestFigure();
-            actor->setPreTranslation(osg::Vec3d(1.1 * a, 0.3 * (a % 2), 0.0));
-            poseCrowdMember(*actor, a);
-            actor->update(nullptr);
-            actors.push_back(actor);
-            instanced->addChild(actor.get());
-            plain->addChild(actor.get());
-        }
+        actors = addPosedRow(*plain, 4);
+        for (const osg::ref_ptr<ActorNode>& actor : actors) instanced->addChild(actor.get());
         for (CullProbe* probe : {&instancedProbe, &ordinaryProbe})
             probe->sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
         lookFrom(osg::Vec3d(1.6, -7.0, 1.2));

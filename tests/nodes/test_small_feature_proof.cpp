@@ -36,18 +36,7 @@ struct Crowd
 {
     std::vector<osg::ref_ptr<ActorNode>> actors;
 
-    explicit Crowd(osg::Group& parent)
-    {
-        for (unsigned a = 0; a < 4; ++a)
-        {
-            osg::ref_ptr<ActorNode> actor = makeTestFigure();
-            actor->setPreTranslation(osg::Vec3d(1.1 * a, 0.3 * (a % 2), 0.0));
-            poseCrowdMember(*actor, a);
-            actor->update(nullptr);
-            actors.push_back(actor);
-            parent.addChild(actor.get());
-        }
-    }
+    explicit Crowd(osg::Group& parent) : actors(addPosedRow(parent, 4)) {}
     void setCullMode(ActorNode::CullMode mode)
     {
         for (osg::ref_ptr<ActorNode>& actor : actors) actor->setCullMode(mode);
@@ -61,6 +50,28 @@ std::vector<double> distancesThroughTheThreshold()
     std::vector<double> distances;
     for (double d = 5.0; d < 400.0; d *= 1.07) distances.push_back(d);
     return distances;
+}
+
+/** Culls the crowd both ways at each distance, compares the render graphs leaf by leaf and returns the numbers of
+  * leaves seen. */
+std::set<std::size_t> expectTheOrdinaryGraphAtEveryDistance(osg::Group& scene, Crowd& crowd)
+{
+    CullProbe probe(&scene);
+    std::set<std::size_t> counts;
+    unsigned frame = 0;
+    for (double distance : distancesThroughTheThreshold())
+    {
+        probe.lookAt(osg::Vec3d(1.6, -distance, 1.0), osg::Vec3d(1.6, 0.0, 0.9));
+        crowd.setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        const std::vector<CulledLeaf> ordinary = probe.cull(++frame);
+        crowd.setCullMode(ActorNode::CULL_AS_ONE);
+        const std::vector<CulledLeaf> asOne = probe.cull(++frame);
+        EXPECT_EQ(asOne.size(), ordinary.size()) << "at " << distance;
+        for (std::size_t i = 0; i < ordinary.size() && i < asOne.size(); ++i)
+            EXPECT_TRUE(asOne[i] == ordinary[i]) << "at " << distance;
+        counts.insert(ordinary.size());
+    }
+    return counts;
 }
 
 } // namespace
@@ -110,20 +121,7 @@ TEST(SmallFeatureProof, ACameraBackingAwayThroughTheThresholdGetsTheOrdinaryRend
 {
     osg::ref_ptr<osg::Group> scene = new osg::Group;
     Crowd crowd(*scene);
-    CullProbe probe(scene.get());
-    std::set<std::size_t> counts;
-    unsigned frame = 0;
-    for (double distance : distancesThroughTheThreshold())
-    {
-        probe.lookAt(osg::Vec3d(1.6, -distance, 1.0), osg::Vec3d(1.6, 0.0, 0.9));
-        crowd.setCullMode(ActorNode::CULL_NODE_BY_NODE);
-        const std::vector<CulledLeaf> ordinary = probe.cull(++frame);
-        crowd.setCullMode(ActorNode::CULL_AS_ONE);
-        const std::vector<CulledLeaf> asOne = probe.cull(++frame);
-        ASSERT_EQ(asOne.size(), ordinary.size()) << "at " << distance;
-        for (std::size_t i = 0; i < ordinary.size(); ++i) EXPECT_TRUE(asOne[i] == ordinary[i]) << "at " << distance;
-        counts.insert(ordinary.size());
-    }
+    const std::set<std::size_t> counts = expectTheOrdinaryGraphAtEveryDistance(*scene, crowd);
     // The test can fail: near, every part is drawn; far, the balls and then the limbs were dropped, a few at a time.
     EXPECT_EQ(*counts.rbegin(), 4u * 18u);
     EXPECT_GT(counts.size(), 3u);
@@ -136,18 +134,7 @@ TEST(SmallFeatureProof, AJointScaledByHandIsTestedExactly)
     // Halved: its spheres and its parts' are smaller than the rigid figures' and reach the threshold sooner.
     SkeletonNode& knee = *crowd.actors[1]->getSkeletonNode("l_knee");
     knee.setMatrix(osg::Matrixd::scale(0.5, 0.5, 0.5) * knee.getMatrix());
-    CullProbe probe(scene.get());
-    unsigned frame = 0;
-    for (double distance : distancesThroughTheThreshold())
-    {
-        probe.lookAt(osg::Vec3d(1.6, -distance, 1.0), osg::Vec3d(1.6, 0.0, 0.9));
-        crowd.setCullMode(ActorNode::CULL_NODE_BY_NODE);
-        const std::vector<CulledLeaf> ordinary = probe.cull(++frame);
-        crowd.setCullMode(ActorNode::CULL_AS_ONE);
-        const std::vector<CulledLeaf> asOne = probe.cull(++frame);
-        ASSERT_EQ(asOne.size(), ordinary.size()) << "at " << distance;
-        for (std::size_t i = 0; i < ordinary.size(); ++i) EXPECT_TRUE(asOne[i] == ordinary[i]) << "at " << distance;
-    }
+    EXPECT_GT(expectTheOrdinaryGraphAtEveryDistance(*scene, crowd).size(), 3u);
 }
 
 TEST(SmallFeatureProof, TheInstancedCullDrawsTheOrdinaryTraversalsPartsAtEveryDistance)
