@@ -151,15 +151,13 @@ void ActorCullPlan::addJoint(SkeletonNode& node, int parent)
 
 void ActorCullPlan::composeModelViews(osg::Matrixd* modelViews, SmallFeatureProof* proof) const
 {
-    if (proof) proof->reset(_joints.size());
     for (std::size_t j = 0; j < _joints.size(); ++j)
-    {
-        const Joint& joint = _joints[j];
-        const osg::Matrixd& local = joint.node->getMatrix();
-        composeModelView(local.ptr(), modelViews[static_cast<std::size_t>(joint.parent + 1)].ptr(),
-                         modelViews[j + 1].ptr());
-        if (proof) proof->addJoint(j, joint.parent, local);
-    }
+        composeModelView(_joints[j].node->getMatrix().ptr(),
+                         modelViews[static_cast<std::size_t>(_joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
+    if (!proof) return;
+    // Apart, so that the products above keep a loop of their own (the matrices are in the cache now).
+    proof->reset(_joints.size());
+    for (std::size_t j = 0; j < _joints.size(); ++j) proof->addJoint(j, _joints[j].parent, _joints[j].node->getMatrix());
 }
 
 bool ActorCullPlan::provesNoSmallFeatureBelow(const Step& step, const SmallFeatureProof& proof,
