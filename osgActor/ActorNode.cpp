@@ -22,18 +22,6 @@ namespace osgActor {
 
 namespace {
 
-/** The counters the cull keeps its calls for: an actor's edits below its skeleton nodes, joint-matrix writes and
-  * bound recomputations. */
-detail::ActorCullState::Versions cullVersionsOf(const std::atomic<unsigned>& plan, unsigned pose,
-                                                const std::atomic<unsigned>& bound)
-{
-    detail::ActorCullState::Versions versions;
-    versions.plan = plan.load(std::memory_order_relaxed);
-    versions.pose = pose;
-    versions.bound = bound.load(std::memory_order_relaxed);
-    return versions;
-}
-
 constexpr unsigned kNoFrame = std::numeric_limits<unsigned>::max();
 /** The simulation time of a frame without a frame stamp: controllers do not run. */
 constexpr double kNoTime = std::numeric_limits<double>::quiet_NaN();
@@ -698,7 +686,8 @@ void ActorNode::traverse(osg::NodeVisitor& nv)
     {
         // The bound computed (the visitor did unless culling is off here): a change below recomputes it.
         getBound();
-        detail::ActorCull(*cv, *_cullState, *this, cullVersionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
+        detail::ActorCull(*cv, *_cullState, *this,
+                          detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
         if (!held) _cullState->release();
     }
     else
@@ -719,7 +708,8 @@ bool ActorNode::prepareCullWithinGroup(const detail::ActorCullView& view, const 
     computeLocalToWorldMatrix(modelView, nullptr); // the visitor's call, so the same bits
     const osg::Vec4 pixelSizeVector =
         osg::CullingSet::computePixelSizeVector(*view.viewport, view.projection, modelView); // as pushCullingSet()
-    _cullState->prepare(view, modelView, pixelSizeVector, *this, cullVersionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
+    _cullState->prepare(view, modelView, pixelSizeVector, *this,
+                        detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
     return true;
 }
 

@@ -28,12 +28,12 @@ namespace {
 using bench::Motion;
 
 enum class System { OsgActorAll, OsgActorAllNodeByNode, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg,
-                    OsgActorAllFollow, OsgActorAllInstanced };
-constexpr int kNumSystems = 8;
+                    OsgActorAllFollow, OsgActorAllInstanced, OsgActorIdleInstanced };
+constexpr int kNumSystems = 9;
 
 const char* const kNames[kNumSystems] = {"osgActor_all", "osgActor_all_nodebynode", "osgActor_quarter",
                                          "osgActor_idle", "osgAnimation",            "plainOSG",
-                                         "osgActor_all_follow", "osgActor_all_instanced"};
+                                         "osgActor_all_follow", "osgActor_all_instanced", "osgActor_idle_instanced"};
 
 /** A system's crowd; outOfView: the share of its instances behind the camera, where osgActor's actors follow
   * ActorNode::UpdatePolicy::onlyWhenSeen (the peers have no such thing). */
@@ -56,6 +56,10 @@ osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors, double out
         crowd.bounds = bench::Bounds::FollowPose;
         return bench::makeOsgActorScene(numActors, crowd);
     case System::OsgActorAllInstanced: crowd.instanced = true; return bench::makeOsgActorScene(numActors, crowd);
+    case System::OsgActorIdleInstanced:
+        crowd.instanced = true;
+        crowd.motion = Motion::Idle;
+        return bench::makeOsgActorScene(numActors, crowd);
     case System::OsgAnimation: scene = bench::makeOsgAnimationScene(numActors); break;
     case System::PlainOsg: scene = bench::makePlainOsgScene(numActors); break;
     }
@@ -117,12 +121,15 @@ void registerAll(const Sweep& sweep)
                 const System system = static_cast<System>(s);
                 // The node-by-node cull has the same update as _all; the instanced group (InstancedActorGroup, one
                 // thread) only another cull.
-                if ((system == System::OsgActorAllNodeByNode || system == System::OsgActorAllInstanced) && !withCull)
+                if ((system == System::OsgActorAllNodeByNode || system == System::OsgActorAllInstanced ||
+                     system == System::OsgActorIdleInstanced) &&
+                    !withCull)
                     continue;
                 const std::string name = std::string(withCull ? "update_cull/" : "update/") + kNames[s];
                 benchmark::RegisterBenchmark(name.c_str(), [system, withCull](benchmark::State& state) {
                     osg::ref_ptr<osg::Group> scene = makeScene(system, static_cast<unsigned>(state.range(0)));
-                    runScene(state, *scene, withCull, system != System::OsgActorIdle);
+                    runScene(state, *scene, withCull,
+                             system != System::OsgActorIdle && system != System::OsgActorIdleInstanced);
                 })->Arg(n)->Unit(benchmark::kMicrosecond);
             }
     // The whole frame (update + cull) with every instance in view, and with three in four behind the camera; each

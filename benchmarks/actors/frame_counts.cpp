@@ -5,7 +5,8 @@
 //     valgrind --tool=callgrind --instr-atstart=no --cache-sim=yes --LL=1048576,16,64 build/bin/osgactor_frame_counts
 // counts those frames only (outside valgrind the requests do nothing). Arguments: actors (1000), measured frames
 // (20), then any of "follow" for bounds that follow the pose (the default covers rotations), "cull" for the cull
-// too, "idle" for actors without a controller. Divide the counts by
+// too, "idle" for actors without a controller, "instanced" for the crowd under an InstancedActorGroup (its
+// update_cull/osgActor_all_instanced, or _idle_instanced). Divide the counts by
 // actors x frames x 31 joints for figures per joint and frame (docs/performance.md).
 #include "FrameLoop"
 #include "PeerScenes"
@@ -20,21 +21,24 @@ int main(int argc, char** argv)
 {
     const unsigned numActors = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 1000u;
     const unsigned numFrames = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 20u;
-    bool follow = false, cull = false, idle = false;
+    bool follow = false, cull = false, idle = false, instanced = false;
     for (int i = 3; i < argc; ++i)
     {
         follow = follow || std::strcmp(argv[i], "follow") == 0;
         cull = cull || std::strcmp(argv[i], "cull") == 0;
         idle = idle || std::strcmp(argv[i], "idle") == 0;
+        instanced = instanced || std::strcmp(argv[i], "instanced") == 0;
     }
     if (numActors == 0 || numFrames == 0)
     {
-        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced]\n", argv[0]);
         return 1;
     }
-    osg::ref_ptr<osg::Group> scene = bench::makeOsgActorScene(
-        numActors, idle ? bench::Motion::Idle : bench::Motion::All, 0,
-        follow ? bench::Bounds::FollowPose : bench::Bounds::CoverRotations);
+    bench::OsgActorCrowd crowd;
+    crowd.motion = idle ? bench::Motion::Idle : bench::Motion::All;
+    crowd.bounds = follow ? bench::Bounds::FollowPose : bench::Bounds::CoverRotations;
+    crowd.instanced = instanced;
+    osg::ref_ptr<osg::Group> scene = bench::makeOsgActorScene(numActors, crowd);
     bench::FrameLoop loop(scene.get(), cull);
     for (int i = 0; i < 10; ++i) loop.frame();
     CALLGRIND_ZERO_STATS;

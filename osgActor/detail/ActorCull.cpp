@@ -190,9 +190,8 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     std::vector<osg::Matrixd>& matrices = _preparedModelViews->matrices;
     matrices.resize(joints.size() + 1);
     matrices[0] = actorModelView;
-    for (std::size_t j = 0; j < joints.size(); ++j)
-        composeModelView(joints[j].node->getMatrix().ptr(),
-                         matrices[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), matrices[j + 1].ptr());
+    const bool smallFeatureCulling = view.smallFeatureCulling();
+    _plan->composeModelViews(matrices.data(), smallFeatureCulling ? &_smallFeatureProof : nullptr);
 
     const std::size_t numFrames = joints.size() + 1;
     _leafMatrices.assign(numFrames, nullptr);
@@ -209,7 +208,7 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     float* depths = _stepDepths.data();
     const ActorCullPlan::Joint* jointData = joints.data();
     const osg::Matrixd* frames = matrices.data();
-    const bool smallFeatureCulling = view.smallFeatureCulling();
+    std::size_t provenUntil = 0; // the steps before it are below a joint with no small feature below it
     const bool frustumCullingForNearFar = view.computeNearFar() && view.frustumCulling();
     for (std::size_t i = 0; i < numSteps; ++i)
     {
@@ -223,12 +222,16 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
             // tests the node's sphere in the frame the node is in; a small feature is culled with its subtree.
             const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(jointData[step.joint].parent + 1)
                                                                       : unsigned(step.joint + 1);
+            const bool tested = smallFeatureCulling && i >= provenUntil;
             if ((view.traversalMask & (view.nodeMaskOverride | step.mask)) == 0 ||
-                (smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame, view)))
+                (tested && step.cullingActive && isSmallFeature(step.node->getBound(), frame, view)))
             {
                 culled[i] = 1;
                 i = step.end - 1; // its steps are skipped, and left undecided
             }
+            else if (tested && _plan->provesNoSmallFeatureBelow(step, _smallFeatureProof, pixelSizeVector,
+                                                                view.smallFeaturePixelSize))
+                provenUntil = step.end;
             break;
         }
         case ActorCullPlan::DRAWABLE:

@@ -44,6 +44,7 @@
 #include <osgUtil/CullVisitor>
 
 #include <atomic>
+#include <cstdint>
 #include <vector>
 
 namespace osgActor {
@@ -118,6 +119,11 @@ public:
             return plan == other.plan && pose == other.pose && bound == other.bound;
         }
     };
+    /** An actor's counters now, read from its atomic ones. */
+    static Versions versionsOf(const std::atomic<unsigned>& plan, unsigned pose, const std::atomic<unsigned>& bound)
+    {
+        return {plan.load(std::memory_order_relaxed), pose, bound.load(std::memory_order_relaxed)};
+    }
 
     /** Everything of the actor's cull that does not touch the visitor, for a view and the actor's model-view
       * matrix (eye space) and pixel-size vector (as the visitor computes them on its way into the actor), with
@@ -136,6 +142,8 @@ protected:
 
 private:
     friend class ActorCull;
+    friend class InstancedCull;
+    friend class InstancedCullState;
 
     /** What the calls depend on beyond the actor: the visitor's settings and where it enters the actor. */
     struct Key
@@ -211,8 +219,29 @@ private:
     // joint's): its matrix for the render graph, or null; its pixel-size vector.
     std::vector<osg::RefMatrix*> _leafMatrices;
     FramePixelSizeVectors _pixelSizeVectors;
+    SmallFeatureProof _smallFeatureProof;
     std::vector<osg::StateSet*> _wantedStates;
     std::vector<osg::StateSet*> _appliedStates;
+    /** What the last InstancedActorGroup cull to take the actor found for its plan (InstancedCull), so that the
+      * next cull of that group finds it without a lookup: the group's cull state (its serial), the plan (held, so
+      * that no other plan is made at its address while it is named here), and the verdict. */
+    struct InstancedVerdict
+    {
+        std::uint64_t serial = 0;
+        osg::ref_ptr<const ActorCullPlan> plan;
+        const void* verdict = nullptr;
+        // The actor's instances of that cull, each its batch and its matrix (16 floats), kept where it had not
+        // changed since the cull before, and added again while nothing they depend on changes (the counters, the
+        // actor's model-view matrix and the rest of the key, the view's, which the group's cull state numbers): an
+        // idle actor before a still camera.
+        Versions versions;
+        bool kept = false;
+        std::uint64_t view = 0;
+        osg::Matrixd actorModelView;
+        std::vector<unsigned> batches;
+        std::vector<float> matrices;
+    };
+    InstancedVerdict _instancedVerdict;
 };
 
 class ActorCull

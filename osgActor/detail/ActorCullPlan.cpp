@@ -5,6 +5,8 @@
 #include <osg/Geometry>
 #include <osg/ShapeDrawable>
 
+#include <algorithm>
+#include <limits>
 #include <typeinfo>
 
 namespace osgActor {
@@ -136,7 +138,7 @@ void ActorCullPlan::addChild(osg::Node& child, int joint)
 void ActorCullPlan::addJoint(SkeletonNode& node, int parent)
 {
     const int joint = static_cast<int>(_joints.size());
-    _joints.push_back({&node, parent});
+    _joints.push_back({&node, parent, 0, 0, false});
     const unsigned index = static_cast<unsigned>(_steps.size());
     addStep(JOINT, node, joint);
     _open.push_back(index);
@@ -144,6 +146,74 @@ void ActorCullPlan::addJoint(SkeletonNode& node, int parent)
     _open.pop_back();
     addStep(END_JOINT, node, joint).pathNeeded = _steps[index].pathNeeded;
     _steps[index].end = static_cast<unsigned>(_steps.size());
+    if (parent < 0) noteGeodesBelow(index);
+}
+
+void ActorCullPlan::composeModelViews(osg::Matrixd* modelViews, SmallFeatureProof* proof) const
+{
+    for (std::size_t j = 0; j < _joints.size(); ++j)
+        composeModelView(_joints[j].node->getMatrix().ptr(),
+                         modelViews[static_cast<std::size_t>(_joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
+    if (!proof) return;
+    // Apart, so that the products above keep a loop of their own (the matrices are in the cache now).
+    proof->reset(_joints.size());
+    for (std::size_t j = 0; j < _joints.size(); ++j) proof->addJoint(j, _joints[j].parent, _joints[j].node->getMatrix());
+}
+
+bool ActorCullPlan::provesNoSmallFeatureBelow(const Step& step, const SmallFeatureProof& proof,
+                                              const osg::Vec4& actorVector, float pixelSize) const
+{
+    if (step.kind != JOINT) return false;
+    const Joint& joint = _joints[static_cast<std::size_t>(step.joint)];
+    double smallestRadius;
+    return joint.parent < 0 && smallestGeodeRadiusBelow(joint, smallestRadius) &&
+           proof.holds(joint.node->getBound(), actorVector, pixelSize, smallestRadius);
+}
+
+void ActorCullPlan::noteGeodesBelow(unsigned jointStep)
+{
+    Joint& top = _joints[static_cast<std::size_t>(_steps[jointStep].joint)];
+    top.firstGeode = static_cast<unsigned>(_geodesBelow.size());
+    top.geodeBelowEveryJoint = true;
+    std::unordered_set<const osg::Node*> seen;
+    // Each joint below, with whether a geode follows it within its subtree (joints and geodes in the visitor's
+    // order, so a subtree is the steps up to its end).
+    std::vector<unsigned> open;
+    std::vector<bool> geodeFound;
+    for (unsigned i = jointStep + 1; i + 1 < _steps[jointStep].end; ++i)
+    {
+        const Step& step = _steps[i];
+        if (step.kind == JOINT)
+        {
+            open.push_back(step.end);
+            geodeFound.push_back(false);
+        }
+        else if (step.kind == GEODE)
+        {
+            std::fill(geodeFound.begin(), geodeFound.end(), true);
+            if (seen.insert(step.node).second) _geodesBelow.push_back(step.node);
+        }
+        while (!open.empty() && open.back() == i + 1)
+        {
+            top.geodeBelowEveryJoint = top.geodeBelowEveryJoint && geodeFound.back();
+            open.pop_back();
+            geodeFound.pop_back();
+        }
+    }
+    top.numGeodes = static_cast<unsigned>(_geodesBelow.size()) - top.firstGeode;
+}
+
+bool ActorCullPlan::smallestGeodeRadiusBelow(const Joint& joint, double& radius) const
+{
+    if (joint.parent >= 0 || !joint.geodeBelowEveryJoint || joint.numGeodes == 0) return false;
+    radius = std::numeric_limits<double>::max();
+    for (unsigned g = joint.firstGeode; g < joint.firstGeode + joint.numGeodes; ++g)
+    {
+        const osg::BoundingSphere& bound = _geodesBelow[g]->getBound();
+        if (!bound.valid()) return false;
+        radius = std::min(radius, double(bound.radius()));
+    }
+    return true;
 }
 
 void ActorCullPlan::addGeode(osg::Geode& geode, int joint)

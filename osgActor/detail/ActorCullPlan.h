@@ -15,6 +15,7 @@
 #define OSGACTOR_DETAIL_ACTORCULLPLAN_H 1
 
 #include <osgActor/SkeletonNode>
+#include <osgActor/detail/CullArithmetic.h>
 
 #include <osg/Drawable>
 #include <osg/Geode>
@@ -73,6 +74,12 @@ public:
     {
         SkeletonNode* node;
         int parent; // index into joints; -1: the actor's frame
+        // A joint in the actor's frame (parent -1): the distinct plain geodes of its subtree, and whether every
+        // joint below it has one of them in its own subtree, so that the subtree's spheres are at least as large
+        // as the smallest geode's (smallestGeodeRadiusBelow()).
+        unsigned firstGeode;
+        unsigned numGeodes;
+        bool geodeBelowEveryJoint;
     };
 
     const std::vector<Step>& getSteps() const { return _steps; }
@@ -80,6 +87,17 @@ public:
     /** The drawable classes whose drawing the plan may batch: no cull callback, and a class known not to cull in
       * its own way (a subclass such as SkinnedMesh overrides accept() to skin or upload before it is drawn). */
     static bool isPlainDrawable(const osg::Drawable& drawable);
+    /** For a joint in the actor's frame: the smallest radius (local units of any rigid frame of its subtree) of a
+      * plain geode's sphere below it, which every joint's and geode's sphere below it is at least; false where
+      * that does not hold (a joint below without a geode, or a geode with no bound). */
+    bool smallestGeodeRadiusBelow(const Joint& joint, double& radius) const;
+    /** Each planned joint's model-view matrix, parents first, into modelViews[joint + 1] from the actor's in
+      * modelViews[0] (composeModelView()); each joint's local matrix given to proof too, unless it is null. */
+    void composeModelViews(osg::Matrixd* modelViews, SmallFeatureProof* proof) const;
+    /** For a step the cull keeps: whether it is a joint in the actor's frame below which the proof holds (no small
+      * feature), for the actor frame's pixel-size vector. */
+    bool provesNoSmallFeatureBelow(const Step& step, const SmallFeatureProof& proof, const osg::Vec4& actorVector,
+                                   float pixelSize) const;
 
 protected:
     ~ActorCullPlan() override = default;
@@ -121,11 +139,14 @@ private:
     static bool isPlainJoint(const SkeletonNode& joint);
     /** Marks the steps open above the newest one as needing the node path. */
     void notePathNeeded();
+    /** The geodes of each joint in the actor's frame, once its subtree is planned. */
+    void noteGeodesBelow(unsigned jointStep);
     bool isUnchanged(const NodeCheck& check) const;
     static bool isUnchanged(const StateCheck& check);
 
     std::vector<Step> _steps;
     std::vector<Joint> _joints;
+    std::vector<const osg::Node*> _geodesBelow; // runs of Joint::firstGeode, numGeodes
     std::vector<NodeCheck> _checks;
     std::vector<StateCheck> _stateChecks;
     /** Each checked geode's children when planned, in order: consecutive runs, one per geode. */

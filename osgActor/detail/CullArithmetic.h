@@ -12,6 +12,7 @@
 #include <osg/Polytope>
 #include <osg/Viewport>
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -64,13 +65,97 @@ public:
                         const osg::Matrixd& projection, const osg::Matrixd& modelView, float pixelSize)
     {
         if (!bound.valid()) return false;
+        return detail::isSmallFeature(bound, vector(frame, viewport, projection, modelView), pixelSize);
+    }
+    /** The frame's vector, made now if not known. */
+    const osg::Vec4& vector(std::size_t frame, const osg::Viewport& viewport, const osg::Matrixd& projection,
+                            const osg::Matrixd& modelView)
+    {
         if (!_known[frame]) set(frame, osg::CullingSet::computePixelSizeVector(viewport, projection, modelView));
-        return detail::isSmallFeature(bound, _vectors[frame], pixelSize);
+        return _vectors[frame];
     }
 
 private:
     std::vector<osg::Vec4> _vectors;
     std::vector<unsigned char> _known;
+};
+
+/** A proof, for the subtree of a joint in an actor's own frame, that the cull visitor would find no small feature in
+  * it, so that its joints' and geodes' spheres need not be read nor tested (most of a moving crowd's tests; each
+  * would read a joint's bound and make its frame's pixel-size vector).
+  *
+  * Where every planned joint's local matrix is rigid, every frame below the actor's has the actor frame's
+  * pixel-size vector, moved: for a point, the product with its frame's vector (its eye-space w times a factor that
+  * only a scale would change) is the product of the same point, taken in the actor's frame, with the actor frame's
+  * vector. The spheres below the joint lie in the joint's own sphere (each bound holds its children's), so none is
+  * tested larger than that product's largest value over the joint's sphere; and none is smaller than the smallest
+  * geode's below it, when every joint below has a geode below it. When that largest value times the pixel size is
+  * below that radius by more than a bound on the rounding (the vectors and the bounds are floats, made in other
+  * frames than this product), no test below can find a small feature. Otherwise the exact tests run. */
+class SmallFeatureProof
+{
+public:
+    /** Starts an actor with numJoints planned joints. */
+    void reset(std::size_t numJoints)
+    {
+        _reach.resize(numJoints);
+        _deviation = 0.0;
+        _maxReach = 0.0;
+    }
+    /** A planned joint's local matrix (in its parent's frame), parents first (parent -1: the actor's frame). */
+    void addJoint(std::size_t joint, int parent, const osg::Matrixd& local)
+    {
+        const double* m = local.ptr();
+        _deviation += deviationFromRigid(m);
+        // How far the joint's origin can be from the actor's (actor units, frames rigid): the sum of the
+        // translations' lengths on the way, each at most its components' absolute sum.
+        const double reach = (parent < 0 ? 0.0 : _reach[static_cast<std::size_t>(parent)]) + std::abs(m[12]) +
+                             std::abs(m[13]) + std::abs(m[14]);
+        _reach[joint] = reach;
+        if (reach > _maxReach) _maxReach = reach;
+    }
+    /** Whether no sphere below a joint of the actor's frame is a small feature: top is the joint's sphere (actor's
+      * frame), actorVector the actor frame's pixel-size vector, smallestRadius smallestGeodeRadiusBelow()'s. */
+    bool holds(const osg::BoundingSphere& top, const osg::Vec4& actorVector, float pixelSize,
+               double smallestRadius) const
+    {
+        // Every joint's rows orthonormal and last column (0, 0, 0, 1) to within 1e-9 (NaN fails too).
+        if (!(_deviation < 1e-18) || !top.valid() || !(pixelSize > 0.0f)) return false;
+        const double gradient = osg::Vec3d(actorVector.x(), actorVector.y(), actorVector.z()).length();
+        const osg::Vec3d centre(top.center());
+        const double extent = centre.length() + top.radius() + 2.0 * _maxReach; // coordinates in any frame below
+        const double tolerance = kRelativeTolerance * extent;  // each bound's containment of its children's
+        const double largest =
+            centre * osg::Vec3d(actorVector.x(), actorVector.y(), actorVector.z()) + actorVector.w() +
+            gradient * (top.radius() + tolerance);
+        const double rounding = kRelativeTolerance * (gradient * (extent + tolerance) + std::abs(actorVector.w()));
+        return (largest + rounding) * pixelSize * (1.0 + kRelativeTolerance) < smallestRadius - tolerance;
+    }
+
+private:
+    /** A relative bound on the rounding, far above what floats and doubles accumulate over any skeleton's depth,
+      * so that only spheres within this share of the threshold are tested exactly. */
+    static constexpr double kRelativeTolerance = 1e-4;
+
+    /** How far a matrix is from rotation and translation only: the sum of the squares of its rows' dot products'
+      * departures from orthonormal and of its last column's from (0, 0, 0, 1). Without branches: it is summed over
+      * every joint of every actor, and compared once. */
+    static double deviationFromRigid(const double* m)
+    {
+        double sum = m[3] * m[3] + m[7] * m[7] + m[11] * m[11] + (m[15] - 1.0) * (m[15] - 1.0);
+        for (int a = 0; a < 3; ++a)
+            for (int b = a; b < 3; ++b)
+            {
+                const double dot = m[4 * a] * m[4 * b] + m[4 * a + 1] * m[4 * b + 1] + m[4 * a + 2] * m[4 * b + 2];
+                const double departure = dot - (a == b ? 1.0 : 0.0);
+                sum += departure * departure;
+            }
+        return sum;
+    }
+
+    std::vector<double> _reach;
+    double _maxReach = 0.0;
+    double _deviation = 0.0;
 };
 
 /** Whether a box in a frame lies wholly outside one plane of a frustum given in eye space (the projection's culling

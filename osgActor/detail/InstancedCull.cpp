@@ -8,11 +8,13 @@
 #include <osgActor/SkinnedMesh>
 
 #include "../SkinnedMeshDrawState.h"
+#include <osgActor/detail/Prefetch.h>
 
 #include <osg/Material>
 #include <osg/TextureBuffer>
 
 #include <algorithm>
+#include <cstring>
 #include <iterator>
 #include <typeinfo>
 
@@ -52,6 +54,16 @@ float* InstancedFrame::reserveTexels(unsigned texels)
     return reinterpret_cast<float*>(_texels->data());
 }
 
+float* InstancedFrame::growTexels(unsigned texels)
+{
+    if (static_cast<unsigned>(_texels->s()) >= texels) return reinterpret_cast<float*>(_texels->data());
+    const float* data = reinterpret_cast<const float*>(_texels->data());
+    const std::vector<float> kept(data, data + 4 * static_cast<std::size_t>(_texels->s()));
+    float* out = reserveTexels(texels);
+    std::copy(kept.begin(), kept.end(), out);
+    return out;
+}
+
 InstancedDraw* InstancedFrame::draw(unsigned i)
 {
     while (_draws.size() <= i) _draws.push_back(new InstancedDraw);
@@ -59,6 +71,15 @@ InstancedDraw* InstancedFrame::draw(unsigned i)
 }
 
 // --- InstancedCullState ---
+
+InstancedCullState::InstancedCullState()
+    : _serial([] {
+          static std::atomic<std::uint64_t> counter{0};
+          return counter.fetch_add(1, std::memory_order_relaxed) + 1; // 0: no state
+      }())
+{
+    _busy.clear();
+}
 
 void InstancedCullState::resizeGLObjectBuffers(unsigned maxSize)
 {
@@ -105,17 +126,21 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
-      _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize())
+      _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false),
+      _view(cv), _recording(nullptr)
 {
+    const ActorCullState::Key viewKey = ActorCullState::keyOf(_view, osg::Matrixd::identity());
+    if (_state._view == 0 || !(viewKey == _state._viewKey))
+    {
+        _state._viewKey = viewKey;
+        ++_state._view;
+    }
     _state._statistics = InstancedCullState::Statistics();
     _state._stateVerdicts.clear();
     _state._skinStateVerdicts.clear();
-    for (InstancedCullState::Batch& batch : _state._batches)
-    {
-        batch.data.clear();
-        // A skinned mesh's setup may change between culls: found again when an actor first needs it.
-        batch.texelsKnown = !batch.mesh;
-    }
+    placeBatches(textureUnit);
+    // A skinned mesh's setup may change between culls: found again when an actor first needs it.
+    for (InstancedCullState::Batch& batch : _state._batches) batch.texelsKnown = !batch.mesh;
     // Verdicts of plans that only the cache still holds (their actors made new ones, or are gone) are dropped now and
     // then, never while a plan in use could be among them.
     if (_state._verdicts.size() > 2 * std::size_t(group.getNumChildren()) + 64)
@@ -127,7 +152,8 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
         if (typeid(child) == typeid(ActorNode)) cullChild(static_cast<ActorNode&>(child));
         else child.accept(cv);
     }
-    emitBatches(textureUnit);
+    if (_overflowed) gatherOverflow(textureUnit);
+    emitBatches();
 }
 
 bool InstancedCull::isPlainActor(const ActorNode& actor)
@@ -143,14 +169,28 @@ void InstancedCull::cullChild(ActorNode& actor)
     ActorCullState& actorState = *actor._cullState;
     if (isPlainActor(actor) && actorState.tryAcquire())
     {
-        const ActorCullPlan& plan =
-            actorState.currentPlan(actor, actor._cullPlanVersion.load(std::memory_order_relaxed), true);
-        const InstancedCullState::PlanVerdict* verdict = instanceableVerdict(plan);
+        ActorCullState::InstancedVerdict& kept = actorState._instancedVerdict;
+        const ActorCullState::Versions versions =
+            ActorCullState::versionsOf(actor._cullPlanVersion, actor._poseVersion, actor._boundVersion);
+        // The joints' matrices and bounds are asked for with the plan's check, or the kept instances where they may
+        // do, so that the fetches overlap.
+        const bool replayable = mayReplay(kept, versions);
+        if (replayable)
+        {
+            prefetchForRead(kept.batches.data(), kept.batches.size() * sizeof(unsigned));
+            prefetchForRead(kept.matrices.data(), kept.matrices.size() * sizeof(float));
+        }
+        const ActorCullPlan& plan = actorState.currentPlan(actor, versions.plan, !replayable);
+        // The verdict the actor kept from this group's last cull, if made for the same plan; looked up otherwise.
+        const InstancedCullState::PlanVerdict* verdict =
+            kept.serial == _state._serial && kept.plan == &plan
+                ? instanceableNow(*static_cast<const InstancedCullState::PlanVerdict*>(kept.verdict))
+                : instanceableVerdict(plan, kept);
         if (verdict && canInstanceSkins(actor, *verdict))
         {
             ++_state._statistics.actorsInstanced;
             // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
-            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict);
+            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict, kept, versions);
             actorState.release();
             return;
         }
@@ -160,7 +200,8 @@ void InstancedCull::cullChild(ActorNode& actor)
     actor.accept(_cv);
 }
 
-const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const ActorCullPlan& plan)
+const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const ActorCullPlan& plan,
+                                                                         ActorCullState::InstancedVerdict& kept)
 {
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
@@ -193,7 +234,16 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
         }
         found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
     }
-    const InstancedCullState::PlanVerdict& verdict = found->second;
+    // The map's entries stay where they are until erased, which the plan held here prevents.
+    kept.serial = _state._serial;
+    kept.plan = &plan;
+    kept.verdict = &found->second;
+    kept.kept = false; // instances of another group's cull, or of another plan
+    return instanceableNow(found->second);
+}
+
+const InstancedCullState::PlanVerdict* InstancedCull::instanceableNow(const InstancedCullState::PlanVerdict& verdict)
+{
     if (!verdict.plain) return nullptr;
     for (const osg::StateSet* state : verdict.states)
         if (!isInstanceableNow(state)) return nullptr;
@@ -232,7 +282,10 @@ unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geom
     auto found = _state._batchOfKey.find(key);
     if (found != _state._batchOfKey.end()) return found->second;
     const unsigned batch = static_cast<unsigned>(_state._batches.size());
-    _state._batches.push_back({geodeState, &drawable, nullptr, {}, 4u, true});
+    InstancedCullState::Batch made;
+    made.geodeState = geodeState;
+    made.drawable = &drawable;
+    _state._batches.push_back(std::move(made));
     _state._batchOfKey.emplace(key, batch);
     return batch;
 }
@@ -243,7 +296,12 @@ unsigned InstancedCull::skinBatchOf(const osg::StateSet* geodeState, SkinnedMesh
     auto found = _state._batchOfKey.find(key);
     if (found != _state._batchOfKey.end()) return found->second;
     const unsigned batch = static_cast<unsigned>(_state._batches.size());
-    _state._batches.push_back({geodeState, nullptr, &mesh, {}, 0u, false});
+    InstancedCullState::Batch made;
+    made.geodeState = geodeState;
+    made.mesh = &mesh;
+    made.texels = 0;
+    made.texelsKnown = false;
+    _state._batches.push_back(std::move(made));
     _state._batchOfKey.emplace(key, batch);
     return batch;
 }
@@ -272,7 +330,13 @@ bool InstancedCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned fr
                                                    _state._modelViews[frame], _smallFeaturePixelSize);
 }
 
-void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict)
+const osg::Vec4& InstancedCull::actorPixelSizeVector()
+{
+    return _state._pixelSizeVectors.vector(0, *_cv.getViewport(), *_cv.getProjectionMatrix(), _state._modelViews[0]);
+}
+
+void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
+                              ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions)
 {
     const ActorCullPlan& plan = *verdict.plan;
     const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
@@ -280,12 +344,8 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     std::vector<osg::Matrixd>& modelViews = _state._modelViews;
     modelViews.resize(numFrames);
     _state._pixelSizeVectors.reset(numFrames);
-    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's), then
-    // each joint's, parents first, as ActorCull composes them.
+    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's).
     composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());
-    for (std::size_t j = 0; j < joints.size(); ++j)
-        composeModelView(joints[j].node->getMatrix().ptr(),
-                         modelViews[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
     if (actor.getUpdatePolicy().onlyWhenSeen)
     {
         // The update policy notes the view with the actor's frame on the visitor's stack, as its own cull does.
@@ -293,10 +353,20 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         actor.noteSeen(_cv);
         _cv.popModelViewMatrix();
     }
+    // An actor with skinned meshes is culled anew at every cull: its palettes are kept by its meshes, not here.
+    if (verdict.skinBatches.empty())
+    {
+        if (replayKept(kept, versions)) return;
+    }
+    else
+        kept.kept = false;
+    // Each joint's frame, parents first, as ActorCull composes them.
+    plan.composeModelViews(modelViews.data(), _smallFeatureCulling ? &_state._smallFeatureProof : nullptr);
     // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
     // is in is skipped with its subtree.
     const std::vector<Step>& steps = plan.getSteps();
-    unsigned skin = 0; // the next of the actor's skinned meshes
+    unsigned skin = 0;           // the next of the actor's skinned meshes
+    std::size_t provenUntil = 0; // the steps before it are below a joint with no small feature below it
     for (std::size_t i = 0; i < steps.size();)
     {
         const Step& step = steps[i];
@@ -307,12 +377,15 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         {
             const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(joints[step.joint].parent + 1)
                                                                       : unsigned(step.joint + 1);
-            if (isMasked(step.mask) ||
-                (_smallFeatureCulling && step.cullingActive && isSmallFeature(step.node->getBound(), frame)))
+            const bool tested = _smallFeatureCulling && i >= provenUntil;
+            if (isMasked(step.mask) || (tested && step.cullingActive && isSmallFeature(step.node->getBound(), frame)))
             {
                 i = step.end;
                 continue;
             }
+            if (tested && plan.provesNoSmallFeatureBelow(step, _state._smallFeatureProof, actorPixelSizeVector(),
+                                                         _smallFeaturePixelSize))
+                provenUntil = step.end;
             break;
         }
         case ActorCullPlan::DRAWABLE:
@@ -328,6 +401,39 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         }
         ++i;
     }
+    _recording = nullptr;
+}
+
+bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions)
+{
+    // Near and far computed from what is drawn would need each drawable's box again: kept only without them.
+    const bool unchanged = kept.versions == versions && !_computeNearFar;
+    kept.versions = versions;
+    if (!unchanged)
+    {
+        kept.kept = false;
+        return false;
+    }
+    const osg::Matrixd& actorModelView = _state._modelViews[0];
+    if (mayReplay(kept, versions) &&
+        std::memcmp(kept.actorModelView.ptr(), actorModelView.ptr(), sizeof(osg::Matrixd)) == 0)
+    {
+        const float* matrix = kept.matrices.data();
+        for (unsigned batch : kept.batches)
+        {
+            std::memcpy(nextInstance(batch), matrix, 16 * sizeof(float));
+            matrix += 16;
+        }
+        return true;
+    }
+    // Unchanged since the cull before, but not kept, or kept for another view: culled now, and kept.
+    kept.kept = true;
+    kept.view = _state._view;
+    kept.actorModelView = actorModelView;
+    kept.batches.clear();
+    kept.matrices.clear();
+    _recording = &kept;
+    return false;
 }
 
 void InstancedCull::addDrawable(const Step& step, unsigned batch)
@@ -344,10 +450,32 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
         if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
     }
     if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
-    std::vector<float>& matrices = _state._batches[batch].data;
+    float* out = nextInstance(batch);
     const double* m = modelView.ptr();
     // As OSG hands a matrix to OpenGL (glLoadMatrixd, which keeps floats): each double rounded to the nearest float.
-    for (int k = 0; k < 16; ++k) matrices.push_back(static_cast<float>(m[k]));
+    for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
+    if (_recording)
+    {
+        _recording->batches.push_back(batch);
+        _recording->matrices.insert(_recording->matrices.end(), out, out + 16);
+    }
+}
+
+float* InstancedCull::nextInstance(unsigned batch)
+{
+    InstancedCullState::Batch& into = _state._batches[batch];
+    const std::size_t floats = 4 * std::size_t(into.texels);
+    float* out;
+    if ((into.count + 1) * into.texels <= into.capacity)
+        out = _state._texels + 4 * std::size_t(into.base) + floats * into.count;
+    else
+    {
+        into.overflow.resize(into.overflow.size() + floats);
+        out = into.overflow.data() + into.overflow.size() - floats;
+        _overflowed = true;
+    }
+    ++into.count;
+    return out;
 }
 
 void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
@@ -368,10 +496,7 @@ void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
     if (_frustumCulling && geometry.isCullingActive() && isOutsideFrustum(box, modelView, frustum)) return;
     if (_computeNearFar && box.valid() && !_cv.updateCalculatedNearFar(modelView, geometry, true)) return;
     if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return;
-    std::vector<float>& data = batch.data;
-    const std::size_t at = data.size();
-    data.resize(at + 4 * std::size_t(batch.texels));
-    InstancedSkin::writeInstance(mesh, instance, modelView, data.data() + at);
+    InstancedSkin::writeInstance(mesh, instance, modelView, nextInstance(b));
 }
 
 InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
@@ -382,27 +507,65 @@ InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
     return _state._frames.back().get();
 }
 
-void InstancedCull::emitBatches(unsigned textureUnit)
+void InstancedCull::placeBatches(unsigned textureUnit)
 {
-    std::size_t texels = 0;
-    for (const InstancedCullState::Batch& batch : _state._batches) texels += batch.data.size() / 4;
-    if (texels == 0) return;
-    InstancedFrame& frame = *acquireFrame(textureUnit);
-    float* out = frame.reserveTexels(static_cast<unsigned>(texels));
-    unsigned base = 0, drawIndex = 0;
+    unsigned texels = 0;
+    for (InstancedCullState::Batch& batch : _state._batches)
+    {
+        batch.base = texels;
+        batch.capacity = batch.count * batch.texels;
+        batch.count = 0;
+        batch.overflow.clear();
+        texels += batch.capacity;
+    }
+    _state._frame = texels ? acquireFrame(textureUnit) : nullptr;
+    _state._texels = texels ? _state._frame->reserveTexels(texels) : nullptr;
+}
+
+void InstancedCull::gatherOverflow(unsigned textureUnit)
+{
+    // Each batch that overflowed is moved whole past every region; the next cull's regions are this cull's data.
+    unsigned end = 0, moved = 0;
     for (const InstancedCullState::Batch& batch : _state._batches)
     {
-        const unsigned count = batch.data.empty() ? 0u : static_cast<unsigned>(batch.data.size() / (4 * batch.texels));
+        end += batch.capacity;
+        if (!batch.overflow.empty()) moved += batch.count * batch.texels;
+    }
+    if (!_state._frame) _state._frame = acquireFrame(textureUnit);
+    float* texels = _state._frame->growTexels(end + moved);
+    for (InstancedCullState::Batch& batch : _state._batches)
+    {
+        if (batch.overflow.empty()) continue;
+        // The instances that fit the region (as many as its size in this cull's instances), then the overflow.
+        const std::size_t inRegion = 4 * std::size_t(batch.capacity / batch.texels * batch.texels);
+        float* out = std::copy_n(texels + 4 * std::size_t(batch.base), inRegion, texels + 4 * std::size_t(end));
+        std::copy(batch.overflow.begin(), batch.overflow.end(), out);
+        batch.base = end;
+        end += batch.count * batch.texels;
+    }
+}
+
+void InstancedCull::emitBatches()
+{
+    if (!_state._frame) return;
+    InstancedFrame& frame = *_state._frame;
+    _state._frame = nullptr;
+    _state._texels = nullptr;
+    unsigned drawIndex = 0;
+    if (std::none_of(_state._batches.begin(), _state._batches.end(),
+                     [](const InstancedCullState::Batch& batch) { return batch.count != 0; }))
+        return;
+    for (const InstancedCullState::Batch& batch : _state._batches)
+    {
+        const unsigned count = batch.count;
         if (count == 0) continue;
-        std::copy(batch.data.begin(), batch.data.end(), out + 4 * std::size_t(base));
         InstancedDraw& draw = *frame.draw(drawIndex++);
         const osg::Geometry* geometry = batch.mesh ? InstancedSkin::geometryOf(*batch.mesh) : batch.drawable;
-        draw.set(geometry, static_cast<int>(base), count, static_cast<int>(batch.texels));
+        draw.set(geometry, static_cast<int>(batch.base), count, static_cast<int>(batch.texels));
         // A dynamic drawable makes osgViewer's next update wait until it is drawn: so does its instanced draw.
         const osg::Drawable& drawn = batch.mesh ? static_cast<const osg::Drawable&>(*batch.mesh) : *batch.drawable;
         draw.setDataVariance(drawn.getDataVariance() == osg::Object::DYNAMIC ? osg::Object::DYNAMIC
                                                                               : osg::Object::STATIC);
-        base += batch.texels * count;
         emitLeaf(batch, draw, frame);
         if (batch.mesh)
         {

@@ -20,6 +20,7 @@
 #ifndef OSGACTOR_DETAIL_INSTANCEDCULL_H
 #define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
 
+#include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/InstancedDraw.h>
@@ -30,6 +31,7 @@
 #include <osgUtil/CullVisitor>
 
 #include <atomic>
+#include <cstdint>
 #include <unordered_map>
 #include <vector>
 
@@ -49,8 +51,10 @@ public:
 
     /** Whether the render graph holds none of its draws. */
     bool isFree() const;
-    /** Room for texels RGBA32F texels, their contents kept only up to what was written. */
+    /** Room for texels RGBA32F texels; what was written before is lost if the buffer grows. */
     float* reserveTexels(unsigned texels);
+    /** The same, keeping what was written. */
+    float* growTexels(unsigned texels);
     /** The draw for batch i, made on first use. */
     InstancedDraw* draw(unsigned i);
     /** Marks the texels written for upload. */
@@ -75,7 +79,7 @@ private:
 class InstancedCullState : public osg::Referenced
 {
 public:
-    InstancedCullState() { _busy.clear(); }
+    InstancedCullState();
 
     bool tryAcquire() { return !_busy.test_and_set(std::memory_order_acquire); }
     void release() { _busy.clear(std::memory_order_release); }
@@ -120,18 +124,24 @@ private:
         /** The batches of its skinned meshes, in step order. */
         std::vector<unsigned> skinBatches;
     };
-    /** The drawables of one (geode state set, drawable) and their instances' data this cull: a rigid part's
-      * (drawable) model-view matrices, or a skinned mesh's (mesh) matrices and palettes. */
+    /** The drawables of one (geode state set, drawable) or (geode state set, skinned mesh) and their instances' data
+      * this cull: a rigid part's model-view matrices (4 texels, 16 floats, OSG's rows one after the other), or a
+      * skinned mesh's matrices and palettes (InstancedSkin::texelsPerInstance()). They are written where the draw
+      * reads them, in the frame's texture buffer, in a region as large as the batch's data of the previous cull; those
+      * that do not fit wait in overflow, and the batch is moved to the buffer's end before it is drawn. */
     struct Batch
     {
-        const osg::StateSet* geodeState;
-        const osg::Geometry* drawable;
-        SkinnedMesh* mesh;
-        std::vector<float> data; // texels * 4 floats per instance: OSG's rows one after the other, then a palette
-        /** Skinned: this cull's InstancedSkin::texelsPerInstance() (0: the mesh cannot be drawn instanced), once
-          * found (texelsKnown). Rigid: 4. */
-        unsigned texels;
-        bool texelsKnown;
+        const osg::StateSet* geodeState = nullptr;
+        const osg::Geometry* drawable = nullptr;
+        SkinnedMesh* mesh = nullptr;
+        /** Texels per instance. Skinned: this cull's InstancedSkin::texelsPerInstance() (0: the mesh cannot be drawn
+          * instanced), once found (texelsKnown); the last cull's until then. Rigid: 4. */
+        unsigned texels = 4;
+        bool texelsKnown = true;
+        unsigned base = 0;     // the region's first texel in the buffer
+        unsigned capacity = 0; // the region's size in texels
+        unsigned count = 0;    // this cull's instances
+        std::vector<float> overflow;
     };
     struct BatchKey
     {
@@ -151,6 +161,8 @@ private:
     };
 
     std::atomic_flag _busy;
+    /** Tells this state from every other, for the verdict an actor keeps (ActorCullState::InstancedVerdict). */
+    const std::uint64_t _serial;
     std::vector<osg::ref_ptr<InstancedFrame>> _frames;
     Statistics _statistics;
     std::unordered_map<const ActorCullPlan*, PlanVerdict> _verdicts;
@@ -160,8 +172,15 @@ private:
     std::vector<const SkinnedMeshInstance*> _skinInstances; // the actor's, in step order
     std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
     FramePixelSizeVectors _pixelSizeVectors;  // per frame, made where a test needs it
+    SmallFeatureProof _smallFeatureProof;
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
+    InstancedFrame* _frame = nullptr; // this cull's, if any batch has a region
+    float* _texels = nullptr;         // its buffer
+    /** The view of the last cull (the key of an actor culled as one, but for the actor's model-view matrix), and
+      * its number, which changes with it. */
+    ActorCullState::Key _viewKey;
+    std::uint64_t _view = 0;
 };
 
 class InstancedCull
@@ -185,8 +204,12 @@ private:
     static bool isPlainActor(const ActorNode& actor);
     /** Culls one actor child: instanced if its plan allows, ordinarily otherwise. */
     void cullChild(ActorNode& actor);
-    /** What decides whether an actor of the plan can be drawn instanced now, or null if it cannot. */
-    const InstancedCullState::PlanVerdict* instanceableVerdict(const ActorCullPlan& plan);
+    /** What decides whether an actor of the plan can be drawn instanced now, or null if it cannot; kept: where the
+      * actor keeps it for the next cull. */
+    const InstancedCullState::PlanVerdict* instanceableVerdict(const ActorCullPlan& plan,
+                                                               ActorCullState::InstancedVerdict& kept);
+    /** The verdict if its state sets light as the instanced program does now, or null. */
+    const InstancedCullState::PlanVerdict* instanceableNow(const InstancedCullState::PlanVerdict& verdict);
     /** The batch of a (geode state set, drawable) or (geode state set, skinned mesh), made on first use. */
     unsigned batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable);
     unsigned skinBatchOf(const osg::StateSet* geodeState, SkinnedMesh& mesh);
@@ -197,14 +220,32 @@ private:
     bool canInstanceSkins(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict);
     /** Culls an instanceable actor by its plan and adds its drawables' instances; the actor's bound was found
       * visible. */
-    void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict);
+    void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
+                   ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
+    /** Whether the kept instances of an actor with these counters may hold for this cull (its model-view matrix
+      * still to compare). */
+    bool mayReplay(const ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions) const
+    {
+        return kept.kept && kept.serial == _state._serial && kept.view == _state._view && kept.versions == versions &&
+               !_computeNearFar;
+    }
+    /** Adds the kept instances of an actor that did not change, if they hold for this cull. */
+    bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
     bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
+    /** The pixel-size vector of the actor's own frame. */
+    const osg::Vec4& actorPixelSizeVector();
     void addDrawable(const Step& step, unsigned batch);
     /** The actor's instance of a skinned mesh, culled as the mesh's own cull culls it. */
     void addSkinned(const SkinnedMeshInstance& instance, unsigned batch);
+    /** Where the next instance of a batch goes: its region, or its overflow. */
+    float* nextInstance(unsigned batch);
+    /** Gives each batch its region in a frame's buffer, as large as its data of the previous cull. */
+    void placeBatches(unsigned textureUnit);
+    /** Moves the batches that overflowed their regions to the buffer's end, whole. */
+    void gatherOverflow(unsigned textureUnit);
     /** One leaf per batch, with this frame's texture buffer. */
-    void emitBatches(unsigned textureUnit);
+    void emitBatches();
     /** Pushes the state sets a batch's drawable is drawn with (the geode's and its own; a skinned mesh's program),
       * adds its leaf, pops them. */
     void emitLeaf(const InstancedCullState::Batch& batch, InstancedDraw& draw, InstancedFrame& frame);
@@ -219,6 +260,10 @@ private:
     bool _computeNearFar;
     bool _frustumCulling;
     float _smallFeaturePixelSize;
+    bool _overflowed;
+    const ActorCullView _view;
+    /** The actor's kept instances being recorded, or null. */
+    ActorCullState::InstancedVerdict* _recording;
 };
 
 } // namespace detail

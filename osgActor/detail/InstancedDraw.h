@@ -26,6 +26,7 @@ public:
     void set(const osg::Geometry* geometry, int base, unsigned count, int texelsPerInstance = 4);
     const osg::Geometry* getGeometry() const { return _geometry.get(); }
     unsigned getNumInstances() const { return _count; }
+    int getBase() const { return _base; }
 
     void drawImplementation(osg::RenderInfo& renderInfo) const override;
 

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace osgActor {
 namespace test {
@@ -100,6 +101,23 @@ inline void poseCrowdMember(ActorNode& actor, unsigned a)
 }
 
 /** The pixels of an 8-bit RGB image whose blue is not the background's: what was drawn over it. */
+/** count test figures in a row along X (1.1 apart, every other one 0.3 back), each posed by poseCrowdMember() and
+  * updated, added to parent. */
+inline std::vector<osg::ref_ptr<ActorNode>> addPosedRow(osg::Group& parent, unsigned count)
+{
+    std::vector<osg::ref_ptr<ActorNode>> actors;
+    for (unsigned a = 0; a < count; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = makeTestFigure();
+        actor->setPreTranslation(osg::Vec3d(1.1 * a, 0.3 * (a % 2), 0.0));
+        poseCrowdMember(*actor, a);
+        actor->update(nullptr);
+        actors.push_back(actor);
+        parent.addChild(actor.get());
+    }
+    return actors;
+}
+
 inline unsigned countDrawnPixels(const osg::Image& image, const osg::Vec4& background)
 {
     const unsigned char blue = static_cast<unsigned char>(std::lround(background[2] * 255));

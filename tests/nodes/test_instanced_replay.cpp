@@ -1,0 +1,136 @@
+// The instanced cull (InstancedActorGroup, osgActor/detail/InstancedCull.h) keeps the instances of an actor that did
+// not change and adds them again while nothing they depend on changes (its pose, plan and bound, the camera and the
+// cull's settings), as the cull as one replays its calls. Each instance must stay the ordinary traversal's drawable at
+// its model-view matrix rounded to floats: frame after frame of a still crowd, and after the camera or a pose moves.
+#include "CullProbe"
+#include "render/TestFigure.h"
+
+#include <osgActor/ActorNode>
+#include <osgActor/InstancedActorGroup>
+#include <osgActor/detail/InstancedDraw.h>
+
+#include <osg/TextureBuffer>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <utility>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+/** A drawn part: its drawable and its model-view matrix as floats (OSG's rows one after the other). */
+using Instance = std::pair<const osg::Drawable*, std::array<float, 16>>;
+
+/** The instances of the instanced leaves, read from the frame's texture buffer of matrices, sorted. */
+std::vector<Instance> instancesOf(const std::vector<CulledLeaf>& leaves)
+{
+    std::vector<Instance> instances;
+    for (const CulledLeaf& leaf : leaves)
+    {
+        const auto* draw = dynamic_cast<const detail::InstancedDraw*>(leaf.drawable);
+        if (!draw || leaf.states.empty()) continue;
+        const auto* buffer = dynamic_cast<const osg::TextureBuffer*>(leaf.states.back()->getTextureAttribute(
+            InstancedActorGroup::kInstanceTextureUnit, osg::StateAttribute::TEXTURE));
+        if (!buffer || !buffer->getImage()) continue;
+        const float* texels = reinterpret_cast<const float*>(buffer->getImage()->data());
+        for (unsigned i = 0; i < draw->getNumInstances(); ++i)
+        {
+            Instance instance{draw->getGeometry(), {}};
+            std::copy_n(texels + 4 * draw->getBase() + 16 * i, 16, instance.second.begin());
+            instances.push_back(instance);
+        }
+    }
+    std::sort(instances.begin(), instances.end());
+    return instances;
+}
+
+/** The ordinary traversal's leaves as instances: each matrix rounded to floats, as OpenGL takes it. */
+std::vector<Instance> ordinaryInstancesOf(const std::vector<CulledLeaf>& leaves)
+{
+    std::vector<Instance> instances;
+    for (const CulledLeaf& leaf : leaves)
+    {
+        Instance instance{leaf.drawable, {}};
+        for (int k = 0; k < 16; ++k) instance.second[k] = static_cast<float>(leaf.modelView[k]);
+        instances.push_back(instance);
+    }
+    std::sort(instances.begin(), instances.end());
+    return instances;
+}
+
+/** Four test figures, posed apart, under an instanced group and, the same nodes, under a plain group culled node by
+  * node; near and far not computed (with them, nothing is kept). */
+struct Scene
+{
+    osg::ref_ptr<InstancedActorGroup> instanced = new InstancedActorGroup;
+    osg::ref_ptr<osg::Group> plain = new osg::Group;
+    std::vector<osg::ref_ptr<ActorNode>> actors;
+    CullProbe instancedProbe{instanced.get()};
+    CullProbe ordinaryProbe{plain.get()};
+    unsigned frame = 0;
+
+    Scene()
+    {
+        actors = addPosedRow(*plain, 4);
+        for (const osg::ref_ptr<ActorNode>& actor : actors) instanced->addChild(actor.get());
+        for (CullProbe* probe : {&instancedProbe, &ordinaryProbe})
+            probe->sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+        lookFrom(osg::Vec3d(1.6, -7.0, 1.2));
+    }
+    void lookFrom(const osg::Vec3d& eye)
+    {
+        instancedProbe.lookAt(eye, osg::Vec3d(1.6, 0.0, 0.9));
+        ordinaryProbe.lookAt(eye, osg::Vec3d(1.6, 0.0, 0.9));
+    }
+    std::vector<Instance> cullInstanced() { return instancesOf(instancedProbe.cull(++frame)); }
+    std::vector<Instance> cullOrdinarily()
+    {
+        for (osg::ref_ptr<ActorNode>& actor : actors) actor->setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        std::vector<Instance> instances = ordinaryInstancesOf(ordinaryProbe.cull(++frame));
+        for (osg::ref_ptr<ActorNode>& actor : actors) actor->setCullMode(ActorNode::CULL_AS_ONE);
+        return instances;
+    }
+};
+
+} // namespace
+
+TEST(InstancedReplay, AStillCrowdBeforeAStillCameraGivesTheOrdinaryInstancesFrameAfterFrame)
+{
+    Scene scene;
+    const std::vector<Instance> ordinary = scene.cullOrdinarily();
+    ASSERT_EQ(ordinary.size(), 4u * 18u); // the test can fail: every part is seen
+    // The first frames cull afresh, the next ones add what was kept.
+    for (int frame = 0; frame < 5; ++frame)
+    {
+        EXPECT_EQ(scene.cullInstanced(), ordinary) << "frame " << frame;
+        EXPECT_EQ(scene.instanced->getStatistics().actorsInstanced, 4u);
+    }
+}
+
+TEST(InstancedReplay, AMovedCameraOrAPoseChangeIsCulledAfresh)
+{
+    Scene scene;
+    for (int frame = 0; frame < 3; ++frame) scene.cullInstanced();
+    scene.lookFrom(osg::Vec3d(0.5, -6.0, 2.0));
+    const std::vector<Instance> moved = scene.cullOrdinarily();
+    EXPECT_EQ(scene.cullInstanced(), moved);
+    EXPECT_EQ(scene.cullInstanced(), moved);
+    // A pose changed by hand, without a controller: the next update writes it to the joints.
+    scene.actors[2]->setDof("l_shoulder.ry", -1.5);
+    scene.actors[2]->update(nullptr);
+    const std::vector<Instance> posed = scene.cullOrdinarily();
+    EXPECT_NE(posed, moved); // the test can fail: the arm's parts moved
+    EXPECT_EQ(scene.cullInstanced(), posed);
+    EXPECT_EQ(scene.cullInstanced(), posed);
+    // A joint matrix set by hand: the bound below it is recomputed.
+    SkeletonNode& knee = *scene.actors[1]->getSkeletonNode("r_knee");
+    knee.setMatrix(osg::Matrixd::rotate(0.4, osg::X_AXIS) * knee.getMatrix());
+    const std::vector<Instance> bent = scene.cullOrdinarily();
+    EXPECT_NE(bent, posed);
+    EXPECT_EQ(scene.cullInstanced(), bent);
+    EXPECT_EQ(scene.cullInstanced(), bent);
+}

@@ -1,0 +1,165 @@
+// The cull of an actor as one, and the instanced cull, skip the small-feature tests below a joint where a bound over
+// the joint's whole subtree proves that none of them could cull anything (osgActor/detail/CullArithmetic.h,
+// SmallFeatureProof). Near OSG's threshold the proof must refuse, so that the exact tests decide: a camera moving away
+// through the threshold gives, at every distance, the render graph of the ordinary traversal.
+#include "CullProbe"
+#include "render/TestFigure.h"
+
+#include <osgActor/ActorNode>
+#include <osgActor/InstancedActorGroup>
+#include <osgActor/detail/CullArithmetic.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+using namespace osgActor;
+using namespace osgActor::test;
+
+namespace {
+
+/** A proof over one rigid joint at the actor's origin, translated by (0, 0, 0.5). */
+detail::SmallFeatureProof proofOfOneJoint(const osg::Matrixd& local = osg::Matrixd::translate(0.0, 0.0, 0.5))
+{
+    detail::SmallFeatureProof proof;
+    proof.reset(1);
+    proof.addJoint(0, -1, local);
+    return proof;
+}
+
+/** The pixel-size vector's product grows with the actor frame's z: 0.01 at the origin, plus 0.001 per unit of z. */
+const osg::Vec4 kActorVector(0.0f, 0.0f, 0.001f, 0.01f);
+
+/** Four test figures in a row, posed apart, culled one way and the other at each distance of a camera backing away. */
+struct Crowd
+{
+    std::vector<osg::ref_ptr<ActorNode>> actors;
+
+    explicit Crowd(osg::Group& parent) : actors(addPosedRow(parent, 4)) {}
+    void setCullMode(ActorNode::CullMode mode)
+    {
+        for (osg::ref_ptr<ActorNode>& actor : actors) actor->setCullMode(mode);
+    }
+};
+
+/** Camera distances from 5 to 400 units, each a little farther than the last, so that the joints' balls and then
+  * the limbs pass OSG's small-feature threshold (two pixels) between two of them. */
+std::vector<double> distancesThroughTheThreshold()
+{
+    std::vector<double> distances;
+    for (double d = 5.0; d < 400.0; d *= 1.07) distances.push_back(d);
+    return distances;
+}
+
+/** Culls the crowd both ways at each distance, compares the render graphs leaf by leaf and returns the numbers of
+  * leaves seen. */
+std::set<std::size_t> expectTheOrdinaryGraphAtEveryDistance(osg::Group& scene, Crowd& crowd)
+{
+    CullProbe probe(&scene);
+    std::set<std::size_t> counts;
+    unsigned frame = 0;
+    for (double distance : distancesThroughTheThreshold())
+    {
+        probe.lookAt(osg::Vec3d(1.6, -distance, 1.0), osg::Vec3d(1.6, 0.0, 0.9));
+        crowd.setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        const std::vector<CulledLeaf> ordinary = probe.cull(++frame);
+        crowd.setCullMode(ActorNode::CULL_AS_ONE);
+        const std::vector<CulledLeaf> asOne = probe.cull(++frame);
+        EXPECT_EQ(asOne.size(), ordinary.size()) << "at " << distance;
+        for (std::size_t i = 0; i < ordinary.size() && i < asOne.size(); ++i)
+            EXPECT_TRUE(asOne[i] == ordinary[i]) << "at " << distance;
+        counts.insert(ordinary.size());
+    }
+    return counts;
+}
+
+} // namespace
+
+TEST(SmallFeatureProof, RefusesAJointWithoutABound)
+{
+    EXPECT_FALSE(proofOfOneJoint().holds(osg::BoundingSphere(), kActorVector, 2.0f, 1.0));
+}
+
+TEST(SmallFeatureProof, RefusesAScaledOrProjectiveJointMatrix)
+{
+    const osg::BoundingSphere top(osg::Vec3(), 1.0f);
+    // Far above the threshold but for the matrices: a scale moves each frame's pixel-size vector and shrinks spheres.
+    EXPECT_TRUE(proofOfOneJoint().holds(top, kActorVector, 2.0f, 1.0));
+    EXPECT_FALSE(proofOfOneJoint(osg::Matrixd::scale(0.5, 0.5, 0.5)).holds(top, kActorVector, 2.0f, 1.0));
+    osg::Matrixd projective;
+    projective(0, 3) = 0.1;
+    EXPECT_FALSE(proofOfOneJoint(projective).holds(top, kActorVector, 2.0f, 1.0));
+}
+
+TEST(SmallFeatureProof, HoldsOnlyWhereTheLargestProductOverTheJointsSphereStaysBelowTheSmallestRadius)
+{
+    // A unit sphere at the origin: the product reaches 0.01 + 0.001 * 1 = 0.011 at its top, times 2 pixels 0.022.
+    const osg::BoundingSphere top(osg::Vec3(), 1.0f);
+    EXPECT_TRUE(proofOfOneJoint().holds(top, kActorVector, 2.0f, 0.0225));
+    // At the threshold, and just above it within the margin for rounding: the exact tests must decide.
+    EXPECT_FALSE(proofOfOneJoint().holds(top, kActorVector, 2.0f, 0.022));
+    EXPECT_FALSE(proofOfOneJoint().holds(top, kActorVector, 2.0f, 0.02201));
+    // The same sphere raised by 10 units: the product at its top is 0.021, times 2 pixels 0.042.
+    const osg::BoundingSphere raised(osg::Vec3(0.0f, 0.0f, 10.0f), 1.0f);
+    EXPECT_FALSE(proofOfOneJoint().holds(raised, kActorVector, 2.0f, 0.0225));
+    EXPECT_TRUE(proofOfOneJoint().holds(raised, kActorVector, 2.0f, 0.045));
+    // Without a pixel size to compare with, nothing is proved.
+    EXPECT_FALSE(proofOfOneJoint().holds(top, kActorVector, 0.0f, 1.0));
+}
+
+TEST(SmallFeatureProof, WidensItsMarginWithHowFarTheJointsOriginsReach)
+{
+    // The rounding grows with the coordinates' size in the joints' frames: a joint 10^5 units from the actor's
+    // origin (its children's spheres brought back by the geometry) leaves no room at this threshold.
+    const osg::BoundingSphere top(osg::Vec3(), 1.0f);
+    EXPECT_TRUE(proofOfOneJoint().holds(top, kActorVector, 2.0f, 0.0225));
+    EXPECT_FALSE(proofOfOneJoint(osg::Matrixd::translate(1e5, 0.0, 0.0)).holds(top, kActorVector, 2.0f, 0.0225));
+}
+
+TEST(SmallFeatureProof, ACameraBackingAwayThroughTheThresholdGetsTheOrdinaryRenderGraphAtEveryDistance)
+{
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    Crowd crowd(*scene);
+    const std::set<std::size_t> counts = expectTheOrdinaryGraphAtEveryDistance(*scene, crowd);
+    // The test can fail: near, every part is drawn; far, the balls and then the limbs were dropped, a few at a time.
+    EXPECT_EQ(*counts.rbegin(), 4u * 18u);
+    EXPECT_GT(counts.size(), 3u);
+}
+
+TEST(SmallFeatureProof, AJointScaledByHandIsTestedExactly)
+{
+    osg::ref_ptr<osg::Group> scene = new osg::Group;
+    Crowd crowd(*scene);
+    // Halved: its spheres and its parts' are smaller than the rigid figures' and reach the threshold sooner.
+    SkeletonNode& knee = *crowd.actors[1]->getSkeletonNode("l_knee");
+    knee.setMatrix(osg::Matrixd::scale(0.5, 0.5, 0.5) * knee.getMatrix());
+    EXPECT_GT(expectTheOrdinaryGraphAtEveryDistance(*scene, crowd).size(), 3u);
+}
+
+TEST(SmallFeatureProof, TheInstancedCullDrawsTheOrdinaryTraversalsPartsAtEveryDistance)
+{
+    osg::ref_ptr<osg::Group> plain = new osg::Group;
+    osg::ref_ptr<InstancedActorGroup> instanced = new InstancedActorGroup;
+    Crowd crowd(*plain);
+    for (const osg::ref_ptr<ActorNode>& actor : crowd.actors) instanced->addChild(actor.get());
+    CullProbe ordinaryProbe(plain.get()), instancedProbe(instanced.get());
+    std::set<unsigned> counts;
+    unsigned frame = 0;
+    for (double distance : distancesThroughTheThreshold())
+    {
+        ordinaryProbe.lookAt(osg::Vec3d(1.6, -distance, 1.0), osg::Vec3d(1.6, 0.0, 0.9));
+        instancedProbe.lookAt(osg::Vec3d(1.6, -distance, 1.0), osg::Vec3d(1.6, 0.0, 0.9));
+        crowd.setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        const std::vector<CulledLeaf> ordinary = ordinaryProbe.cull(++frame);
+        crowd.setCullMode(ActorNode::CULL_AS_ONE);
+        instancedProbe.cull(++frame);
+        const InstancedActorGroup::Statistics statistics = instanced->getStatistics();
+        EXPECT_EQ(statistics.actorsInstanced, 4u);
+        // Each instance one drawable the ordinary traversal draws (the images' tests compare what is drawn).
+        EXPECT_EQ(statistics.instances, ordinary.size()) << "at " << distance;
+        counts.insert(statistics.instances);
+    }
+    EXPECT_EQ(*counts.rbegin(), 4u * 18u);
+    EXPECT_GT(counts.size(), 3u);
+}
