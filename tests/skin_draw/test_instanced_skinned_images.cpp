@@ -314,3 +314,31 @@ TEST(InstancedSkinnedCesiumMen, TexturedMenWalkingAtTheirOwnPacesAreTheSameBytes
         largest = std::max(largest, std::abs(first.getDof(d) - last.getDof(d)));
     EXPECT_GT(largest, 0.1);
 }
+
+TEST_F(InstancedSkinnedImages, ACrowdGrownSinceTheLastCullOverflowsItsRegionsAndIsStillTheSameBytes)
+{
+    // Each batch's region in the frame's buffer is as large as its data of the cull before: one clone in view, then
+    // seven, so that the rigid batch (a ball on a joint of every clone) and the skinned one both overflow and are
+    // moved past the regions.
+    prototype.actor->getSkeletonNode("j4")->addChild(makeJointBall(0.03f));
+    group->getOrCreateStateSet()->setAttributeAndModes(InstancedActorGroup::createRigidProgram(false).get());
+    std::vector<osg::Vec3d> places;
+    for (unsigned a = 0; a < kClones; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(prototype.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        places.push_back(actors[a]->getPreTranslation());
+        actor->setPreTranslation(a == 3 ? places[a] : osg::Vec3d(50.0 + a, 0.0, 0.0));
+        poseSynthetic(*actor, 0.9 * a);
+        group->setChild(a, actor.get());
+        actors[a] = actor;
+    }
+    renderWith(InstancedActorGroup::INSTANCED);
+    ASSERT_EQ(group->getStatistics().skinnedInstances, 1u);
+    ASSERT_EQ(group->getStatistics().instances, 1u);
+    for (unsigned a = 0; a < kClones; ++a) actors[a]->setPreTranslation(places[a]);
+    expectTheSameBytes();
+    EXPECT_EQ(group->getStatistics().skinnedInstances, kClones - 1);
+    EXPECT_EQ(group->getStatistics().instances, kClones - 1);
+    // And the frame after, in the regions the grown crowd made.
+    expectTheSameBytes();
+}
