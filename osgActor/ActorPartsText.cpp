@@ -28,8 +28,10 @@ std::string textOf(const std::vector<std::string>& lines)
 std::vector<std::string> sectionLines(const ActorDocument& document)
 {
     std::ostringstream text;
-    for (const SyntaxStatement& statement : toSyntax(document))
-        if (statement.keyword == "actor") writeSyntax(text, statement.children);
+    {
+        SyntaxWriter writer(text);
+        writeActorBlock(writer, document);
+    }
     return linesOf(text.str());
 }
 

@@ -151,7 +151,8 @@ set(OSGACTOR_IO_HEADERS
     io/AngleAxis
     io/ClipRetarget
     io/DocumentDifference
-    io/JointMapSection)
+    io/JointMapSection
+    io/SyntaxWriter)
 set(OSGACTOR_IO_SOURCES
     io/ActorDocument.cpp
     io/ActorLexer.cpp
@@ -162,7 +163,8 @@ set(OSGACTOR_IO_SOURCES
     io/ClipRetarget.cpp
     io/DocumentDifference.cpp
     io/JointMapSection.cpp
-    io/PlayerDocument.cpp)
+    io/PlayerDocument.cpp
+    io/SyntaxWriter.cpp)
 
 # Motion-capture parsers: plain C++ on std::istream, GLM only like the core (built into the same object library).
 set(OSGACTOR_MOCAP_HEADERS

@@ -1,9 +1,9 @@
 #include <osgActor/io/ActorLexer>
 #include <osgActor/io/ActorSyntax>
+#include <osgActor/io/SyntaxWriter>
 
 #include <algorithm>
 #include <iterator>
-#include <ostream>
 
 namespace osgActor {
 
@@ -116,66 +116,9 @@ private:
     std::vector<SyntaxArgument> _arguments;            // the arguments of the statement being parsed
 };
 
-/** Appends the text in double quotes, with \" and \\ escapes. */
-void appendQuoted(std::string& out, const std::string& text)
-{
-    out += '"';
-    for (const char c : text)
-    {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c;
-    }
-    out += '"';
-}
-
-/** Writes statements' text into one buffer, handed to the stream a large piece at a time: a file of many short
-  * statements would otherwise go through the stream's formatted output a word at a time. */
-class SyntaxText
-{
-public:
-    explicit SyntaxText(std::ostream& out) : _out(out) {}
-    ~SyntaxText() { flush(); }
-
-    void write(const std::vector<SyntaxStatement>& statements, unsigned indent)
-    {
-        for (const SyntaxStatement& statement : statements)
-        {
-            _text.append(indent * 4, ' ');
-            _text += statement.keyword;
-            for (const SyntaxArgument& argument : statement.arguments)
-            {
-                _text += ' ';
-                if (argument.quoted) appendQuoted(_text, argument.text);
-                else _text += argument.text;
-            }
-            if (statement.hasBlock)
-            {
-                _text += " {\n";
-                write(statement.children, indent + 1);
-                _text.append(indent * 4, ' ');
-                _text += '}';
-            }
-            _text += '\n';
-            if (_text.size() >= kPiece) flush();
-        }
-    }
-
-private:
-    static constexpr std::size_t kPiece = 1 << 16;
-
-    void flush()
-    {
-        _out.write(_text.data(), static_cast<std::streamsize>(_text.size()));
-        _text.clear();
-    }
-
-    std::ostream& _out;
-    std::string _text;
-};
-
 } // namespace
 
-bool needsQuotes(const std::string& name)
+bool needsQuotes(std::string_view name)
 {
     if (name.empty()) return true;
     for (const char c : name)
@@ -213,9 +156,20 @@ std::string quoted(const std::string& name)
     return text;
 }
 
+void appendQuoted(std::string& out, std::string_view text)
+{
+    out += '"';
+    for (const char c : text)
+    {
+        if (c == '"' || c == '\\') out += '\\';
+        out += c;
+    }
+    out += '"';
+}
+
 void writeSyntax(std::ostream& out, const std::vector<SyntaxStatement>& statements, unsigned indent)
 {
-    SyntaxText(out).write(statements, indent);
+    SyntaxWriter(out, indent).write(statements);
 }
 
 } // namespace osgActor

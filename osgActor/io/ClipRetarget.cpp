@@ -34,25 +34,13 @@ bool readClipRetarget(const SyntaxStatement& s, const std::string& fileName, Cli
     return true;
 }
 
-SyntaxStatement clipRetargetStatement(const ClipRetarget& retarget)
+void writeClipRetarget(SyntaxWriter& writer, const ClipRetarget& retarget)
 {
-    SyntaxStatement s;
-    s.keyword = "retarget";
-    SyntaxArgument source;
-    source.text = retarget.sourceMap.empty() ? "auto" : retarget.sourceMap;
-    source.quoted = !retarget.sourceMap.empty() && quoteIfNeeded(retarget.sourceMap) != retarget.sourceMap;
-    s.arguments.push_back(source);
-    if (!retarget.ik)
-    {
-        SyntaxStatement ik;
-        ik.keyword = "ik";
-        SyntaxArgument off;
-        off.text = "off";
-        ik.arguments.push_back(off);
-        s.children.push_back(ik);
-        s.hasBlock = true;
-    }
-    return s;
+    writer.begin("retarget");
+    if (retarget.sourceMap.empty()) writer.word("auto");
+    else writer.name(retarget.sourceMap);
+    if (!retarget.ik) writer.begin("ik").word("off").end();
+    writer.end();
 }
 
 ClipPtr retargetClipForActor(const MocapImport& imported, const ActorDefinitionPtr& actor,

@@ -42,8 +42,20 @@ std::string angleProblem(std::string_view word)
 std::string formatAngle(double radians)
 {
     std::string text;
-    if (formatExactInverse(radians, radians * kDegreesPerRadian, radiansFromDegrees, text)) return text;
-    return formatNumber(radians) + std::string(kRadiansSuffix);
+    appendAngle(text, radians);
+    return text;
+}
+
+void appendAngle(std::string& text, double radians)
+{
+    double degrees = 0.0;
+    if (findExactInverse(radians, radians * kDegreesPerRadian, radiansFromDegrees, degrees))
+    {
+        appendNumber(text, degrees);
+        return;
+    }
+    appendNumber(text, radians);
+    text += kRadiansSuffix;
 }
 
 } // namespace osgActor

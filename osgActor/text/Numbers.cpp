@@ -204,6 +204,14 @@ std::string formatInverse(double stored, double guess, double (*convert)(double)
 
 bool formatExactInverse(double stored, double guess, double (*convert)(double), std::string& text)
 {
+    double written = 0.0;
+    if (!findExactInverse(stored, guess, convert, written)) return false;
+    text = formatNumber(written);
+    return true;
+}
+
+bool findExactInverse(double stored, double guess, double (*convert)(double), double& written)
+{
     if (!std::isfinite(stored)) return false;
     const double infinity = std::numeric_limits<double>::infinity();
     if (!std::isfinite(guess)) guess = std::copysign(std::numeric_limits<double>::max(), guess);
@@ -233,7 +241,7 @@ bool formatExactInverse(double stored, double guess, double (*convert)(double), 
             if (length < bestLength) best = x, bestLength = length;
         }
     }
-    text = formatNumber(best);
+    written = best;
     return true;
 }
 

@@ -58,3 +58,20 @@ TEST(NameIndex, NamesWithEmbeddedNulsAndLongNamesAreFoundWhole)
     EXPECT_EQ(index.find(std::string(300, 'x'), names), 2);
     EXPECT_EQ(index.find(std::string(299, 'x'), names), -1);
 }
+
+TEST(NameIndex, NamesGivenByAnAccessorAreFoundAndANameGivenTwiceIsFoundAtItsFirstPlace)
+{
+    struct Joint
+    {
+        std::string name;
+        int depth;
+    };
+    // Enough names given twice that their second places probe past their first.
+    std::vector<Joint> joints;
+    for (int i = 0; i < 3000; ++i) joints.push_back(Joint{"j" + std::to_string(i % 1000), i});
+    const auto nameOf = [&joints](std::size_t place) -> std::string_view { return joints[place].name; };
+    NameIndex index;
+    index.build(joints.size(), nameOf);
+    for (int i = 0; i < 1000; ++i) ASSERT_EQ(index.find("j" + std::to_string(i), nameOf), i);
+    EXPECT_EQ(index.find("j1000", nameOf), -1);
+}
