@@ -82,7 +82,7 @@ OSGACTOR_HOT_PATH bool allWithin(const double* values, std::size_t count, double
     std::size_t i = 0;
     // Two vectors a step: half the loop's counting and branching per value.
     for (; i + 8 <= count; i += 8)
-        outside |= !(absColumn(loadColumn(values + i)) <= bound) | !(absColumn(loadColumn(values + i + 4)) <= bound);
+        outside |= ~((absColumn(loadColumn(values + i)) <= bound) & (absColumn(loadColumn(values + i + 4)) <= bound));
     for (; i + 4 <= count; i += 4) outside |= !(absColumn(loadColumn(values + i)) <= bound);
     bool valid = (outside[0] | outside[1] | outside[2] | outside[3]) == 0;
     for (; i < count; ++i) valid &= std::abs(values[i]) <= bound;
@@ -366,7 +366,6 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
     const int targetRoot = rig.getTargetRoot();
     RetargetWorkspace::Scratch& s = w.scratch;
     const JointKinematics& k = target.getKinematics(t);
-    const RetargetJointPlan& plan = rig.getPlans()[t];
     const int parent = target.getParent(t);
     const bool hasParent = parent >= 0;
     const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
@@ -376,9 +375,10 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
     const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
     const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
 
+    const RetargetPlacement how = tables.placement[t];
     RotationColumns rotation;
     bool exact = false;
-    if (plan.kind == RetargetJointKind::Rest)
+    if (how == RetargetPlacement::Rest)
     {
         for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
         // Under a parent at its desired rotation (or none), the desired rotation is this product already.
@@ -386,17 +386,23 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
                        ? desired
                        : multiply(parentRotation, loadRotation(&tables.restLocalRotations[t * kRotationDoubles]));
     }
-    else if (plan.kind == RetargetJointKind::Copy && parentExact && s.laneFitted[t])
+    else if (how == RetargetPlacement::Euler && s.laneFitted[t] && parentAsDesired)
+    {
+        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        exact = true;
+        rotation = desired;
+    }
+    else if (how == RetargetPlacement::Copy && parentExact && s.laneFitted[t])
     {
         // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches).
         for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
         exact = true;
         rotation = desired;
     }
-    else if (plan.kind == RetargetJointKind::Copy && parentExact)
+    else if (how == RetargetPlacement::Copy && parentExact)
     {
         // The same local frames as the source joint's: its angles, turned or clamped into the limits.
-        const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(plan.sourceB));
+        const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(rig.getPlans()[t].sourceB));
         bool clamped = false;
         for (unsigned r = 0; r < k.numRotations; ++r)
         {
@@ -413,13 +419,7 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
         rotation =
             exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
     }
-    else if (tables.inEulerBatch[t] && s.laneFitted[t] && parentAsDesired)
-    {
-        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
-        exact = true;
-        rotation = desired;
-    }
-    else if (tables.inAxisBatch[t] && s.laneFitted[t])
+    else if (how == RetargetPlacement::Axis && s.laneFitted[t])
     {
         // Fewer than three rotations: the nearest the joint can come, never exact (as fitJointRotationDofs).
         rotation = jointFrame(tables, t, hasParent, parentRotation);
@@ -435,8 +435,8 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
         exact = fitJointRotationDofs(target, t, toMat3(multiply(transpose(frame), desired)), targetValues);
         rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
     }
-    const bool counted = !exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0;
-    s.asDesired[t] = exact || (plan.kind == RetargetJointKind::Rest && parentAsDesired) ? 1 : 0;
+    const bool counted = !exact && how != RetargetPlacement::Rest && k.numRotations > 0;
+    s.asDesired[t] = exact || (how == RetargetPlacement::Rest && parentAsDesired) ? 1 : 0;
 
     Column origin = loadColumn(&tables.origins[4 * t]);
     if (tables.originMoves[t])

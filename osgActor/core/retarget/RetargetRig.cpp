@@ -655,6 +655,16 @@ struct RetargetRigBuilder
             for (unsigned lane = batch.numJoints; lane < RetargetCopyBatch::kWidth; ++lane) setCopyLane(batch, lane, j);
             ++batch.numJoints;
         }
+        tables.placement.resize(numTarget);
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const RetargetJointKind kind = rig->_plans[j].kind;
+            tables.placement[j] = kind == RetargetJointKind::Rest   ? RetargetPlacement::Rest
+                                  : kind == RetargetJointKind::Copy ? RetargetPlacement::Copy
+                                  : tables.inEulerBatch[j]          ? RetargetPlacement::Euler
+                                  : tables.inAxisBatch[j]           ? RetargetPlacement::Axis
+                                                                    : RetargetPlacement::Fit;
+        }
     }
 
     /** A lane of a copy batch for target joint j (its plan a Copy of source joint sourceB). */
