@@ -151,7 +151,8 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
     const bool aligned = rig.isAlignmentIdentity();
     const RotationColumns alignment = loadRotation(tables.alignment);
     double* const desired = w.scratch.desired.data();
-    for (unsigned t = 0; t < target.getNumJoints(); ++t)
+    const unsigned numJoints = target.getNumJoints();
+    for (unsigned t = 0; t < numJoints; ++t)
     {
         const RetargetJointPlan& plan = plans[t];
         const int parent = target.getParent(t);
@@ -214,14 +215,10 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
         {
             const RetargetEulerBatch& batch = batches[first + b];
             EulerLaneColumns lanes[RetargetEulerBatch::kWidth];
+            // Lanes past the last joint repeat it (RetargetEulerBatch), and are worked out as the others, with no
+            // branch (cheaper than copying its six columns; their results are never written).
             for (unsigned lane = 0; lane < RetargetEulerBatch::kWidth; ++lane)
             {
-                // Lanes past the last joint repeat it (their results are never written).
-                if (lane >= batch.numJoints)
-                {
-                    lanes[lane] = lanes[batch.numJoints - 1];
-                    continue;
-                }
                 // The joint's frame (jointFrame) is its parent's desired rotation times its offset rotation.
                 const unsigned t = batch.joints[lane];
                 const int parent = target.getParent(t);
@@ -471,12 +468,19 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
         std::memcpy(targetValues + first, rest + first, 3 * sizeof(double));
     for (const std::uint32_t dof : tables.translationDofs) targetValues[dof] = rest[dof];
     unsigned numInexact = 0;
-    for (std::size_t level = 0; level + 1 < tables.levelJoints.size(); ++level)
+    // The bounds in locals: the joints' byte flags written in the loops could otherwise alias the tables' vectors, and
+    // the compiler would read them again on every step.
+    const std::size_t numLevels = tables.levelJoints.empty() ? 0 : tables.levelJoints.size() - 1;
+    const std::uint32_t* const levelJoints = tables.levelJoints.data();
+    const std::uint32_t* const levelBatches = tables.levelBatches.data();
+    const std::uint32_t* const placeOrder = tables.placeOrder.data();
+    for (std::size_t level = 0; level < numLevels; ++level)
     {
-        for (std::uint32_t b = tables.levelBatches[level]; b < tables.levelBatches[level + 1]; ++b)
+        const std::uint32_t lastBatch = levelBatches[level + 1], lastJoint = levelJoints[level + 1];
+        for (std::uint32_t b = levelBatches[level]; b < lastBatch; ++b)
             fitAxisBatch(tables.axisBatches[b], target, tables, targetValues, w);
-        for (std::uint32_t i = tables.levelJoints[level]; i < tables.levelJoints[level + 1]; ++i)
-            numInexact += placeJoint(rig, tables.placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
+        for (std::uint32_t i = levelJoints[level]; i < lastJoint; ++i)
+            numInexact += placeJoint(rig, placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
     }
     return numInexact;
 }
