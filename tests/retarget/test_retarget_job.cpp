@@ -1,6 +1,7 @@
 // The per-frame retargeting: what validate() refuses, then the measures of issue 27 on real motion capture: the same
 // skeleton reproduces its DOFs, T-pose and A-pose targets move alike, bones keep their lengths, bones along other
-// local axes move alike; and by hand: a spine of 3 onto a spine of 5, a hinge at its limit.
+// local axes move alike; and by hand: a spine of 3 onto a spine of 5, slides of every layout back to rest, a hinge at
+// its limit.
 #include "RetargetTestUtil"
 
 #include <osgActor/core/retarget/JointRotationFit>
@@ -272,6 +273,48 @@ TEST(RetargetJob, ASpineOfThreeOntoASpineOfFiveSharesTheBendOut)
     const unsigned sourceHead = static_cast<unsigned>(three->findJoint("head"));
     const unsigned targetHead = static_cast<unsigned>(five->findJoint("head"));
     EXPECT_LE(angleBetween(workspace.sourceRotation(sourceHead), workspace.targetRotation(targetHead)), 1e-12);
+}
+
+TEST(RetargetJob, SlidesOfEveryLayoutComeBackToRestInOneFrame)
+{
+    // A joint's three slides as consecutive DOFs are reset together, one slide or two apart (x and z) one by one
+    // (RetargetJobTables::translationTriples and translationDofs): moved off rest on input, all are at rest after one
+    // frame, and the root's are placed where the source's root goes.
+    const ActorDefinitionPtr three = spine("three", 3, 0.2);
+    ActorDefinitionBuilder b("sliding");
+    b.addJoint("root").offset(0, 0, 1).dofs(kRotationDofs | Dof::TX | Dof::TY | Dof::TZ);
+    b.addJoint("s0", "root").dofs(kRotationDofs | Dof::TX | Dof::TY | Dof::TZ);
+    b.addJoint("s1", "s0").offset(0, 0, 0.2).dofs(kRotationDofs | Dof::TY);
+    b.addJoint("s2", "s1").offset(0, 0, 0.2).dofs(kRotationDofs | Dof::TX | Dof::TZ);
+    b.addJoint("head", "s2").offset(0, 0, 0.2).dofs(kRotationDofs);
+    b.addJoint("head_end", "head").offset(0, 0, 0.2);
+    const ActorDefinitionPtr sliding = b.build().definition;
+    ASSERT_TRUE(sliding);
+    const std::vector<std::pair<std::string, std::string>> ends = {
+        {"root", "HumanoidRoot"}, {"s0", "vl5"}, {"head", "skullbase"}};
+    const RetargetRigPtr rig = buildRig(mappedSkeleton(three, ends), mappedSkeleton(sliding, ends));
+    ASSERT_TRUE(rig);
+    EXPECT_EQ(rig->getJobTables().translationTriples.size(), 2u);
+    EXPECT_EQ(rig->getJobTables().translationDofs.size(), 3u);
+
+    const std::vector<double>& rest = rig->getTargetRestDofs();
+    std::vector<double> result = rest;
+    for (const char* dof : {"root.tx", "s0.tx", "s0.ty", "s0.tz", "s1.ty", "s2.tx", "s2.tz"})
+        result[static_cast<unsigned>(sliding->findDof(dof))] += 0.25;
+    RetargetWorkspace workspace;
+    RetargetJob job = retargetJob(*rig, three->getDefaultDofs(), result, workspace);
+    ASSERT_TRUE(job.run());
+    for (const char* dof : {"s0.tx", "s0.ty", "s0.tz", "s1.ty", "s2.tx", "s2.tz"})
+    {
+        const unsigned i = static_cast<unsigned>(sliding->findDof(dof));
+        EXPECT_EQ(result[i], rest[i]) << dof;
+    }
+    // The source stands at rest: the target's root at its own rest place (the hips at their height).
+    for (const char* dof : {"root.tx", "root.ty", "root.tz"})
+    {
+        const unsigned i = static_cast<unsigned>(sliding->findDof(dof));
+        EXPECT_NEAR(result[i], rest[i], 1e-12) << dof;
+    }
 }
 
 TEST(RetargetJob, AHingeStopsAtItsLimitAndTheJointsBelowKeepTheirOrientation)

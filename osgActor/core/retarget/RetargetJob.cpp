@@ -80,6 +80,9 @@ OSGACTOR_HOT_PATH bool allWithin(const double* values, std::size_t count, double
 {
     ColumnSignedBits outside = {0, 0, 0, 0};
     std::size_t i = 0;
+    // Two vectors a step: half the loop's counting and branching per value.
+    for (; i + 8 <= count; i += 8)
+        outside |= ~((absColumn(loadColumn(values + i)) <= bound) & (absColumn(loadColumn(values + i + 4)) <= bound));
     for (; i + 4 <= count; i += 4) outside |= !(absColumn(loadColumn(values + i)) <= bound);
     bool valid = (outside[0] | outside[1] | outside[2] | outside[3]) == 0;
     for (; i < count; ++i) valid &= std::abs(values[i]) <= bound;
@@ -148,7 +151,8 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
     const bool aligned = rig.isAlignmentIdentity();
     const RotationColumns alignment = loadRotation(tables.alignment);
     double* const desired = w.scratch.desired.data();
-    for (unsigned t = 0; t < target.getNumJoints(); ++t)
+    const unsigned numJoints = target.getNumJoints();
+    for (unsigned t = 0; t < numJoints; ++t)
     {
         const RetargetJointPlan& plan = plans[t];
         const int parent = target.getParent(t);
@@ -211,14 +215,10 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
         {
             const RetargetEulerBatch& batch = batches[first + b];
             EulerLaneColumns lanes[RetargetEulerBatch::kWidth];
+            // Lanes past the last joint repeat it (RetargetEulerBatch), and are worked out as the others, with no
+            // branch (cheaper than copying its six columns; their results are never written).
             for (unsigned lane = 0; lane < RetargetEulerBatch::kWidth; ++lane)
             {
-                // Lanes past the last joint repeat it (their results are never written).
-                if (lane >= batch.numJoints)
-                {
-                    lanes[lane] = lanes[batch.numJoints - 1];
-                    continue;
-                }
                 // The joint's frame (jointFrame) is its parent's desired rotation times its offset rotation.
                 const unsigned t = batch.joints[lane];
                 const int parent = target.getParent(t);
@@ -363,7 +363,6 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
     const int targetRoot = rig.getTargetRoot();
     RetargetWorkspace::Scratch& s = w.scratch;
     const JointKinematics& k = target.getKinematics(t);
-    const RetargetJointPlan& plan = rig.getPlans()[t];
     const int parent = target.getParent(t);
     const bool hasParent = parent >= 0;
     const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
@@ -373,25 +372,34 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
     const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
     const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
 
+    const RetargetPlacement how = tables.placement[t];
     RotationColumns rotation;
     bool exact = false;
-    if (plan.kind == RetargetJointKind::Rest)
+    if (how == RetargetPlacement::Rest)
     {
         for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
-        const RotationColumns restLocal = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
-        rotation = hasParent ? multiply(parentRotation, restLocal) : restLocal;
+        // Under a parent at its desired rotation (or none), the desired rotation is this product already.
+        rotation = parentAsDesired
+                       ? desired
+                       : multiply(parentRotation, loadRotation(&tables.restLocalRotations[t * kRotationDoubles]));
     }
-    else if (plan.kind == RetargetJointKind::Copy && parentExact && s.laneFitted[t])
+    else if (how == RetargetPlacement::Euler && s.laneFitted[t] && parentAsDesired)
+    {
+        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        exact = true;
+        rotation = desired;
+    }
+    else if (how == RetargetPlacement::Copy && parentExact && s.laneFitted[t])
     {
         // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches).
         for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
         exact = true;
         rotation = desired;
     }
-    else if (plan.kind == RetargetJointKind::Copy && parentExact)
+    else if (how == RetargetPlacement::Copy && parentExact)
     {
         // The same local frames as the source joint's: its angles, turned or clamped into the limits.
-        const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(plan.sourceB));
+        const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(rig.getPlans()[t].sourceB));
         bool clamped = false;
         for (unsigned r = 0; r < k.numRotations; ++r)
         {
@@ -408,13 +416,7 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
         rotation =
             exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
     }
-    else if (tables.inEulerBatch[t] && s.laneFitted[t] && parentAsDesired)
-    {
-        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
-        exact = true;
-        rotation = desired;
-    }
-    else if (tables.inAxisBatch[t] && s.laneFitted[t])
+    else if (how == RetargetPlacement::Axis && s.laneFitted[t])
     {
         // Fewer than three rotations: the nearest the joint can come, never exact (as fitJointRotationDofs).
         rotation = jointFrame(tables, t, hasParent, parentRotation);
@@ -430,8 +432,8 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
         exact = fitJointRotationDofs(target, t, toMat3(multiply(transpose(frame), desired)), targetValues);
         rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
     }
-    const bool counted = !exact && plan.kind != RetargetJointKind::Rest && k.numRotations > 0;
-    s.asDesired[t] = exact || (plan.kind == RetargetJointKind::Rest && parentAsDesired) ? 1 : 0;
+    const bool counted = !exact && how != RetargetPlacement::Rest && k.numRotations > 0;
+    s.asDesired[t] = exact || (how == RetargetPlacement::Rest && parentAsDesired) ? 1 : 0;
 
     Column origin = loadColumn(&tables.origins[4 * t]);
     if (tables.originMoves[t])
@@ -462,14 +464,23 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
     const double* const rest = rig.getTargetRestDofs().data();
+    for (const std::uint32_t first : tables.translationTriples)
+        std::memcpy(targetValues + first, rest + first, 3 * sizeof(double));
     for (const std::uint32_t dof : tables.translationDofs) targetValues[dof] = rest[dof];
     unsigned numInexact = 0;
-    for (std::size_t level = 0; level + 1 < tables.levelJoints.size(); ++level)
+    // The bounds in locals: the joints' byte flags written in the loops could otherwise alias the tables' vectors, and
+    // the compiler would read them again on every step.
+    const std::size_t numLevels = tables.levelJoints.empty() ? 0 : tables.levelJoints.size() - 1;
+    const std::uint32_t* const levelJoints = tables.levelJoints.data();
+    const std::uint32_t* const levelBatches = tables.levelBatches.data();
+    const std::uint32_t* const placeOrder = tables.placeOrder.data();
+    for (std::size_t level = 0; level < numLevels; ++level)
     {
-        for (std::uint32_t b = tables.levelBatches[level]; b < tables.levelBatches[level + 1]; ++b)
+        const std::uint32_t lastBatch = levelBatches[level + 1], lastJoint = levelJoints[level + 1];
+        for (std::uint32_t b = levelBatches[level]; b < lastBatch; ++b)
             fitAxisBatch(tables.axisBatches[b], target, tables, targetValues, w);
-        for (std::uint32_t i = tables.levelJoints[level]; i < tables.levelJoints[level + 1]; ++i)
-            numInexact += placeJoint(rig, tables.placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
+        for (std::uint32_t i = levelJoints[level]; i < lastJoint; ++i)
+            numInexact += placeJoint(rig, placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
     }
     return numInexact;
 }

@@ -589,6 +589,7 @@ struct RetargetRigBuilder
         tables.origins.assign(std::size_t(numTarget) * 4, 0.0);
         tables.originMoves.assign(numTarget, 0);
         tables.inEulerBatch.assign(numTarget, 0);
+        tables.translationTriples.clear();
         tables.translationDofs.clear();
         markSourceJointsRead(tables.sourceJointsRead);
         const unsigned numSource = source.definition->getNumJoints();
@@ -612,9 +613,12 @@ struct RetargetRigBuilder
             storeRotation(&tables.restLocalRotations[j * kRotationDoubles], rig->_targetRestLocals[j]);
             tables.offsetIsIdentity[j] = rig->_targetOffsets[j] == glm::dmat3(1.0) ? 1 : 0;
             const JointKinematics& k = t.getKinematics(j);
-            for (unsigned axis = 0; axis < 3; ++axis)
-                if (k.translationDof[axis] >= 0)
-                    tables.translationDofs.push_back(static_cast<std::uint32_t>(k.translationDof[axis]));
+            const std::int32_t* const slides = k.translationDof;
+            if (slides[0] >= 0 && slides[1] == slides[0] + 1 && slides[2] == slides[0] + 2)
+                tables.translationTriples.push_back(static_cast<std::uint32_t>(slides[0]));
+            else
+                for (unsigned axis = 0; axis < 3; ++axis)
+                    if (slides[axis] >= 0) tables.translationDofs.push_back(static_cast<std::uint32_t>(slides[axis]));
             const bool carriesTravel = static_cast<int>(j) == rig->_targetRoot && rig->_sourceRoot >= 0;
             tables.originMoves[j] =
                 k.hasTranslation && (carriesTravel || k.translationMode == TranslationMode::AfterRotation) ? 1 : 0;
@@ -650,6 +654,16 @@ struct RetargetRigBuilder
             // Lanes past the last joint repeat it until another joint takes them.
             for (unsigned lane = batch.numJoints; lane < RetargetCopyBatch::kWidth; ++lane) setCopyLane(batch, lane, j);
             ++batch.numJoints;
+        }
+        tables.placement.resize(numTarget);
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const RetargetJointKind kind = rig->_plans[j].kind;
+            tables.placement[j] = kind == RetargetJointKind::Rest   ? RetargetPlacement::Rest
+                                  : kind == RetargetJointKind::Copy ? RetargetPlacement::Copy
+                                  : tables.inEulerBatch[j]          ? RetargetPlacement::Euler
+                                  : tables.inAxisBatch[j]           ? RetargetPlacement::Axis
+                                                                    : RetargetPlacement::Fit;
         }
     }
 
