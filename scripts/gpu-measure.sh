@@ -33,10 +33,10 @@ run() { echo "\$ $*" | tee -a "$log"; "$@" 2>&1 | tee -a "$log"; echo | tee -a "
 } 2>&1 | tee "$log"
 echo | tee -a "$log"
 
-run timeout 200 "$bin/osgactor_gpu_draw_bench" --actors=1000,10000 --seconds=1.5 --images="$out/images" \
+run timeout 240 "$bin/osgactor_gpu_draw_bench" --actors=1000,10000 --seconds=1.5 --images="$out/images" \
     --cesium-man="$root/data/models/CesiumMan/CesiumMan.gltf"
-run timeout 70 "$bin/osgactor_gpu_draw_bench" --actors=10000 --seconds=1.5 --threading=draw \
-    --systems=rigid_osgActor,rigid_osgActor_group,skinned_osgActor_gpu \
+run timeout 110 "$bin/osgactor_gpu_draw_bench" --actors=10000 --seconds=1.5 --threading=draw \
+    --systems=rigid_osgActor,rigid_osgActor_group,rigid_osgActor_instanced,skinned_osgActor_gpu,skinned_osgActor_instanced \
     --cesium-man="$root/data/models/CesiumMan/CesiumMan.gltf"
 (cd "$out" && run timeout 170 "$bin/osgactorbench" --actors=1000,16000 --threads="$threads" \
     --benchmark_filter='^(update|update_cull)/(osgActor_all|osgActor_idle|osgAnimation|plainOSG)/1000$|^parallel/')

@@ -1,6 +1,7 @@
 // The whole frame drawn, side by side in one run (issues 26 and 28): N rigid humanoids (osgActor, osgAnimation,
 // plain OSG; the benchmark's 31-joint humanoid with a box under every joint) and N skinned Cesium Men (osgActor's
-// SkinnedMesh on its GPU path, osgAnimation's RigGeometry with RigTransformHardware), standing on a square grid that
+// SkinnedMesh on its GPU path, drawn one by one or instanced; osgAnimation's RigGeometry with
+// RigTransformHardware), standing on a square grid that
 // the camera frames, animated, drawn at 1280 x 720 through osgViewer into a headless context: on a GPU through EGL
 // (osgactor_gpu_draw_bench, EglPbufferContext: no X server needed), or on OSMesa (osgactor_osmesa_draw_bench,
 // OsMesaGraphicsContext). Each frame ends with glFinish, so its time holds the GL's work too. Reported per system and
@@ -62,7 +63,7 @@ struct Options
     std::vector<int> actors{1000, 10000};
     std::vector<std::string> systems{"rigid_osgActor",       "rigid_osgActor_group",    "rigid_osgActor_instanced",
                                      "rigid_osgAnimation",   "rigid_plainOSG",          "skinned_osgActor_gpu",
-                                     "skinned_osgAnimation_hw"};
+                                     "skinned_osgActor_instanced", "skinned_osgAnimation_hw"};
     double seconds = 3.0;
     int width = 1280, height = 720;
     bool drawThread = false;
@@ -73,19 +74,42 @@ struct Options
     std::string cesiumMan = std::string(OSGACTOR_BENCH_DATA_DIR) + "/models/CesiumMan/CesiumMan.gltf";
 };
 
+/** The ActorGroup a crowd holds below a chain of single children (the skinned group crowds put the file's root
+  * transform above it), or null; toCrowd: the group's frame to the crowd's. */
+osgActor::ActorGroup* findActorGroup(osg::Group& crowd, osg::Matrixd& toCrowd)
+{
+    toCrowd.makeIdentity();
+    osg::NodePath path;
+    for (osg::Group* node = &crowd; node; node = node->getNumChildren() == 1 ? node->getChild(0)->asGroup() : nullptr)
+    {
+        path.push_back(node);
+        if (osgActor::ActorGroup* group = dynamic_cast<osgActor::ActorGroup*>(node))
+        {
+            toCrowd = osg::computeLocalToWorld(path);
+            return group;
+        }
+    }
+    return nullptr;
+}
+
 /** Puts the crowd's members on a square grid (spacing in metres, world space): under a transform each, or, for an
-  * ActorGroup whose members must stay its children, through each actor's pre-translation. */
+  * ActorGroup whose members must stay its children, through each actor's pre-translation (in the group's frame). */
 void placeOnGrid(osg::Group& crowd, double spacing)
 {
-    const unsigned n = crowd.getNumChildren();
+    osg::Matrixd groupToCrowd;
+    osgActor::ActorGroup* group = findActorGroup(crowd, groupToCrowd);
+    const osg::Matrixd crowdToGroup = osg::Matrixd::inverse(groupToCrowd);
+    const unsigned n = group ? group->getNumChildren() : crowd.getNumChildren();
     const unsigned side = static_cast<unsigned>(std::ceil(std::sqrt(double(n))));
-    const bool isActorGroup = dynamic_cast<osgActor::ActorGroup*>(&crowd) != nullptr;
     for (unsigned i = 0; i < n; ++i)
     {
         const osg::Vec3d position((i % side) * spacing, (i / side) * spacing, 0.0);
-        if (isActorGroup)
+        if (group)
         {
-            static_cast<osgActor::ActorNode*>(crowd.getChild(i))->setPreTranslation(position);
+            // Where the actor's frame is the group's, moved by the pre-translation: the grid's point in that frame,
+            // less the origin's (the translation is a difference of points).
+            const osg::Vec3d moved = position * crowdToGroup - osg::Vec3d() * crowdToGroup;
+            static_cast<osgActor::ActorNode*>(group->getChild(i))->setPreTranslation(moved);
             continue;
         }
         osg::ref_ptr<osg::MatrixTransform> place = new osg::MatrixTransform(osg::Matrixd::translate(position));
@@ -114,6 +138,8 @@ osg::ref_ptr<osg::Group> makeCrowd(const std::string& system, unsigned n, const 
     else if (system == "rigid_plainOSG") crowd = bench::makePlainOsgScene(n);
     else if (system == "skinned_osgActor_gpu")
         crowd = bench::makeSkinnedCrowd(bench::SkinnedSystem::OsgActorGpu, n, options.cesiumMan);
+    else if (system == "skinned_osgActor_instanced")
+        crowd = bench::makeSkinnedCrowd(bench::SkinnedSystem::OsgActorGpuInstanced, n, options.cesiumMan);
     else if (system == "skinned_osgActor_cpu")
         crowd = bench::makeSkinnedCrowd(bench::SkinnedSystem::OsgActorCpu, n, options.cesiumMan);
     else if (system == "skinned_osgAnimation_hw")
