@@ -228,8 +228,8 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
             if (step.kind == ActorCullPlan::GEODE) geodeState = step.stateSet;
             if (step.kind == ActorCullPlan::END_GEODE) geodeState = nullptr;
             unsigned batch = 0;
-            if (verdict.plain && geometry) batch = batchOf(geodeState, *geometry);
-            if (verdict.plain && mesh) verdict.skinBatches.push_back(batch = skinBatchOf(geodeState, *mesh));
+            if (verdict.plain && geometry) batch = batchOf(geodeState, geometry, nullptr);
+            if (verdict.plain && mesh) verdict.skinBatches.push_back(batch = batchOf(geodeState, nullptr, mesh));
             verdict.batchOfStep.push_back(batch);
         }
         found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
@@ -276,31 +276,19 @@ bool InstancedCull::canInstanceSkins(ActorNode& actor, const InstancedCullState:
     return true;
 }
 
-unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable)
+unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geometry* drawable, SkinnedMesh* mesh)
 {
-    const InstancedCullState::BatchKey key{geodeState, &drawable};
+    const InstancedCullState::BatchKey key{geodeState, drawable ? static_cast<const osg::Drawable*>(drawable) : mesh};
     auto found = _state._batchOfKey.find(key);
     if (found != _state._batchOfKey.end()) return found->second;
     const unsigned batch = static_cast<unsigned>(_state._batches.size());
     InstancedCullState::Batch made;
     made.geodeState = geodeState;
-    made.drawable = &drawable;
-    _state._batches.push_back(std::move(made));
-    _state._batchOfKey.emplace(key, batch);
-    return batch;
-}
-
-unsigned InstancedCull::skinBatchOf(const osg::StateSet* geodeState, SkinnedMesh& mesh)
-{
-    const InstancedCullState::BatchKey key{geodeState, &mesh};
-    auto found = _state._batchOfKey.find(key);
-    if (found != _state._batchOfKey.end()) return found->second;
-    const unsigned batch = static_cast<unsigned>(_state._batches.size());
-    InstancedCullState::Batch made;
-    made.geodeState = geodeState;
-    made.mesh = &mesh;
-    made.texels = 0;
-    made.texelsKnown = false;
+    made.drawable = drawable;
+    made.mesh = mesh;
+    // A skinned mesh's texels per instance are found when an actor first needs them (canInstanceSkins()).
+    made.texels = mesh ? 0u : 4u;
+    made.texelsKnown = !mesh;
     _state._batches.push_back(std::move(made));
     _state._batchOfKey.emplace(key, batch);
     return batch;

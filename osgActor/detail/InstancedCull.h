@@ -211,8 +211,7 @@ private:
     /** The verdict if its state sets light as the instanced program does now, or null. */
     const InstancedCullState::PlanVerdict* instanceableNow(const InstancedCullState::PlanVerdict& verdict);
     /** The batch of a (geode state set, drawable) or (geode state set, skinned mesh), made on first use. */
-    unsigned batchOf(const osg::StateSet* geodeState, const osg::Geometry& drawable);
-    unsigned skinBatchOf(const osg::StateSet* geodeState, SkinnedMesh& mesh);
+    unsigned batchOf(const osg::StateSet* geodeState, const osg::Geometry* drawable, SkinnedMesh* mesh);
     bool isInstanceableNow(const osg::StateSet* state);
     bool isSkinInstanceableNow(const osg::StateSet* state);
     /** Whether each of the actor's skinned meshes (the verdict's) draws it instanced this cull: their states in
