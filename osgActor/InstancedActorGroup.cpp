@@ -7,6 +7,7 @@
 #include <osgUtil/CullVisitor>
 #include <osgUtil/RenderBin>
 
+#include <algorithm>
 #include <string>
 
 namespace osgActor {
@@ -40,14 +41,17 @@ osg::ref_ptr<osg::Program> InstancedActorGroup::createRigidProgram(bool instance
 }
 
 InstancedActorGroup::InstancedActorGroup()
-    : _drawMode(INSTANCED), _lights(1), _programState(makeProgramState(1)), _cullState(new detail::InstancedCullState)
+    : _drawMode(INSTANCED), _lights(1), _maxTexelsPerBuffer(0), _programState(makeProgramState(1)),
+      _cullState(new detail::InstancedCullState)
 {
 }
 
 InstancedActorGroup::InstancedActorGroup(const InstancedActorGroup& group, const osg::CopyOp& copyop)
     : ActorGroup(group, copyop), _drawMode(group._drawMode), _lights(group._lights),
-      _programState(makeProgramState(group._lights)), _cullState(new detail::InstancedCullState)
+      _maxTexelsPerBuffer(group._maxTexelsPerBuffer), _programState(makeProgramState(group._lights)),
+      _cullState(new detail::InstancedCullState)
 {
+    _cullState->getBufferLimit().setCap(_maxTexelsPerBuffer);
 }
 
 InstancedActorGroup::~InstancedActorGroup() = default;
@@ -59,6 +63,13 @@ void InstancedActorGroup::setLights(std::uint8_t lights)
     // The frames of the old program's state are dropped with it; the next cull makes new ones.
     _programState = makeProgramState(lights);
     _cullState = new detail::InstancedCullState;
+    _cullState->getBufferLimit().setCap(_maxTexelsPerBuffer);
+}
+
+void InstancedActorGroup::setMaxTexelsPerBuffer(unsigned texels)
+{
+    _maxTexelsPerBuffer = texels ? std::max(texels, detail::InstanceBufferLimit::kLeast) : 0u;
+    _cullState->getBufferLimit().setCap(_maxTexelsPerBuffer);
 }
 
 InstancedActorGroup::Statistics InstancedActorGroup::getStatistics() const
@@ -71,6 +82,8 @@ InstancedActorGroup::Statistics InstancedActorGroup::getStatistics() const
     statistics.instances = s.instances;
     statistics.skinnedDraws = s.skinnedDraws;
     statistics.skinnedInstances = s.skinnedInstances;
+    statistics.buffers = s.buffers;
+    statistics.texelLimit = s.texelLimit;
     return statistics;
 }
 

@@ -108,7 +108,9 @@ void SummaryReporter::writeSummary()
                                                  "parallel", "parallel_cull", "memory"}),
                                    r.n,
                                    rank(r.system, {"osgActor_all", "osgActor_all_nodebynode", "osgActor_all_follow",
-                                                   "osgActor_quarter", "osgActor_idle", "osgAnimation", "plainOSG",
+                                                   "osgActor_quarter", "osgActor_idle", "osgActor_all_instanced",
+                                                   "osgActor_quarter_instanced", "osgActor_idle_instanced",
+                                                   "osgAnimation", "plainOSG",
                                                    "osgActor_1thread", "osgActor_2threads", "osgActor_4threads",
                                                    "osgActor_8threads", "osgActor_16threads"}),
                                    r.system);

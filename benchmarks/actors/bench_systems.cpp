@@ -28,12 +28,13 @@ namespace {
 using bench::Motion;
 
 enum class System { OsgActorAll, OsgActorAllNodeByNode, OsgActorQuarter, OsgActorIdle, OsgAnimation, PlainOsg,
-                    OsgActorAllFollow, OsgActorAllInstanced, OsgActorIdleInstanced };
-constexpr int kNumSystems = 9;
+                    OsgActorAllFollow, OsgActorAllInstanced, OsgActorIdleInstanced, OsgActorQuarterInstanced };
+constexpr int kNumSystems = 10;
 
 const char* const kNames[kNumSystems] = {"osgActor_all", "osgActor_all_nodebynode", "osgActor_quarter",
                                          "osgActor_idle", "osgAnimation",            "plainOSG",
-                                         "osgActor_all_follow", "osgActor_all_instanced", "osgActor_idle_instanced"};
+                                         "osgActor_all_follow", "osgActor_all_instanced", "osgActor_idle_instanced",
+                                         "osgActor_quarter_instanced"};
 
 /** A system's crowd; outOfView: the share of its instances behind the camera, where osgActor's actors follow
   * ActorNode::UpdatePolicy::onlyWhenSeen (the peers have no such thing). */
@@ -59,6 +60,10 @@ osg::ref_ptr<osg::Group> makeScene(System system, unsigned numActors, double out
     case System::OsgActorIdleInstanced:
         crowd.instanced = true;
         crowd.motion = Motion::Idle;
+        return bench::makeOsgActorScene(numActors, crowd);
+    case System::OsgActorQuarterInstanced:
+        crowd.instanced = true;
+        crowd.motion = Motion::Quarter;
         return bench::makeOsgActorScene(numActors, crowd);
     case System::OsgAnimation: scene = bench::makeOsgAnimationScene(numActors); break;
     case System::PlainOsg: scene = bench::makePlainOsgScene(numActors); break;
@@ -122,7 +127,7 @@ void registerAll(const Sweep& sweep)
                 // The node-by-node cull has the same update as _all; the instanced group (InstancedActorGroup, one
                 // thread) only another cull.
                 if ((system == System::OsgActorAllNodeByNode || system == System::OsgActorAllInstanced ||
-                     system == System::OsgActorIdleInstanced) &&
+                     system == System::OsgActorIdleInstanced || system == System::OsgActorQuarterInstanced) &&
                     !withCull)
                     continue;
                 const std::string name = std::string(withCull ? "update_cull/" : "update/") + kNames[s];
@@ -133,12 +138,14 @@ void registerAll(const Sweep& sweep)
                 })->Arg(n)->Unit(benchmark::kMicrosecond);
             }
     // The whole frame (update + cull) with every instance in view, and with three in four behind the camera; each
-    // instance under a placing transform in both, osgActor's actors updating only when seen.
+    // instance under a placing transform in both (osgActor's actors placed by their pre-translation, under an
+    // InstancedActorGroup too), osgActor's actors updating only when seen.
     for (int n : sweep.actors)
     {
         if (n < 4) continue;
         for (double share : {0.0, 0.75})
-            for (System system : {System::OsgActorAll, System::OsgAnimation, System::PlainOsg})
+            for (System system :
+                 {System::OsgActorAll, System::OsgActorAllInstanced, System::OsgAnimation, System::PlainOsg})
             {
                 const std::string name =
                     std::string(share > 0.0 ? "frame_quarter_in_view/" : "frame_in_view/") + kNames[int(system)];

@@ -11,6 +11,7 @@
 #include <osgActor/detail/Prefetch.h>
 
 #include <osg/Material>
+#include <osg/Notify>
 #include <osg/TextureBuffer>
 
 #include <algorithm>
@@ -23,16 +24,24 @@ namespace detail {
 
 // --- InstancedFrame ---
 
-InstancedFrame::InstancedFrame(osg::StateSet* programState, unsigned textureUnit)
-    : _texels(new osg::Image), _stateSet(new osg::StateSet), _bufferStateSet(new osg::StateSet)
+InstancedFrame::InstancedFrame(osg::StateSet* programState, unsigned textureUnit, InstanceBufferLimit* limit)
+    : _programState(programState), _textureUnit(textureUnit), _limit(limit)
 {
-    _texels->allocateImage(256, 1, 1, GL_RGBA, GL_FLOAT);
-    _texels->setInternalTextureFormat(GL_RGBA32F_ARB);
-    osg::ref_ptr<osg::TextureBuffer> buffer = new osg::TextureBuffer(_texels.get());
+    addBuffer();
+    _buffers[0].texels->allocateImage(256, 1, 1, GL_RGBA, GL_FLOAT);
+}
+
+void InstancedFrame::addBuffer()
+{
+    Buffer made{new osg::Image, new osg::StateSet, new osg::StateSet};
+    made.texels->allocateImage(1, 1, 1, GL_RGBA, GL_FLOAT);
+    made.texels->setInternalTextureFormat(GL_RGBA32F_ARB);
+    osg::ref_ptr<osg::TextureBuffer> buffer = new osg::TextureBuffer(made.texels.get());
     buffer->setInternalFormat(GL_RGBA32F_ARB);
-    _stateSet->setTextureAttribute(textureUnit, buffer.get());
-    _bufferStateSet->setTextureAttribute(textureUnit, buffer.get());
-    _stateSet->merge(*programState);
+    made.stateSet->setTextureAttribute(_textureUnit, buffer.get());
+    made.bufferStateSet->setTextureAttribute(_textureUnit, buffer.get());
+    made.stateSet->merge(*_programState);
+    _buffers.push_back(std::move(made));
 }
 
 bool InstancedFrame::isFree() const
@@ -44,29 +53,53 @@ bool InstancedFrame::isFree() const
 
 float* InstancedFrame::reserveTexels(unsigned texels)
 {
-    if (static_cast<unsigned>(_texels->s()) < texels)
+    osg::Image& image = *_buffers[0].texels;
+    if (static_cast<unsigned>(image.s()) < texels)
     {
         // Doubled, so that a growing crowd reallocates the buffer a few times, not every frame.
-        unsigned size = static_cast<unsigned>(_texels->s());
+        unsigned size = static_cast<unsigned>(image.s());
         while (size < texels) size *= 2;
-        _texels->allocateImage(static_cast<int>(size), 1, 1, GL_RGBA, GL_FLOAT);
+        image.allocateImage(static_cast<int>(size), 1, 1, GL_RGBA, GL_FLOAT);
     }
-    return reinterpret_cast<float*>(_texels->data());
+    return reinterpret_cast<float*>(image.data());
 }
 
 float* InstancedFrame::growTexels(unsigned texels)
 {
-    if (static_cast<unsigned>(_texels->s()) >= texels) return reinterpret_cast<float*>(_texels->data());
-    const float* data = reinterpret_cast<const float*>(_texels->data());
-    const std::vector<float> kept(data, data + 4 * static_cast<std::size_t>(_texels->s()));
+    const osg::Image& image = *_buffers[0].texels;
+    if (static_cast<unsigned>(image.s()) >= texels) return reinterpret_cast<float*>(_buffers[0].texels->data());
+    const float* data = reinterpret_cast<const float*>(image.data());
+    const std::vector<float> kept(data, data + 4 * static_cast<std::size_t>(image.s()));
     float* out = reserveTexels(texels);
     std::copy(kept.begin(), kept.end(), out);
     return out;
 }
 
+float* InstancedFrame::splitBufferTexels(unsigned i, unsigned texels)
+{
+    while (_buffers.size() <= i) addBuffer();
+    osg::Image& image = *_buffers[i].texels;
+    if (static_cast<unsigned>(image.s()) < texels) image.allocateImage(static_cast<int>(texels), 1, 1, GL_RGBA, GL_FLOAT);
+    return reinterpret_cast<float*>(image.data());
+}
+
+void InstancedFrame::resizeGLObjectBuffers(unsigned maxSize)
+{
+    for (const Buffer& buffer : _buffers) buffer.stateSet->resizeGLObjectBuffers(maxSize);
+}
+
+void InstancedFrame::releaseGLObjects(osg::State* state) const
+{
+    for (const Buffer& buffer : _buffers) buffer.stateSet->releaseGLObjects(state);
+}
+
 InstancedDraw* InstancedFrame::draw(unsigned i)
 {
-    while (_draws.size() <= i) _draws.push_back(new InstancedDraw);
+    while (_draws.size() <= i)
+    {
+        _draws.push_back(new InstancedDraw);
+        _draws.back()->setBufferLimit(_limit.get());
+    }
     return _draws[i].get();
 }
 
@@ -76,19 +109,20 @@ InstancedCullState::InstancedCullState()
     : _serial([] {
           static std::atomic<std::uint64_t> counter{0};
           return counter.fetch_add(1, std::memory_order_relaxed) + 1; // 0: no state
-      }())
+      }()),
+      _limit(new InstanceBufferLimit)
 {
     _busy.clear();
 }
 
 void InstancedCullState::resizeGLObjectBuffers(unsigned maxSize)
 {
-    for (const osg::ref_ptr<InstancedFrame>& frame : _frames) frame->getStateSet()->resizeGLObjectBuffers(maxSize);
+    for (const osg::ref_ptr<InstancedFrame>& frame : _frames) frame->resizeGLObjectBuffers(maxSize);
 }
 
 void InstancedCullState::releaseGLObjects(osg::State* state) const
 {
-    for (const osg::ref_ptr<InstancedFrame>& frame : _frames) frame->getStateSet()->releaseGLObjects(state);
+    for (const osg::ref_ptr<InstancedFrame>& frame : _frames) frame->releaseGLObjects(state);
 }
 
 // --- InstancedCull ---
@@ -127,7 +161,7 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
       _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false),
-      _view(cv), _recording(nullptr)
+      _texelLimit(state._limit->texels()), _view(cv), _recording(nullptr)
 {
     const ActorCullState::Key viewKey = ActorCullState::keyOf(_view, osg::Matrixd::identity());
     if (_state._view == 0 || !(viewKey == _state._viewKey))
@@ -136,6 +170,7 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
         ++_state._view;
     }
     _state._statistics = InstancedCullState::Statistics();
+    _state._statistics.texelLimit = _texelLimit;
     _state._stateVerdicts.clear();
     _state._skinStateVerdicts.clear();
     placeBatches(textureUnit);
@@ -269,6 +304,16 @@ bool InstancedCull::canInstanceSkins(ActorNode& actor, const InstancedCullState:
         // The mesh's cull callback and state set, which the plan does not watch (the mesh is not a node it plans).
         SkinnedMesh& mesh = *batch.mesh;
         if (!batch.texels || mesh.getCullCallback() || !isSkinInstanceableNow(mesh.getStateSet())) return false;
+        if (batch.texels > _texelLimit)
+        {
+            // One instance is more than a texture buffer holds: its actors are drawn ordinarily.
+            if (!_state._oversizeNoticed)
+                OSG_NOTICE << "osgActor::InstancedActorGroup: an instance of skinned mesh \"" << mesh.getName()
+                           << "\" needs " << batch.texels << " texels, more than a texture buffer holds ("
+                           << _texelLimit << "): the actors wearing it are drawn one at a time" << std::endl;
+            _state._oversizeNoticed = true;
+            return false;
+        }
         const SkinnedMeshInstance* instance = InstancedSkin::instanceOf(mesh, actor);
         if (!instance) return false;
         _state._skinInstances.push_back(instance);
@@ -491,7 +536,7 @@ InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
 {
     for (const osg::ref_ptr<InstancedFrame>& frame : _state._frames)
         if (frame->isFree()) return frame.get();
-    _state._frames.push_back(new InstancedFrame(_programState, textureUnit));
+    _state._frames.push_back(new InstancedFrame(_programState, textureUnit, _state._limit.get()));
     return _state._frames.back().get();
 }
 
@@ -539,37 +584,86 @@ void InstancedCull::emitBatches()
     InstancedFrame& frame = *_state._frame;
     _state._frame = nullptr;
     _state._texels = nullptr;
-    unsigned drawIndex = 0;
-    if (std::none_of(_state._batches.begin(), _state._batches.end(),
-                     [](const InstancedCullState::Batch& batch) { return batch.count != 0; }))
-        return;
+    // The texels the draws read: up to the end of the last batch with instances.
+    unsigned texels = 0;
     for (const InstancedCullState::Batch& batch : _state._batches)
+        if (batch.count) texels = std::max(texels, batch.base + batch.count * batch.texels);
+    if (texels == 0) return;
+    if (texels > _texelLimit)
     {
-        const unsigned count = batch.count;
-        if (count == 0) continue;
-        InstancedDraw& draw = *frame.draw(drawIndex++);
-        const osg::Geometry* geometry = batch.mesh ? InstancedSkin::geometryOf(*batch.mesh) : batch.drawable;
-        draw.set(geometry, static_cast<int>(batch.base), count, static_cast<int>(batch.texels));
-        // A dynamic drawable makes osgViewer's next update wait until it is drawn: so does its instanced draw.
-        const osg::Drawable& drawn = batch.mesh ? static_cast<const osg::Drawable&>(*batch.mesh) : *batch.drawable;
-        draw.setDataVariance(drawn.getDataVariance() == osg::Object::DYNAMIC ? osg::Object::DYNAMIC
-                                                                              : osg::Object::STATIC);
-        emitLeaf(batch, draw, frame);
-        if (batch.mesh)
-        {
-            ++_state._statistics.skinnedDraws;
-            _state._statistics.skinnedInstances += count;
-        }
-        else
-        {
-            ++_state._statistics.draws;
-            _state._statistics.instances += count;
-        }
+        emitSplit(frame, texels);
+        return;
     }
-    frame.dirty();
+    unsigned drawIndex = 0;
+    for (const InstancedCullState::Batch& batch : _state._batches)
+        if (batch.count) emitDraw(batch, frame, drawIndex++, 0, batch.base, batch.count);
+    frame.dirty(0);
+    _state._statistics.buffers = 1;
 }
 
-void InstancedCull::emitLeaf(const InstancedCullState::Batch& batch, InstancedDraw& draw, InstancedFrame& frame)
+void InstancedCull::emitSplit(InstancedFrame& frame, unsigned texels)
+{
+    if (!_state._splitNoticed)
+        OSG_NOTICE << "osgActor::InstancedActorGroup: a frame's instances need " << texels
+                   << " texels, more than a texture buffer holds (" << _texelLimit
+                   << "): drawn from several buffers, a batch's instances over several draws" << std::endl;
+    _state._splitNoticed = true;
+    // The batches' instances, in batch order, filled into buffers 1, 2, ... each within the limit; a batch that does
+    // not fit in what is left of a buffer is drawn in runs, a run per buffer. Every instance fits one buffer
+    // (canInstanceSkins()).
+    unsigned remaining = 0;
+    for (const InstancedCullState::Batch& batch : _state._batches) remaining += batch.count * batch.texels;
+    const float* from = frame.getTexels();
+    unsigned buffer = 0, used = _texelLimit, drawIndex = 0;
+    float* into = nullptr;
+    for (const InstancedCullState::Batch& batch : _state._batches)
+    {
+        for (unsigned first = 0; first < batch.count;)
+        {
+            if ((_texelLimit - used) / batch.texels == 0)
+            {
+                // The next buffer, as large as what is left or the limit.
+                into = frame.splitBufferTexels(++buffer, std::min(remaining, _texelLimit));
+                used = 0;
+            }
+            const unsigned run = std::min(batch.count - first, (_texelLimit - used) / batch.texels);
+            const std::size_t start = 4 * (std::size_t(batch.base) + std::size_t(first) * batch.texels);
+            std::copy_n(from + start, 4 * std::size_t(run) * batch.texels, into + 4 * std::size_t(used));
+            emitDraw(batch, frame, drawIndex++, buffer, used, run);
+            used += run * batch.texels;
+            remaining -= run * batch.texels;
+            first += run;
+        }
+    }
+    for (unsigned i = 1; i <= buffer; ++i) frame.dirty(i);
+    _state._statistics.buffers = buffer;
+}
+
+void InstancedCull::emitDraw(const InstancedCullState::Batch& batch, InstancedFrame& frame, unsigned drawIndex,
+                             unsigned buffer, unsigned base, unsigned count)
+{
+    InstancedDraw& draw = *frame.draw(drawIndex);
+    const osg::Geometry* geometry = batch.mesh ? InstancedSkin::geometryOf(*batch.mesh) : batch.drawable;
+    draw.set(geometry, static_cast<int>(base), count, static_cast<int>(batch.texels));
+    draw.setBindScale(batch.mesh ? InstancedSkin::bindScaleOf(*batch.mesh) : 1.0f);
+    // A dynamic drawable makes osgViewer's next update wait until it is drawn: so does its instanced draw.
+    const osg::Drawable& drawn = batch.mesh ? static_cast<const osg::Drawable&>(*batch.mesh) : *batch.drawable;
+    draw.setDataVariance(drawn.getDataVariance() == osg::Object::DYNAMIC ? osg::Object::DYNAMIC : osg::Object::STATIC);
+    emitLeaf(batch, draw, frame, buffer);
+    if (batch.mesh)
+    {
+        ++_state._statistics.skinnedDraws;
+        _state._statistics.skinnedInstances += count;
+    }
+    else
+    {
+        ++_state._statistics.draws;
+        _state._statistics.instances += count;
+    }
+}
+
+void InstancedCull::emitLeaf(const InstancedCullState::Batch& batch, InstancedDraw& draw, InstancedFrame& frame,
+                             unsigned buffer)
 {
     // The drawable's states as the ordinary traversal pushes them (the geode's, then its own), then the frame's.
     unsigned pushed = 0;
@@ -588,12 +682,12 @@ void InstancedCull::emitLeaf(const InstancedCullState::Batch& batch, InstancedDr
         SkinningProgramKey key = InstancedSkin::programKey(*batch.mesh);
         applyDrawState(_cv.getCurrentStateGraph(), key);
         push(getSkinningProgramStateSet(key));
-        push(frame.getBufferStateSet());
+        push(frame.getBufferStateSet(buffer));
     }
     else
     {
         push(batch.drawable->getStateSet());
-        push(frame.getStateSet());
+        push(frame.getStateSet(buffer));
     }
     // The leaf's matrix is the group's: the program takes each instance's from the buffer, the projection from the
     // leaf.

@@ -23,6 +23,7 @@
 #include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/CullArithmetic.h>
+#include <osgActor/detail/InstanceBufferLimit.h>
 #include <osgActor/detail/InstancedDraw.h>
 
 #include <osg/Image>
@@ -43,34 +44,54 @@ class SkinnedMeshInstance;
 
 namespace detail {
 
-/** The texture buffer of one frame's instance matrices and the draws that read it. */
+/** The texture buffers of one frame's instance data and the draws that read them. Buffer 0 is the one the cull
+  * writes; a frame whose data is more than one buffer may hold (InstanceBufferLimit) is drawn from buffers 1 and on,
+  * each within the limit, the instances copied there from buffer 0. */
 class InstancedFrame : public osg::Referenced
 {
 public:
-    InstancedFrame(osg::StateSet* programState, unsigned textureUnit);
+    InstancedFrame(osg::StateSet* programState, unsigned textureUnit, InstanceBufferLimit* limit);
 
     /** Whether the render graph holds none of its draws. */
     bool isFree() const;
-    /** Room for texels RGBA32F texels; what was written before is lost if the buffer grows. */
+    /** Room for texels RGBA32F texels in buffer 0; what was written before is lost if the buffer grows. */
     float* reserveTexels(unsigned texels);
     /** The same, keeping what was written. */
     float* growTexels(unsigned texels);
+    /** What the cull wrote in buffer 0. */
+    const float* getTexels() const { return reinterpret_cast<const float*>(_buffers[0].texels->data()); }
+    /** Buffer i (1 and on), made on first use, with room for texels texels (grown to exactly that, not doubled: a
+      * buffer within the limit). */
+    float* splitBufferTexels(unsigned i, unsigned texels);
     /** The draw for batch i, made on first use. */
     InstancedDraw* draw(unsigned i);
-    /** Marks the texels written for upload. */
-    void dirty() { _texels->dirty(); }
-    /** The texture buffer and the rigid parts' program. */
-    osg::StateSet* getStateSet() const { return _stateSet.get(); }
-    /** The texture buffer alone, for the skinned meshes' draws, under their own programs. */
-    osg::StateSet* getBufferStateSet() const { return _bufferStateSet.get(); }
+    /** Marks buffer i's texels written for upload. */
+    void dirty(unsigned i = 0) { _buffers[i].texels->dirty(); }
+    /** Buffer i and the rigid parts' program. */
+    osg::StateSet* getStateSet(unsigned i = 0) const { return _buffers[i].stateSet.get(); }
+    /** Buffer i alone, for the skinned meshes' draws, under their own programs. */
+    osg::StateSet* getBufferStateSet(unsigned i = 0) const { return _buffers[i].bufferStateSet.get(); }
+
+    /** As osg::Node's: the buffers' texture objects. */
+    void resizeGLObjectBuffers(unsigned maxSize);
+    void releaseGLObjects(osg::State* state) const;
 
 protected:
     ~InstancedFrame() override = default;
 
 private:
-    osg::ref_ptr<osg::Image> _texels;
-    osg::ref_ptr<osg::StateSet> _stateSet;
-    osg::ref_ptr<osg::StateSet> _bufferStateSet;
+    struct Buffer
+    {
+        osg::ref_ptr<osg::Image> texels;
+        osg::ref_ptr<osg::StateSet> stateSet;
+        osg::ref_ptr<osg::StateSet> bufferStateSet;
+    };
+    void addBuffer();
+
+    osg::ref_ptr<osg::StateSet> _programState;
+    unsigned _textureUnit;
+    osg::ref_ptr<InstanceBufferLimit> _limit;
+    std::vector<Buffer> _buffers;
     std::vector<osg::ref_ptr<InstancedDraw>> _draws;
 };
 
@@ -85,7 +106,7 @@ public:
     void release() { _busy.clear(std::memory_order_release); }
 
     /** What the last cull did: actors drawn instanced and ordinarily, instanced draws of rigid parts and of skinned
-      * meshes and the instances they drew. */
+      * meshes and the instances they drew, the texture buffers the draws read and the texels one could hold. */
     struct Statistics
     {
         unsigned actorsInstanced = 0;
@@ -94,8 +115,13 @@ public:
         unsigned instances = 0;
         unsigned skinnedDraws = 0;
         unsigned skinnedInstances = 0;
+        unsigned buffers = 0;
+        unsigned texelLimit = 0;
     };
     Statistics getStatistics() const { return _statistics; }
+
+    /** The texels one buffer may hold: the contexts' limits, and a cap (0: none). */
+    InstanceBufferLimit& getBufferLimit() { return *_limit; }
 
     /** As osg::Node's: the frames' texture buffers. */
     void resizeGLObjectBuffers(unsigned maxSize);
@@ -164,6 +190,11 @@ private:
     /** Tells this state from every other, for the verdict an actor keeps (ActorCullState::InstancedVerdict). */
     const std::uint64_t _serial;
     std::vector<osg::ref_ptr<InstancedFrame>> _frames;
+    osg::ref_ptr<InstanceBufferLimit> _limit;
+    /** Whether the notices of a frame split over several buffers, and of a mesh whose instance alone is more than a
+      * buffer holds, were given (once per group). */
+    bool _splitNoticed = false;
+    bool _oversizeNoticed = false;
     Statistics _statistics;
     std::unordered_map<const ActorCullPlan*, PlanVerdict> _verdicts;
     // The working space of one cull, kept so that a steady frame allocates nothing.
@@ -243,11 +274,17 @@ private:
     void placeBatches(unsigned textureUnit);
     /** Moves the batches that overflowed their regions to the buffer's end, whole. */
     void gatherOverflow(unsigned textureUnit);
-    /** One leaf per batch, with this frame's texture buffer. */
+    /** One leaf per batch, with this frame's texture buffer; where the frame's data is more than a buffer holds, one
+      * leaf per run of a batch's instances within one of the frame's split buffers. */
     void emitBatches();
+    /** Copies the batches' instances from buffer 0 into buffers within the limit and emits a leaf per run. */
+    void emitSplit(InstancedFrame& frame, unsigned texels);
+    /** Sets up the draw of count instances of a batch from texel base of buffer, and emits its leaf. */
+    void emitDraw(const InstancedCullState::Batch& batch, InstancedFrame& frame, unsigned drawIndex, unsigned buffer,
+                  unsigned base, unsigned count);
     /** Pushes the state sets a batch's drawable is drawn with (the geode's and its own; a skinned mesh's program),
       * adds its leaf, pops them. */
-    void emitLeaf(const InstancedCullState::Batch& batch, InstancedDraw& draw, InstancedFrame& frame);
+    void emitLeaf(const InstancedCullState::Batch& batch, InstancedDraw& draw, InstancedFrame& frame, unsigned buffer);
     InstancedFrame* acquireFrame(unsigned textureUnit);
 
     osgUtil::CullVisitor& _cv;
@@ -260,6 +297,8 @@ private:
     bool _frustumCulling;
     float _smallFeaturePixelSize;
     bool _overflowed;
+    /** The texels one buffer may hold this cull. */
+    const unsigned _texelLimit;
     const ActorCullView _view;
     /** The actor's kept instances being recorded, or null. */
     ActorCullState::InstancedVerdict* _recording;

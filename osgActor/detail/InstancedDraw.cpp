@@ -63,7 +63,7 @@ void drawInstanced(osg::State& state, const osg::PrimitiveSet& primitives, bool 
 
 } // namespace
 
-InstancedDraw::InstancedDraw() : _base(0), _count(0), _texelsPerInstance(4)
+InstancedDraw::InstancedDraw() : _base(0), _count(0), _texelsPerInstance(4), _bindScale(1.0f)
 {
     // Drawn afresh every frame from the geometry's arrays: nothing of its own to compile or cache.
     setUseDisplayList(false);
@@ -109,16 +109,21 @@ void InstancedDraw::drawImplementation(osg::RenderInfo& renderInfo) const
 {
     if (!_geometry || _count == 0) return;
     osg::State& state = *renderInfo.getState();
-    // The base and the texels per instance are this draw's alone, not state OSG sorts by: set on the program the
-    // state graph applied.
+    if (_limit) _limit->noteContext(state);
+    // The base, the texels per instance and a dual-quaternion skin's bind scale are this draw's alone, not state OSG
+    // sorts by: set on the program the state graph applied.
     static const unsigned baseName = osg::Uniform::getNameID("osgActor_instanceBase");
     static const unsigned texelsName = osg::Uniform::getNameID("osgActor_instanceTexels");
+    static const unsigned bindScaleName = osg::Uniform::getNameID("osgActor_bindScale");
     if (const osg::Program::PerContextProgram* program = state.getLastAppliedProgramObject())
     {
+        const osg::GLExtensions& gl = *state.get<osg::GLExtensions>();
         const GLint base = program->getUniformLocation(baseName);
-        if (base >= 0) state.get<osg::GLExtensions>()->glUniform1i(base, _base);
+        if (base >= 0) gl.glUniform1i(base, _base);
         const GLint texels = program->getUniformLocation(texelsName);
-        if (texels >= 0) state.get<osg::GLExtensions>()->glUniform1i(texels, _texelsPerInstance);
+        if (texels >= 0) gl.glUniform1i(texels, _texelsPerInstance);
+        const GLint bindScale = program->getUniformLocation(bindScaleName);
+        if (bindScale >= 0) gl.glUniform1f(bindScale, _bindScale);
     }
     // What osg::Geometry::drawImplementation() does around its primitives, without a vertex array object of its own
     // (one per geometry and context would be the geometry's, which the ordinary path may be using).

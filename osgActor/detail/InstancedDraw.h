@@ -8,6 +8,8 @@
 #ifndef OSGACTOR_DETAIL_INSTANCEDDRAW_H
 #define OSGACTOR_DETAIL_INSTANCEDDRAW_H 1
 
+#include <osgActor/detail/InstanceBufferLimit.h>
+
 #include <osg/Geometry>
 
 namespace osgActor {
@@ -24,6 +26,10 @@ public:
 
     /** Draws geometry for count instances whose data start at texel base, texelsPerInstance texels each. */
     void set(const osg::Geometry* geometry, int base, unsigned count, int texelsPerInstance = 4);
+    /** The skin's bind scale a dual-quaternion mesh's program reads (osgActor_bindScale), set with the draw's base. */
+    void setBindScale(float bindScale) { _bindScale = bindScale; }
+    /** The limit this draw's context reports its GL_MAX_TEXTURE_BUFFER_SIZE to, at its first draw. */
+    void setBufferLimit(InstanceBufferLimit* limit) { _limit = limit; }
     const osg::Geometry* getGeometry() const { return _geometry.get(); }
     unsigned getNumInstances() const { return _count; }
     int getBase() const { return _base; }
@@ -43,6 +49,8 @@ private:
     int _base;
     unsigned _count;
     int _texelsPerInstance;
+    float _bindScale;
+    osg::ref_ptr<InstanceBufferLimit> _limit;
 };
 
 } // namespace detail

@@ -21,11 +21,17 @@ unsigned InstancedSkin::texelsPerInstance(SkinnedMesh& mesh)
 {
     if (!mesh.getSetupError().empty() || !mesh.gpuCanSkin()) return 0;
     const SkinningProgramKey key = programKey(mesh);
-    // Dual quaternions need the skin's bind scale as a uniform, which the ordinary path keeps with each palette.
-    if (key.method != SkinningMethod::LinearBlend) return 0;
     const osg::Geometry* geometry = geometryOf(mesh);
     if (!geometry || !InstancedDraw::canDraw(*geometry)) return 0;
     return 4 + mesh.getSkin()->getNumJoints() * paletteStride(key);
+}
+
+float InstancedSkin::bindScaleOf(const SkinnedMesh& mesh)
+{
+    // As the ordinary path's palette holds it (SkinPaletteBuffer): the skin's, as a float.
+    return mesh.getProgramKey(SkinningProfile::Compatibility).method == SkinningMethod::DualQuaternion
+               ? static_cast<float>(mesh.getSkin()->getBindScale())
+               : 1.0f;
 }
 
 bool InstancedSkin::isInstanceableState(const osg::StateSet* state)

@@ -8,8 +8,9 @@
 //
 // What an instanced actor's mesh must be, else the whole actor is drawn ordinarily: a SkinnedMesh of that exact class
 // in the actor's own frame (below it, or in a geode below it), with no cull callback, that can draw (set up, its
-// skin bound to the actor's definition), drawn on the GPU path for that actor, with linear blend skinning (4 or 8
-// influences), in the compatibility profile, of a bind-pose geometry InstancedDraw can draw.
+// skin bound to the actor's definition), drawn on the GPU path for that actor (linear blend, 4 or 8 influences, or
+// dual quaternions, whose bind scale, the skin's, is set per draw), in the compatibility profile, of a bind-pose
+// geometry InstancedDraw can draw.
 #ifndef OSGACTOR_DETAIL_INSTANCEDSKIN_H
 #define OSGACTOR_DETAIL_INSTANCEDSKIN_H 1
 
@@ -37,10 +38,13 @@ public:
     static SkinnedMesh* meshOfStep(const ActorCullPlan::Step& step);
 
     /** Texels per instance of the mesh drawn instanced (its matrix and its palette), or 0 when the mesh cannot be
-      * (setup error, dual quaternions, a skin the GPU path does not draw, a bind-pose geometry InstancedDraw does not
-      * draw); from what the
-      * mesh is now, so asked once per cull. */
+      * (setup error, a skin the GPU path does not draw, a bind-pose geometry InstancedDraw does not draw); from what
+      * the mesh is now, so asked once per cull. */
     static unsigned texelsPerInstance(SkinnedMesh& mesh);
+
+    /** The skin's bind scale, which a dual-quaternion mesh's program reads (osgActor_bindScale) as the ordinary path's
+      * palette state sets it; 1 for linear blend. */
+    static float bindScaleOf(const SkinnedMesh& mesh);
 
     /** Whether the state set (the mesh's or its geode's) lets its instances be drawn together: no render bin of its
       * own (a bin sorted by depth would sort instances one draw holds), and nothing on the instances' texture unit. */

@@ -2,6 +2,8 @@
 
 #include <osgActor/core/ActorDefinitionBuilder>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <osg/Geode>
 #include <osgUtil/RenderStage>
 
@@ -99,7 +101,7 @@ SkinSource cesiumManSkinSource(const RiggedModelActor& read)
     return source;
 }
 
-SyntheticActor makeChainActor(unsigned numJoints, SkinningMethod method)
+SyntheticActor makeChainActor(unsigned numJoints, SkinningMethod method, double bindScale)
 {
     ActorDefinitionBuilder builder("chain");
     for (unsigned j = 0; j < numJoints; ++j)
@@ -109,6 +111,12 @@ SyntheticActor makeChainActor(unsigned numJoints, SkinningMethod method)
     ActorDefinitionPtr definition = builder.build().definition;
     const unsigned rings = 4, sides = 6;
     SkinSource source = makeTubeSkin(*definition, rings, sides, 0.3, 0.01);
+    // The mesh authored in units 1 / bindScale of the model's: its bind positions (mesh units) bindScale times
+    // smaller, each inverse bind matrix (similarity scale bindScale, the skin's bind scale) scaling them back first,
+    // so that the skinned mesh is where it was.
+    for (glm::dmat4& inverseBind : source.inverseBindMatrices)
+        inverseBind = inverseBind * glm::scale(glm::dmat4(1.0), glm::dvec3(bindScale));
+    for (glm::vec3& position : source.positions) position /= static_cast<float>(bindScale);
     // Each bone's rings x sides vertices come together; quads between its consecutive rings.
     std::vector<unsigned> triangles;
     const unsigned perBone = rings * sides;

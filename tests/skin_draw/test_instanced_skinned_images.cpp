@@ -13,6 +13,8 @@
 #include <osgActor/Offscreen/OffscreenRenderer>
 #include <osgActor/core/ClipPlayer>
 
+#include <osg/GL>
+#include <osg/GLDefines>
 #include <osg/Geode>
 #include <osg/Material>
 #include <osg/Texture2D>
@@ -126,34 +128,83 @@ TEST_F(InstancedSkinnedImages, AnActorSkinnedOnTheCpuIsDrawnOrdinarilyAndTheOthe
     EXPECT_LE(compareImages(*instanced, *ordinary, 2).getShareOverTolerance(), 0.001);
 }
 
-TEST_F(InstancedSkinnedImages, AMeshOfDualQuaternionsOrOfItsOwnRenderBinTakesEveryActorWearingItOffTheInstancedPath)
+TEST_F(InstancedSkinnedImages, AMeshOfItsOwnRenderBinTakesEveryActorWearingItOffTheInstancedPath)
 {
     renderWith(InstancedActorGroup::INSTANCED);
     EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
     // A render bin of its own (a transparent mesh sorted by depth): the instances of one draw cannot be sorted.
     prototype.mesh->getStateSet()->setRenderingHint(osg::StateSet::TRANSPARENT_BIN);
-    renderWith(InstancedActorGroup::INSTANCED);
+    const osg::ref_ptr<osg::Image> image = renderWith(InstancedActorGroup::INSTANCED);
     EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
     EXPECT_EQ(group->getStatistics().actorsOrdinary, kClones);
     EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
+    EXPECT_GT(countDrawnPixels(*image, kBackground), 500u); // drawn ordinarily
     prototype.mesh->getStateSet()->setRenderingHint(osg::StateSet::DEFAULT_BIN);
     prototype.mesh->getStateSet()->setRenderBinToInherit();
     renderWith(InstancedActorGroup::INSTANCED);
     EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
-    // Dual quaternion skinning, which the instanced variant does not draw.
-    SyntheticActor dual = makeChainActor(8, SkinningMethod::DualQuaternion);
-    group->removeChildren(0, group->getNumChildren());
+}
+
+TEST_F(InstancedSkinnedImages, ClonesOfADualQuaternionSkinAreTheSameBytesAsTheOrdinaryDualQuaternionPathDrawnAlike)
+{
+    // Dual-quaternion chains whose mesh is authored at a third of the model's scale (the skin's bind scale 3, which
+    // the program reads per draw), worn by the eight clones in poses of their own in place of the linear-blend ones.
+    SyntheticActor dual = makeChainActor(8, SkinningMethod::DualQuaternion, 3.0);
+    ASSERT_TRUE(dual.skin);
+    ASSERT_DOUBLE_EQ(dual.skin->getBindScale(), 3.0);
+    ASSERT_EQ(dual.mesh->getProgramKey(SkinningProfile::Compatibility).method, SkinningMethod::DualQuaternion);
+    dual.mesh->setStateSet(prototype.mesh->getStateSet());
+    for (unsigned a = 0; a < kClones; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(dual.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(actors[a]->getPreTranslation());
+        poseSynthetic(*actor, 0.9 * a);
+        group->setChild(a, actor.get());
+        actors[a] = actor;
+    }
+    prototype = dual;
+    expectTheSameBytes();
+    const InstancedActorGroup::Statistics statistics = group->getStatistics();
+    EXPECT_EQ(statistics.actorsInstanced, kClones);
+    EXPECT_EQ(statistics.actorsOrdinary, 0u);
+    EXPECT_EQ(statistics.skinnedDraws, 1u);
+    EXPECT_EQ(statistics.skinnedInstances, kClones - 1); // the one behind the camera culled
+    // And within the arithmetic's rounding of the ordinary dual-quaternion program.
+    const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
+    const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_LE(compareImages(*instanced, *ordinary, 2).getShareOverTolerance(), 0.001);
+}
+
+TEST_F(InstancedSkinnedImages, DualQuaternionAndLinearBlendClonesAreDrawnInstancedSideBySide)
+{
+    // Three dual-quaternion clones beside the linear-blend ones: two meshes, two instanced draws, each with its own
+    // program variant (and bind scale).
+    SyntheticActor dual = makeChainActor(8, SkinningMethod::DualQuaternion, 0.5);
+    dual.mesh->setStateSet(prototype.mesh->getStateSet());
     for (unsigned a = 0; a < 3; ++a)
     {
         osg::ref_ptr<ActorNode> actor = osg::clone(dual.actor.get(), osg::CopyOp::SHALLOW_COPY);
-        actor->setPreTranslation(osg::Vec3d(0.25 * a - 0.25, 0.0, 0.0));
+        actor->setPreTranslation(osg::Vec3d(0.25 * a - 0.45, 0.6, 0.0));
+        poseSynthetic(*actor, 2.0 + a);
         group->addChild(actor.get());
     }
-    const osg::ref_ptr<osg::Image> image = renderWith(InstancedActorGroup::INSTANCED);
-    EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
-    EXPECT_EQ(group->getStatistics().actorsOrdinary, 3u);
-    EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
-    EXPECT_GT(countDrawnPixels(*image, kBackground), 500u); // drawn ordinarily
+    // The ordinary path with the instanced arithmetic for both meshes, each overriding its own geode's program.
+    const auto overrideProgram = [](SkinnedMesh& mesh) {
+        SkinningProgramKey key = mesh.getProgramKey(SkinningProfile::Compatibility);
+        key.instancing = SkinInstancing::OneAtATime;
+        mesh.getParent(0)->getOrCreateStateSet()->setAttribute(createSkinningProgram(key).get(),
+                                                               osg::StateAttribute::OVERRIDE);
+    };
+    overrideProgram(*prototype.mesh);
+    overrideProgram(*dual.mesh);
+    const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
+    prototype.mesh->getParent(0)->getStateSet()->removeAttribute(osg::StateAttribute::PROGRAM);
+    dual.mesh->getParent(0)->getStateSet()->removeAttribute(osg::StateAttribute::PROGRAM);
+    const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones + 3);
+    EXPECT_EQ(group->getStatistics().skinnedDraws, 2u);
+    EXPECT_EQ(group->getStatistics().skinnedInstances, kClones - 1 + 3);
+    EXPECT_TRUE(isTheSameBytesCovering(*instanced, *ordinary, kBackground, 0.03));
 }
 
 TEST_F(InstancedSkinnedImages, ClonesInDifferentPosesAreTheSameBytesAsTheOrdinaryPathDrawnWithTheSameArithmetic)
@@ -341,4 +392,82 @@ TEST_F(InstancedSkinnedImages, ACrowdGrownSinceTheLastCullOverflowsItsRegionsAnd
     EXPECT_EQ(group->getStatistics().instances, kClones - 1);
     // And the frame after, in the regions the grown crowd made.
     expectTheSameBytes();
+}
+
+TEST_F(InstancedSkinnedImages, AMeshWhoseOneInstanceIsMoreThanABufferHoldsTakesItsActorsOffTheInstancedPath)
+{
+    // An instance of the 8-joint chain is its matrix and 8 joints' palette rows, more than 16 texels.
+    group->setMaxTexelsPerBuffer(16);
+    const osg::ref_ptr<osg::Image> capped = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().texelLimit, 16u);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
+    EXPECT_EQ(group->getStatistics().actorsOrdinary, kClones);
+    EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
+    EXPECT_EQ(group->getStatistics().buffers, 0u);
+    // Drawn as the ordinary path draws them: the same bytes.
+    const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
+    EXPECT_TRUE(isTheSameBytesCovering(*capped, *ordinary, kBackground, 0.02));
+    // Without the cap they are instanced again.
+    group->setMaxTexelsPerBuffer(0);
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
+    EXPECT_EQ(group->getStatistics().buffers, 1u);
+}
+
+TEST_F(InstancedSkinnedImages, AFrameWhoseInstancesAreMoreThanABufferHoldsIsDrawnFromSeveralWithTheSameBytes)
+{
+    // A ball on a joint of every clone beside the skinned mesh: a rigid batch (4 texels an instance) and a skinned
+    // one, spread over buffers of 80 texels, so that the skinned instances go two or so to a buffer and a batch's
+    // instances are drawn in runs from several buffers, the rigid one filling what the skinned one leaves.
+    prototype.actor->getSkeletonNode("j4")->addChild(makeJointBall(0.03f));
+    group->removeChildren(0, group->getNumChildren());
+    actors.clear();
+    for (unsigned a = 0; a < kClones; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(prototype.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(osg::Vec3d(0.25 * (a % 4) - 0.45, 0.3 * (a / 4), 0.0));
+        poseSynthetic(*actor, 0.9 * a);
+        actors.push_back(actor);
+        group->addChild(actor.get());
+    }
+    group->getOrCreateStateSet()->setAttributeAndModes(InstancedActorGroup::createRigidProgram(false).get());
+    group->setMaxTexelsPerBuffer(80);
+    expectTheSameBytes();
+    const InstancedActorGroup::Statistics statistics = group->getStatistics();
+    EXPECT_EQ(statistics.texelLimit, 80u);
+    EXPECT_EQ(statistics.actorsInstanced, kClones);
+    EXPECT_EQ(statistics.skinnedInstances, kClones);
+    EXPECT_EQ(statistics.instances, kClones);
+    // The instances' data is more than one buffer: as many buffers as it takes, and more draws than batches.
+    const unsigned skinnedTexels = 4 + 8 * paletteStride(prototype.mesh->getProgramKey(SkinningProfile::Compatibility));
+    ASSERT_LE(skinnedTexels, 80u);
+    const unsigned perBuffer = 80 / skinnedTexels;
+    EXPECT_GE(statistics.buffers, (kClones + perBuffer - 1) / perBuffer);
+    EXPECT_GE(statistics.skinnedDraws, statistics.buffers);
+    EXPECT_GT(statistics.draws + statistics.skinnedDraws, 2u);
+    // And again, from the buffers the first frame made.
+    expectTheSameBytes();
+    EXPECT_EQ(group->getStatistics().buffers, statistics.buffers);
+}
+
+TEST_F(InstancedSkinnedImages, TheFirstCullTakesOpenGLsLeastBufferAndLaterOnesTheLimitTheDrawAskedTheContextFor)
+{
+    // Before any draw the cull knows no context: OpenGL's least GL_MAX_TEXTURE_BUFFER_SIZE.
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().texelLimit, 65536u);
+    // The draw asked the context: the next cull takes its answer, which the test asks for too.
+    renderWith(InstancedActorGroup::INSTANCED);
+    osg::GraphicsContext* context = renderer->getCamera()->getGraphicsContext();
+    ASSERT_TRUE(context->makeCurrent());
+    GLint limit = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &limit);
+    ASSERT_GE(limit, 65536);
+    EXPECT_EQ(group->getStatistics().texelLimit, static_cast<unsigned>(limit));
+    // A cap below it is the limit; above it, the context's.
+    group->setMaxTexelsPerBuffer(1000);
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().texelLimit, 1000u);
+    group->setMaxTexelsPerBuffer(static_cast<unsigned>(limit) + 1u);
+    renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_EQ(group->getStatistics().texelLimit, static_cast<unsigned>(limit));
 }
