@@ -618,6 +618,7 @@ void InstancedCull::emitSplit(InstancedFrame& frame, unsigned texels)
     float* into = nullptr;
     for (const InstancedCullState::Batch& batch : _state._batches)
     {
+        if (batch.texels > _texelLimit) continue; // no instance: canInstanceSkins() drew its actors ordinarily
         for (unsigned first = 0; first < batch.count;)
         {
             if ((_texelLimit - used) / batch.texels == 0)
