@@ -26,7 +26,8 @@ osg::ref_ptr<osg::StateSet> makeProgramState(std::uint8_t lights)
 
 osg::ref_ptr<osg::Program> InstancedActorGroup::createRigidProgram(bool instanced, std::uint8_t lights)
 {
-    std::string prelude = "#version 150 compatibility\n#define OSGACTOR_INSTANCED ";
+    std::string prelude = "#version 150 compatibility\n#define OSGACTOR_MODEL_VIEW gl_ModelViewMatrix\n"
+                          "#define OSGACTOR_INSTANCED ";
     prelude += instanced ? "1\n" : "0\n";
     prelude += "#define OSGACTOR_LIGHTS_ON bool[8](";
     for (unsigned i = 0; i < 8; ++i) prelude += std::string(i ? ", " : "") + ((lights >> i) & 1u ? "true" : "false");

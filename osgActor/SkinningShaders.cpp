@@ -24,6 +24,7 @@ const char* const kCompatibilityNames = R"glsl(
 #define OSGACTOR_TEXCOORD0 gl_MultiTexCoord0
 #define OSGACTOR_MODEL_VIEW gl_ModelViewMatrix
 #define OSGACTOR_MODEL_VIEW_PROJECTION gl_ModelViewProjectionMatrix
+#define OSGACTOR_PROJECTION gl_ProjectionMatrix
 #define OSGACTOR_NORMAL_MATRIX gl_NormalMatrix
 #define OSGACTOR_TEXTURE2D texture2D
 #define OSGACTOR_FRAG_COLOUR gl_FragColor
@@ -38,12 +39,14 @@ in vec3 osg_Normal;
 in vec4 osg_MultiTexCoord0;
 uniform mat4 osg_ModelViewMatrix;
 uniform mat4 osg_ModelViewProjectionMatrix;
+uniform mat4 osg_ProjectionMatrix;
 uniform mat3 osg_NormalMatrix;
 #define OSGACTOR_VERTEX osg_Vertex
 #define OSGACTOR_NORMAL osg_Normal
 #define OSGACTOR_TEXCOORD0 osg_MultiTexCoord0
 #define OSGACTOR_MODEL_VIEW osg_ModelViewMatrix
 #define OSGACTOR_MODEL_VIEW_PROJECTION osg_ModelViewProjectionMatrix
+#define OSGACTOR_PROJECTION osg_ProjectionMatrix
 #define OSGACTOR_NORMAL_MATRIX osg_NormalMatrix
 )glsl";
 
@@ -103,7 +106,6 @@ SkinningProgramKey canonical(SkinningProgramKey key)
     {
         key.lights = SkinningProgramKey().lights;
         key.fragmentProgram = nullptr;
-        key.instancing = SkinInstancing::None;
     }
     // An instance's palette is in the instances' buffer, whatever the mesh's storage.
     if (key.instancing == SkinInstancing::PerInstance) key.palette = SkinPaletteStorage::TextureBuffer;

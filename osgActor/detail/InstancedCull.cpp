@@ -161,7 +161,7 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
       _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false),
-      _texelLimit(state._limit->texels()), _view(cv), _recording(nullptr)
+      _texelLimit(state._limit->texels()), _profile(skinningProfileOf(cv.getState())), _view(cv), _recording(nullptr)
 {
     const ActorCullState::Key viewKey = ActorCullState::keyOf(_view, osg::Matrixd::identity());
     if (_state._view == 0 || !(viewKey == _state._viewKey))
@@ -291,8 +291,6 @@ bool InstancedCull::canInstanceSkins(ActorNode& actor, const InstancedCullState:
 {
     _state._skinInstances.clear();
     if (verdict.skinBatches.empty()) return true;
-    // The instanced program is of the compatibility profile (GLSL 1.50 compatibility).
-    if (skinningProfileOf(_cv.getState()) != SkinningProfile::Compatibility) return false;
     for (unsigned b : verdict.skinBatches)
     {
         InstancedCullState::Batch& batch = _state._batches[b];
@@ -524,7 +522,7 @@ void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
         return;
     // Then what the visitor does with the bind-pose geometry it is handed, whose box is the union of the actors'
     // bounds: the box against the frustum, near and far from it, its depth.
-    const osg::Geometry& geometry = *InstancedSkin::geometryOf(mesh);
+    const osg::Geometry& geometry = *InstancedSkin::geometryOf(mesh, _profile);
     const osg::BoundingBox& box = geometry.getBoundingBox();
     if (_frustumCulling && geometry.isCullingActive() && isOutsideFrustum(box, modelView, frustum)) return;
     if (_computeNearFar && box.valid() && !_cv.updateCalculatedNearFar(modelView, geometry, true)) return;
@@ -644,7 +642,7 @@ void InstancedCull::emitDraw(const InstancedCullState::Batch& batch, InstancedFr
                              unsigned buffer, unsigned base, unsigned count)
 {
     InstancedDraw& draw = *frame.draw(drawIndex);
-    const osg::Geometry* geometry = batch.mesh ? InstancedSkin::geometryOf(*batch.mesh) : batch.drawable;
+    const osg::Geometry* geometry = batch.mesh ? InstancedSkin::geometryOf(*batch.mesh, _profile) : batch.drawable;
     draw.set(geometry, static_cast<int>(base), count, static_cast<int>(batch.texels));
     draw.setBindScale(batch.mesh ? InstancedSkin::bindScaleOf(*batch.mesh) : 1.0f);
     // A dynamic drawable makes osgViewer's next update wait until it is drawn: so does its instanced draw.
@@ -680,7 +678,7 @@ void InstancedCull::emitLeaf(const InstancedCullState::Batch& batch, InstancedDr
         // (the lights on, a fragment-only program), here its instanced variant, which reads the palettes from the
         // frame's buffer.
         push(batch.mesh->getStateSet());
-        SkinningProgramKey key = InstancedSkin::programKey(*batch.mesh);
+        SkinningProgramKey key = InstancedSkin::programKey(*batch.mesh, _profile);
         applyDrawState(_cv.getCurrentStateGraph(), key);
         push(getSkinningProgramStateSet(key));
         push(frame.getBufferStateSet(buffer));

@@ -20,6 +20,7 @@
 #ifndef OSGACTOR_DETAIL_INSTANCEDCULL_H
 #define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
 
+#include <osgActor/SkinningShaders>
 #include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/CullArithmetic.h>
@@ -299,6 +300,8 @@ private:
     bool _overflowed;
     /** The texels one buffer may hold this cull. */
     const unsigned _texelLimit;
+    /** The skinned meshes' program and geometry profile, as the state the visitor culls for has it. */
+    const SkinningProfile _profile;
     const ActorCullView _view;
     /** The actor's kept instances being recorded, or null. */
     ActorCullState::InstancedVerdict* _recording;

@@ -20,8 +20,9 @@ SkinnedMesh* InstancedSkin::meshOfStep(const ActorCullPlan::Step& step)
 unsigned InstancedSkin::texelsPerInstance(SkinnedMesh& mesh)
 {
     if (!mesh.getSetupError().empty() || !mesh.gpuCanSkin()) return 0;
-    const SkinningProgramKey key = programKey(mesh);
-    const osg::Geometry* geometry = geometryOf(mesh);
+    const SkinningProgramKey key = programKey(mesh, SkinningProfile::Compatibility);
+    // The profiles' bind-pose geometries hold the same arrays and primitives (in other attribute slots).
+    const osg::Geometry* geometry = geometryOf(mesh, SkinningProfile::Compatibility);
     if (!geometry || !InstancedDraw::canDraw(*geometry)) return 0;
     return 4 + mesh.getSkin()->getNumJoints() * paletteStride(key);
 }
@@ -59,19 +60,19 @@ void InstancedSkin::writeInstance(const SkinnedMesh& mesh, const SkinnedMeshInst
 {
     const double* m = modelView.ptr();
     for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
-    instance.writePaletteRows(programKey(mesh), out + 16);
+    instance.writePaletteRows(programKey(mesh, SkinningProfile::Compatibility), out + 16);
 }
 
-SkinningProgramKey InstancedSkin::programKey(const SkinnedMesh& mesh)
+SkinningProgramKey InstancedSkin::programKey(const SkinnedMesh& mesh, SkinningProfile profile)
 {
-    SkinningProgramKey key = mesh.getProgramKey(SkinningProfile::Compatibility);
+    SkinningProgramKey key = mesh.getProgramKey(profile);
     key.instancing = SkinInstancing::PerInstance;
     return key;
 }
 
-osg::Geometry* InstancedSkin::geometryOf(SkinnedMesh& mesh)
+osg::Geometry* InstancedSkin::geometryOf(SkinnedMesh& mesh, SkinningProfile profile)
 {
-    return mesh.getBindPoseGeometry(SkinningProfile::Compatibility);
+    return mesh.getBindPoseGeometry(profile);
 }
 
 } // namespace detail

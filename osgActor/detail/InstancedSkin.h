@@ -9,8 +9,8 @@
 // What an instanced actor's mesh must be, else the whole actor is drawn ordinarily: a SkinnedMesh of that exact class
 // in the actor's own frame (below it, or in a geode below it), with no cull callback, that can draw (set up, its
 // skin bound to the actor's definition), drawn on the GPU path for that actor (linear blend, 4 or 8 influences, or
-// dual quaternions, whose bind scale, the skin's, is set per draw), in the compatibility profile, of a bind-pose
-// geometry InstancedDraw can draw.
+// dual quaternions, whose bind scale, the skin's, is set per draw), in either profile, of a bind-pose geometry
+// InstancedDraw can draw.
 #ifndef OSGACTOR_DETAIL_INSTANCEDSKIN_H
 #define OSGACTOR_DETAIL_INSTANCEDSKIN_H 1
 
@@ -60,17 +60,18 @@ public:
     static const osg::BoundingBox& boundOf(const SkinnedMeshInstance& instance);
 
     /** Writes one instance's data at out: the model-view matrix (16 floats, OSG's rows, each double rounded to the
-      * nearest float as glLoadMatrixd keeps it) and the palette rows of the mesh's program variant. */
+      * nearest float as glLoadMatrixd keeps it) and the palette rows of the mesh's program variant (the same layout in
+      * either profile). */
     static void writeInstance(const SkinnedMesh& mesh, const SkinnedMeshInstance& instance, const osg::Matrixd& modelView,
                               float* out);
 
-    /** The program key of the mesh's instanced draws (the compatibility profile; lights and the rest of the state in
-      * effect set by the caller as the mesh's cull sets them). */
-    static SkinningProgramKey programKey(const SkinnedMesh& mesh);
+    /** The program key of the mesh's instanced draws in the profile (lights and the rest of the state in effect set
+      * by the caller as the mesh's cull sets them). */
+    static SkinningProgramKey programKey(const SkinnedMesh& mesh, SkinningProfile profile);
 
-    /** The geometry the instanced draw draws: the mesh's bind-pose geometry of the compatibility profile, whose box
-      * is the union of its actors' bounds, as the ordinary cull hands it to the visitor. */
-    static osg::Geometry* geometryOf(SkinnedMesh& mesh);
+    /** The geometry the instanced draw draws: the mesh's bind-pose geometry of the profile, whose box is the union of
+      * its actors' bounds, as the ordinary cull hands it to the visitor. */
+    static osg::Geometry* geometryOf(SkinnedMesh& mesh, SkinningProfile profile);
 };
 
 } // namespace detail

@@ -14,7 +14,7 @@
 //                                for a fragment shader of someone else's (osgShadow's, for one) linked with this one:
 //                                gl_FrontColor, gl_TexCoord[0] and the eye-linear texture coordinates of the units in
 //                                OSGACTOR_EYE_LINEAR_UNITS (a bit per unit), each through its texture matrix
-//   OSGACTOR_INSTANCED_ARITHMETIC  compatibility profile, 1: the instanced draws' arithmetic (InstancedActorGroup):
+//   OSGACTOR_INSTANCED_ARITHMETIC  1: the instanced draws' arithmetic (InstancedActorGroup):
 //                                the eye position by osgActor_modelView() (InstanceData.glsl, which the prelude then
 //                                puts before this file), then the projection; the normal by the model-view matrix's
 //                                linear part (rigid or uniformly scaled frames: an actor's and the view's), normalised
@@ -181,7 +181,7 @@ void main()
 #if OSGACTOR_INSTANCED_ARITHMETIC
     mat4 modelView = osgActor_modelView();
     vec4 eyePosition = modelView * modelPosition;
-    gl_Position = gl_ProjectionMatrix * eyePosition;
+    gl_Position = OSGACTOR_PROJECTION * eyePosition;
     vec3 eyeNormal = normalize(mat3(modelView) * normal);
 #else
     gl_Position = OSGACTOR_MODEL_VIEW_PROJECTION * modelPosition;

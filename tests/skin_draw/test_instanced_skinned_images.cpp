@@ -82,7 +82,7 @@ protected:
       * the one the mesh pushes by the state set of its geode (which the clones share). */
     osg::ref_ptr<osg::Image> renderOrdinaryWithTheSameArithmetic()
     {
-        SkinningProgramKey key = prototype.mesh->getProgramKey(SkinningProfile::Compatibility);
+        SkinningProgramKey key = prototype.mesh->getProgramKey(profile);
         key.instancing = SkinInstancing::OneAtATime;
         osg::StateSet* geodeState = prototype.mesh->getParent(0)->getOrCreateStateSet();
         geodeState->setAttribute(createSkinningProgram(key).get(), osg::StateAttribute::OVERRIDE);
@@ -103,6 +103,8 @@ protected:
 
     osg::ref_ptr<OffscreenRenderer> renderer;
     osg::ref_ptr<InstancedActorGroup> group;
+    /** The profile of the renderer's state, whose program the ordinary path is drawn with alike. */
+    SkinningProfile profile = SkinningProfile::Compatibility;
     SyntheticActor prototype;
     std::vector<osg::ref_ptr<ActorNode>> actors;
 };
@@ -470,4 +472,25 @@ TEST_F(InstancedSkinnedImages, TheFirstCullTakesOpenGLsLeastBufferAndLaterOnesTh
     group->setMaxTexelsPerBuffer(static_cast<unsigned>(limit) + 1u);
     renderWith(InstancedActorGroup::INSTANCED);
     EXPECT_EQ(group->getStatistics().texelLimit, static_cast<unsigned>(limit));
+}
+
+TEST_F(InstancedSkinnedImages, InTheCoreProfileClonesAreInstancedWithTheSameBytesAsTheOrdinaryCorePathDrawnAlike)
+{
+    // OSG's emulation of the core profile: the arrays as generic attributes, the matrices as uniforms. The mesh's
+    // programs are its core variants (GLSL 3.30), the instanced one projecting by osg_ProjectionMatrix.
+    osg::State* state = renderer->getCamera()->getGraphicsContext()->getState();
+    state->setUseVertexAttributeAliasing(true);
+    state->setUseModelViewAndProjectionUniforms(true);
+    profile = SkinningProfile::Core;
+    expectTheSameBytes();
+    const InstancedActorGroup::Statistics statistics = group->getStatistics();
+    EXPECT_EQ(statistics.actorsInstanced, kClones);
+    EXPECT_EQ(statistics.actorsOrdinary, 0u);
+    EXPECT_EQ(statistics.skinnedDraws, 1u);
+    EXPECT_EQ(statistics.skinnedInstances, kClones - 1);
+    // And within the arithmetic's rounding of the ordinary core program (OSG's model-view-projection uniform).
+    const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
+    const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_LE(compareImages(*instanced, *ordinary, 2).getShareOverTolerance(), 0.001);
+    EXPECT_GT(countDrawnPixels(*instanced, kBackground), 0.02 * instanced->s() * instanced->t());
 }
