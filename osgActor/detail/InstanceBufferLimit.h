@@ -30,6 +30,10 @@ public:
       * cap, at least kLeast. Read by the cull on any thread. */
     unsigned texels() const;
 
+    /** Whether texels() is more than OpenGL's minimum taken for want of a context's answer: a context answered, or
+      * a cap is set. */
+    bool isKnown() const { return _queried.load(std::memory_order_acquire) != 0 || getCap() != 0; }
+
     /** A cap below the contexts' limits (0: none). */
     void setCap(unsigned cap) { _cap.store(cap, std::memory_order_relaxed); }
     unsigned getCap() const { return _cap.load(std::memory_order_relaxed); }

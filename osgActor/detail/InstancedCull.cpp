@@ -601,11 +601,15 @@ void InstancedCull::emitBatches()
 
 void InstancedCull::emitSplit(InstancedFrame& frame, unsigned texels)
 {
-    if (!_state._splitNoticed)
+    // Told once, when the limit is a context's or the cap; a first frame split under OpenGL's minimum, before any
+    // draw asked its context, is the usual start of a large crowd, not worth a notice.
+    if (!_state._splitNoticed && _state._limit->isKnown())
+    {
         OSG_NOTICE << "osgActor::InstancedActorGroup: a frame's instances need " << texels
                    << " texels, more than a texture buffer holds (" << _texelLimit
                    << "): drawn from several buffers, a batch's instances over several draws" << std::endl;
-    _state._splitNoticed = true;
+        _state._splitNoticed = true;
+    }
     // The batches' instances, in batch order, filled into buffers 1, 2, ... each within the limit; a batch that does
     // not fit in what is left of a buffer is drawn in runs, a run per buffer. Every instance fits one buffer
     // (canInstanceSkins()).
