@@ -492,3 +492,38 @@ TEST_F(InstancedSkinnedImages, InTheCoreProfileClonesAreInstancedWithTheSameByte
     EXPECT_LE(compareImages(*instanced, *ordinary, 2).getShareOverTolerance(), 0.001);
     EXPECT_GT(countDrawnPixels(*instanced, kBackground), 0.02 * instanced->s() * instanced->t());
 }
+
+TEST_F(InstancedSkinnedImages, ACrowdOverOpenGLsLeastBufferIsSplitUntilTheContextAnswersAndIsTheSameBytesThroughout)
+{
+    // 560 clones of a 40-joint chain, each instance 4 + 40 x 3 = 124 texels: 69,440 texels in all, more than the
+    // 65,536 of OpenGL's least GL_MAX_TEXTURE_BUFFER_SIZE, which the first instanced cull lays the frame out for.
+    SyntheticActor chain = makeChainActor(40);
+    chain.mesh->setStateSet(prototype.mesh->getStateSet());
+    prototype = chain;
+    group->removeChildren(0, group->getNumChildren());
+    constexpr unsigned kColumns = 28, kRows = 20;
+    for (unsigned a = 0; a < kColumns * kRows; ++a)
+    {
+        osg::ref_ptr<ActorNode> actor = osg::clone(chain.actor.get(), osg::CopyOp::SHALLOW_COPY);
+        actor->setPreTranslation(osg::Vec3d(0.5 * (a % kColumns) - 9.0, 0.6 * (a / kColumns), 0.0));
+        poseSynthetic(*actor, 0.37 * a);
+        group->addChild(actor.get());
+    }
+    renderer->setViewMatrixAsLookAt(osg::Vec3d(0.0, -14.0, 9.0), osg::Vec3d(0.0, 5.0, 0.0), osg::Vec3d(0.0, 0.0, 1.0));
+    const unsigned texelsPerInstance =
+        4 + 40 * paletteStride(chain.mesh->getProgramKey(SkinningProfile::Compatibility));
+    ASSERT_GT(kColumns * kRows * texelsPerInstance, 65536u);
+    // The first instanced frame: split over two buffers under OpenGL's minimum.
+    expectTheSameBytes(0.05);
+    InstancedActorGroup::Statistics statistics = group->getStatistics();
+    EXPECT_EQ(statistics.texelLimit, 65536u);
+    EXPECT_EQ(statistics.skinnedInstances, kColumns * kRows);
+    EXPECT_EQ(statistics.buffers, 2u);
+    EXPECT_EQ(statistics.skinnedDraws, 2u);
+    // Its draws asked the context (llvmpipe: 2^27 texels): one buffer, one draw from the next frame on.
+    expectTheSameBytes(0.05);
+    statistics = group->getStatistics();
+    EXPECT_GT(statistics.texelLimit, kColumns * kRows * texelsPerInstance);
+    EXPECT_EQ(statistics.buffers, 1u);
+    EXPECT_EQ(statistics.skinnedDraws, 1u);
+}
