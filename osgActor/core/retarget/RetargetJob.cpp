@@ -351,54 +351,84 @@ glm::dvec3 placeRoot(const RetargetRig& rig, const RetargetWorkspace& w, unsigne
     return offset + (beforeRotation ? offsetRotation : localRotation) * jointSlide(k, dofs);
 }
 
-/** One target joint's DOFs and model matrix, its parent placed. Returns whether it counts as inexact (the source
-  * drives it, and it could not take its desired rotation). */
-OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double* sourceValues, double* targetValues,
-                                RetargetWorkspace& w)
+/** What the placement reads and writes per joint, as plain pointers taken once per frame into locals: the byte flags
+  * it writes (asDesired, targetExact) may alias anything, so pointers read from the vectors would be read again after
+  * each joint; locals whose address is never taken stay in registers. */
+struct PlacementArrays
 {
-    const ActorDefinition& source = *rig.getSourceDefinition();
+    const JointKinematics* kinematics;
+    const int* parents;
+    const RetargetPlacement* placement;
+    const double* desired;
+    const double* laneAngles;
+    const std::uint8_t* laneFitted;
+    const double* laneCosSin;
+    const double* rest;
+    const double* origins;
+    const std::uint8_t* originMoves;
+    const double* restLocalRotations;
+    std::uint8_t* asDesired;
+    std::uint8_t* targetExact;
+    glm::dmat4* targetModels;
+};
+
+OSGACTOR_INLINE PlacementArrays placementArrays(const RetargetRig& rig, RetargetWorkspace& w)
+{
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
-    const std::vector<double>& rest = rig.getTargetRestDofs();
-    const int targetRoot = rig.getTargetRoot();
     RetargetWorkspace::Scratch& s = w.scratch;
-    const JointKinematics& k = target.getKinematics(t);
-    const int parent = target.getParent(t);
+    return {target.getAllKinematics().data(), target.getParents().data(), tables.placement.data(),
+            s.desired.data(), s.laneAngles.data(), s.laneFitted.data(), s.laneCosSin.data(),
+            rig.getTargetRestDofs().data(), tables.origins.data(), tables.originMoves.data(),
+            tables.restLocalRotations.data(), s.asDesired.data(), w.targetExact.data(), w.targetModels.data()};
+}
+
+/** One target joint's DOFs and model matrix, its parent placed. Returns whether it counts as inexact (the source
+  * drives it, and it could not take its desired rotation). */
+OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a, unsigned t,
+                                const double* __restrict sourceValues, double* __restrict targetValues,
+                                RetargetWorkspace& w)
+{
+    const RetargetJobTables& tables = rig.getJobTables();
+    const JointKinematics& k = a.kinematics[t];
+    const int parent = a.parents[t];
     const bool hasParent = parent >= 0;
     const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
-    const RotationColumns parentRotation = hasParent ? loadRotation(w.targetModels[p]) : identityColumns();
-    const Column parentPosition = hasParent ? loadColumn(&w.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
-    const bool parentExact = !hasParent || w.targetExact[p] != 0;
-    const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
-    const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
+    const RotationColumns parentRotation = hasParent ? loadRotation(a.targetModels[p]) : identityColumns();
+    const Column parentPosition = hasParent ? loadColumn(&a.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
+    const bool parentExact = !hasParent || a.targetExact[p] != 0;
+    const bool parentAsDesired = !hasParent || a.asDesired[p] != 0;
+    const RotationColumns desired = loadRotation(a.desired + t * kRotationDoubles);
 
-    const RetargetPlacement how = tables.placement[t];
+    const RetargetPlacement how = a.placement[t];
     RotationColumns rotation;
     bool exact = false;
-    if (how == RetargetPlacement::Rest)
+    if (how == RetargetPlacement::Euler && a.laneFitted[t] && parentAsDesired)
     {
-        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
-        // Under a parent at its desired rotation (or none), the desired rotation is this product already.
-        rotation = parentAsDesired
-                       ? desired
-                       : multiply(parentRotation, loadRotation(&tables.restLocalRotations[t * kRotationDoubles]));
-    }
-    else if (how == RetargetPlacement::Euler && s.laneFitted[t] && parentAsDesired)
-    {
-        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
         exact = true;
         rotation = desired;
     }
-    else if (how == RetargetPlacement::Copy && parentExact && s.laneFitted[t])
+    else if (how == RetargetPlacement::Rest)
+    {
+        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = a.rest[k.rotationDof[r]];
+        // Under a parent at its desired rotation (or none), the desired rotation is this product already.
+        rotation = parentAsDesired
+                       ? desired
+                       : multiply(parentRotation, loadRotation(a.restLocalRotations + t * kRotationDoubles));
+    }
+    else if (how == RetargetPlacement::Copy && parentExact && a.laneFitted[t])
     {
         // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches).
-        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
         exact = true;
         rotation = desired;
     }
     else if (how == RetargetPlacement::Copy && parentExact)
     {
         // The same local frames as the source joint's: its angles, turned or clamped into the limits.
+        const ActorDefinition& source = *rig.getSourceDefinition();
+        const ActorDefinition& target = *rig.getTargetDefinition();
         const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(rig.getPlans()[t].sourceB));
         bool clamped = false;
         for (unsigned r = 0; r < k.numRotations; ++r)
@@ -416,32 +446,33 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
         rotation =
             exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
     }
-    else if (how == RetargetPlacement::Axis && s.laneFitted[t])
+    else if (how == RetargetPlacement::Axis && a.laneFitted[t])
     {
         // Fewer than three rotations: the nearest the joint can come, never exact (as fitJointRotationDofs).
         rotation = jointFrame(tables, t, hasParent, parentRotation);
         for (unsigned r = 0; r < k.numRotations; ++r)
         {
-            targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
-            postRotate(rotation, k.rotationAxis[r], s.laneCosSin[4 * t + 2 * r], s.laneCosSin[4 * t + 2 * r + 1]);
+            targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+            postRotate(rotation, k.rotationAxis[r], a.laneCosSin[4 * t + 2 * r], a.laneCosSin[4 * t + 2 * r + 1]);
         }
     }
     else
     {
         const RotationColumns frame = jointFrame(tables, t, hasParent, parentRotation);
-        exact = fitJointRotationDofs(target, t, toMat3(multiply(transpose(frame), desired)), targetValues);
+        exact = fitJointRotationDofs(*rig.getTargetDefinition(), t, toMat3(multiply(transpose(frame), desired)),
+                                     targetValues);
         rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
     }
     const bool counted = !exact && how != RetargetPlacement::Rest && k.numRotations > 0;
-    s.asDesired[t] = exact || (how == RetargetPlacement::Rest && parentAsDesired) ? 1 : 0;
+    a.asDesired[t] = exact || (how == RetargetPlacement::Rest && parentAsDesired) ? 1 : 0;
 
-    Column origin = loadColumn(&tables.origins[4 * t]);
-    if (tables.originMoves[t])
+    Column origin = loadColumn(a.origins + 4 * t);
+    if (a.originMoves[t])
     {
         const glm::dmat3 parentMatrix = toMat3(parentRotation);
         const glm::dmat3 localRotation = glm::transpose(parentMatrix) * toMat3(rotation);
         glm::dvec3 moved;
-        if (static_cast<int>(t) == targetRoot && rig.getSourceRoot() >= 0)
+        if (static_cast<int>(t) == rig.getTargetRoot() && rig.getSourceRoot() >= 0)
             moved = placeRoot(rig, w, t, parentMatrix, glm::dvec3(parentPosition[0], parentPosition[1],
                                                                   parentPosition[2]),
                               localRotation, targetValues);
@@ -449,10 +480,10 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
             moved = glm::dvec3(k.offset[3]) + localRotation * jointSlide(k, targetValues);
         origin = Column{moved.x, moved.y, moved.z, 0.0};
     }
-    glm::dmat4& model = w.targetModels[t];
+    glm::dmat4& model = a.targetModels[t];
     storeRotation(&model[0][0], rotation);
     storeColumn(&model[3][0], parentPosition + combine(parentRotation, origin));
-    w.targetExact[t] = exact ? 1 : 0;
+    a.targetExact[t] = exact ? 1 : 0;
     return counted;
 }
 
@@ -468,19 +499,21 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
         std::memcpy(targetValues + first, rest + first, 3 * sizeof(double));
     for (const std::uint32_t dof : tables.translationDofs) targetValues[dof] = rest[dof];
     unsigned numInexact = 0;
-    // The bounds in locals: the joints' byte flags written in the loops could otherwise alias the tables' vectors, and
-    // the compiler would read them again on every step.
+    // The bounds and arrays in locals: the joints' byte flags written in the loops could otherwise alias the tables'
+    // vectors, and the compiler would read them again on every step.
+    const PlacementArrays arrays = placementArrays(rig, w);
     const std::size_t numLevels = tables.levelJoints.empty() ? 0 : tables.levelJoints.size() - 1;
     const std::uint32_t* const levelJoints = tables.levelJoints.data();
     const std::uint32_t* const levelBatches = tables.levelBatches.data();
     const std::uint32_t* const placeOrder = tables.placeOrder.data();
+    const RetargetAxisBatch* const axisBatches = tables.axisBatches.data();
     for (std::size_t level = 0; level < numLevels; ++level)
     {
         const std::uint32_t lastBatch = levelBatches[level + 1], lastJoint = levelJoints[level + 1];
         for (std::uint32_t b = levelBatches[level]; b < lastBatch; ++b)
-            fitAxisBatch(tables.axisBatches[b], target, tables, targetValues, w);
+            fitAxisBatch(axisBatches[b], target, tables, targetValues, w);
         for (std::uint32_t i = levelJoints[level]; i < lastJoint; ++i)
-            numInexact += placeJoint(rig, placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
+            numInexact += placeJoint(rig, arrays, placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
     }
     return numInexact;
 }
