@@ -48,6 +48,10 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     scratch.sourceDirty.assign(numSource, 1);
     scratch.sourceLocalChanged.assign(numSource, 0);
     scratch.sourceModelStale.assign(numSource, 1);
+    scratch.posedRoots.clear();
+    for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
+        if (tables.sourcePosedParents[i] < 0) scratch.posedRoots.push_back(static_cast<std::uint32_t>(i));
+    scratch.alignedRootLocals.assign(scratch.posedRoots.size(), glm::dmat4(1.0));
     scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
     scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
     scratch.laneFitted.assign(numTarget, 0);
@@ -65,6 +69,7 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
            sourceLocals.size() == numSource && s.sourceLocalPointers.size() == numSource &&
            s.posedLocalPointers.size() == tables.sourcePosed.size() && s.sourceDirty.size() == numSource &&
            s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
+           s.alignedRootLocals.size() == s.posedRoots.size() &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
            s.laneAngles.size() == numTarget * 3 &&
@@ -103,13 +108,18 @@ bool RetargetJob::validate() const
 namespace {
 
 /** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourcePosed): their local
-  * matrices (LocalMatricesJob, the others not built), composed as a skeleton of their own (LocalToModelJob). */
-OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const RetargetJobTables& tables, const double* dofs,
+  * matrices (LocalMatricesJob, the others not built), composed as a skeleton of their own (LocalToModelJob). Where the
+  * rig's alignment A is not the identity, the roots' local matrices are turned by it first, so every model matrix
+  * comes out turned (A * M) with one product a root instead of one a followed joint (RetargetWorkspace::
+  * sourceModels). */
+OSGACTOR_INLINE void poseSource(const RetargetRig& rig, const RetargetJobTables& tables, const double* dofs,
                                 RetargetWorkspace& w)
 {
+    const ActorDefinition& source = *rig.getSourceDefinition();
     RetargetWorkspace::Scratch& s = w.scratch;
     const unsigned numJoints = source.getNumJoints();
     const std::size_t numPosed = tables.sourcePosed.size();
+    w.sourceAlignment = nullptr;
     if (numPosed == 0) return;
     // Pointers into sourceLocals, set again whenever the workspace has moved (a copy, a vector of workspaces grown).
     if (s.sourceLocalPointers[0] != &w.sourceLocals[0][0][0])
@@ -126,6 +136,29 @@ OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const RetargetJob
     local.localChanged = s.sourceLocalChanged;
     local.modelStale = s.sourceModelStale;
     local.run();
+    const bool turned = !rig.isAlignmentIdentity();
+    for (std::size_t r = 0; r < s.posedRoots.size(); ++r)
+    {
+        const std::uint32_t i = s.posedRoots[r];
+        const std::uint32_t joint = tables.sourcePosed[i];
+        if (turned)
+        {
+            // A * L: the rotation's columns and the translation turned; the bottom row stays (0, 0, 0, 1).
+            const RotationColumns alignment = loadRotation(tables.alignment);
+            const double* const rootLocal = s.sourceLocalPointers[joint];
+            double* const alignedLocal = &s.alignedRootLocals[r][0][0];
+            for (unsigned col = 0; col < 4; ++col)
+            {
+                Column c = combine(alignment, loadColumn(rootLocal + 4 * col));
+                c[3] = rootLocal[4 * col + 3];
+                storeColumn(alignedLocal + 4 * col, c);
+            }
+            s.posedLocalPointers[i] = alignedLocal;
+        }
+        else
+            s.posedLocalPointers[i] = s.sourceLocalPointers[joint];
+    }
+    if (turned) w.sourceAlignment = &rig.getAlignment();
     LocalToModelJob toModel;
     toModel.parents = tables.sourcePosedParents;
     toModel.local = s.posedLocalPointers;
@@ -147,31 +180,40 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
 {
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
-    const std::vector<RetargetJointPlan>& plans = rig.getPlans();
-    const bool aligned = rig.isAlignmentIdentity();
-    const RotationColumns alignment = loadRotation(tables.alignment);
+    // The source's model rotations are stored turned by the alignment already (poseSource): A * R_s(b). The tables in
+    // locals, as in placeJoints.
+    const glm::dmat4* const turnedSourceModels = w.sourceModels.data();
+    const RetargetDesire* const desire = tables.desire.data();
+    const std::uint32_t* const desireSlot = tables.desireSlot.data();
+    const double* const postRotations = tables.postRotations.data();
+    const double* const restLocalRotations = tables.restLocalRotations.data();
+    const int* const parents = target.getParents().data();
     double* const desired = w.scratch.desired.data();
     const unsigned numJoints = target.getNumJoints();
     for (unsigned t = 0; t < numJoints; ++t)
     {
-        const RetargetJointPlan& plan = plans[t];
-        const int parent = target.getParent(t);
         RotationColumns d;
-        if (plan.kind == RetargetJointKind::Rest)
+        switch (desire[t])
         {
-            d = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
-            if (parent >= 0) d = multiply(loadRotation(desired + parent * kRotationDoubles), d);
-        }
-        else if (plan.weight == 1.0)
+        case RetargetDesire::Follow: d = loadRotation(turnedSourceModels[desireSlot[t]]); break;
+        case RetargetDesire::FollowThenPost:
+            d = multiply(loadRotation(turnedSourceModels[desireSlot[t]]),
+                         loadRotation(postRotations + t * kRotationDoubles));
+            break;
+        case RetargetDesire::Rest:
+            d = loadRotation(restLocalRotations + t * kRotationDoubles);
+            if (parents[t] >= 0) d = multiply(loadRotation(desired + parents[t] * kRotationDoubles), d);
+            break;
+        default:
         {
-            // A * R_s(b) * postRotation, skipping the products with an identity.
-            d = plan.sourceB >= 0 ? loadRotation(w.sourceModel(static_cast<unsigned>(plan.sourceB)))
-                                  : identityColumns();
-            if (!aligned) d = multiply(alignment, d);
-            if (!plan.postIsIdentity) d = multiply(d, loadRotation(&tables.postRotations[t * kRotationDoubles]));
-        }
-        else
-        {
+            const RetargetJointPlan& plan = rig.getPlan(t);
+            if (plan.weight == 1.0)
+            {
+                // No source joint: A * postRotation.
+                d = loadRotation(tables.alignment);
+                if (!plan.postIsIdentity) d = multiply(d, loadRotation(postRotations + t * kRotationDoubles));
+                break;
+            }
             const glm::dmat3 blended = rig.getAlignment() *
                                        glm::mat3_cast(glm::slerp(changeSinceRest(rig, w, plan.sourceA),
                                                                  changeSinceRest(rig, w, plan.sourceB), plan.weight)) *
@@ -179,6 +221,7 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
             double columns[kRotationDoubles];
             storeRotation(columns, blended);
             d = loadRotation(columns);
+        }
         }
         storeRotation(desired + t * kRotationDoubles, d);
     }
@@ -524,7 +567,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
 {
     if (!validate()) return false;
     RetargetWorkspace& w = *workspace;
-    poseSource(*rig->getSourceDefinition(), rig->getJobTables(), sourceDofs.data(), w);
+    poseSource(*rig, rig->getJobTables(), sourceDofs.data(), w);
     desireRotations(*rig, w);
     fitEulerBatches(*rig, targetDofs.data(), w);
     takeCopyBatches(rig->getJobTables(), sourceDofs.data(), w);

@@ -606,6 +606,19 @@ struct RetargetRigBuilder
             tables.sourcePosedParents.push_back(parent < 0 ? -1
                                                            : static_cast<int>(tables.sourceSlots[static_cast<unsigned>(parent)]));
         }
+        tables.desire.assign(numTarget, RetargetDesire::FromPlan);
+        tables.desireSlot.assign(numTarget, 0);
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const RetargetJointPlan& plan = rig->_plans[j];
+            if (plan.kind == RetargetJointKind::Rest)
+                tables.desire[j] = RetargetDesire::Rest;
+            else if (plan.weight == 1.0 && plan.sourceB >= 0)
+            {
+                tables.desire[j] = plan.postIsIdentity ? RetargetDesire::Follow : RetargetDesire::FollowThenPost;
+                tables.desireSlot[j] = tables.sourceSlots[static_cast<unsigned>(plan.sourceB)];
+            }
+        }
         for (unsigned j = 0; j < numTarget; ++j)
         {
             storeRotation(&tables.postRotations[j * kRotationDoubles], rig->_plans[j].postRotation);
