@@ -268,17 +268,17 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
                 const double* const desired = &s.desired[t * kRotationDoubles];
                 const double* const parentDesired =
                     parent >= 0 ? &s.desired[static_cast<unsigned>(parent) * kRotationDoubles] : kIdentityColumns;
-                for (unsigned r = 0; r < 3; ++r) lanes[lane].desired[r] = loadColumn(desired + 4 * batch.axes[r][lane]);
+                for (unsigned r = 0; r < 3; ++r) lanes[lane].desired[r] = loadColumn(desired + batch.columnAt[r][lane]);
                 if (tables.offsetIsIdentity[t])
                     for (unsigned r = 0; r < 3; ++r)
-                        lanes[lane].frame[r] = loadColumn(parentDesired + 4 * batch.axes[r][lane]);
+                        lanes[lane].frame[r] = loadColumn(parentDesired + batch.columnAt[r][lane]);
                 else
                 {
                     const RotationColumns parentRotation = loadRotation(parentDesired);
                     const double* const offset = &tables.offsetRotations[t * kRotationDoubles];
                     for (unsigned r = 0; r < 3; ++r)
                     {
-                        const double* const column = offset + 4 * batch.axes[r][lane];
+                        const double* const column = offset + batch.columnAt[r][lane];
                         lanes[lane].frame[r] = combine(parentRotation, column[0], column[1], column[2]);
                     }
                 }

@@ -796,7 +796,7 @@ struct RetargetRigBuilder
         const JointKinematics& k = t.getKinematics(joint);
         const unsigned i = k.rotationAxis[0], j = k.rotationAxis[1];
         batch.joints[lane] = joint;
-        for (unsigned r = 0; r < 3; ++r) batch.axes[r][lane] = static_cast<std::uint8_t>(k.rotationAxis[r]);
+        for (unsigned r = 0; r < 3; ++r) batch.columnAt[r][lane] = static_cast<std::uint8_t>(4 * k.rotationAxis[r]);
         batch.parity[lane] = j == (i + 1) % 3 ? 1.0 : -1.0;
         for (unsigned r = 0; r < 3; ++r)
         {
