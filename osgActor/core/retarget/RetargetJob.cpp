@@ -248,11 +248,18 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
     constexpr std::size_t kGroup = 4;
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
-    const std::vector<RetargetEulerBatch>& batches = tables.eulerBatches;
-    RetargetWorkspace::Scratch& s = w.scratch;
-    for (std::size_t first = 0; first < batches.size(); first += kGroup)
+    // The tables in locals, as in placeJoints: the byte flags written below would otherwise make them be read again.
+    const RetargetEulerBatch* const batches = tables.eulerBatches.data();
+    const std::size_t numBatches = tables.eulerBatches.size();
+    const int* const parents = target.getParents().data();
+    const std::uint8_t* const offsetIsIdentity = tables.offsetIsIdentity.data();
+    const double* const offsetRotations = tables.offsetRotations.data();
+    const double* const desiredRotations = w.scratch.desired.data();
+    double* const laneAngles = w.scratch.laneAngles.data();
+    std::uint8_t* const laneFitted = w.scratch.laneFitted.data();
+    for (std::size_t first = 0; first < numBatches; first += kGroup)
     {
-        const std::size_t numInGroup = std::min(kGroup, batches.size() - first);
+        const std::size_t numInGroup = std::min(kGroup, numBatches - first);
         EulerArctangents in[kGroup];
         for (std::size_t b = 0; b < numInGroup; ++b)
         {
@@ -264,18 +271,19 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
             {
                 // The joint's frame (jointFrame) is its parent's desired rotation times its offset rotation.
                 const unsigned t = batch.joints[lane];
-                const int parent = target.getParent(t);
-                const double* const desired = &s.desired[t * kRotationDoubles];
+                const int parent = parents[t];
+                const double* const desired = desiredRotations + t * kRotationDoubles;
                 const double* const parentDesired =
-                    parent >= 0 ? &s.desired[static_cast<unsigned>(parent) * kRotationDoubles] : kIdentityColumns;
+                    parent >= 0 ? desiredRotations + static_cast<unsigned>(parent) * kRotationDoubles
+                                : kIdentityColumns;
                 for (unsigned r = 0; r < 3; ++r) lanes[lane].desired[r] = loadColumn(desired + batch.columnAt[r][lane]);
-                if (tables.offsetIsIdentity[t])
+                if (offsetIsIdentity[t])
                     for (unsigned r = 0; r < 3; ++r)
                         lanes[lane].frame[r] = loadColumn(parentDesired + batch.columnAt[r][lane]);
                 else
                 {
                     const RotationColumns parentRotation = loadRotation(parentDesired);
-                    const double* const offset = &tables.offsetRotations[t * kRotationDoubles];
+                    const double* const offset = offsetRotations + t * kRotationDoubles;
                     for (unsigned r = 0; r < 3; ++r)
                     {
                         const double* const column = offset + batch.columnAt[r][lane];
@@ -295,8 +303,8 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
             for (unsigned lane = 0; lane < batch.numJoints; ++lane)
             {
                 const unsigned t = batch.joints[lane];
-                s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-                for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = fit.angles[r][lane];
+                laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+                for (unsigned r = 0; r < 3; ++r) laneAngles[3 * t + r] = fit.angles[r][lane];
             }
         }
     }
