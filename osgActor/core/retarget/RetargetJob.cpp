@@ -314,7 +314,9 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
   * lie within its limits. */
 OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const double* sourceValues, RetargetWorkspace& w)
 {
-    RetargetWorkspace::Scratch& s = w.scratch;
+    // In locals, as in placeJoints.
+    double* const laneAngles = w.scratch.laneAngles.data();
+    std::uint8_t* const laneFitted = w.scratch.laneFitted.data();
     for (const RetargetCopyBatch& batch : tables.copyBatches)
     {
         Column angles[3];
@@ -327,8 +329,8 @@ OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const doub
         for (unsigned lane = 0; lane < batch.numJoints; ++lane)
         {
             const unsigned t = batch.joints[lane];
-            s.laneFitted[t] = within[lane] != 0 ? 1 : 0;
-            for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = angles[r][lane];
+            laneFitted[t] = within[lane] != 0 ? 1 : 0;
+            for (unsigned r = 0; r < 3; ++r) laneAngles[3 * t + r] = angles[r][lane];
         }
     }
 }
@@ -365,15 +367,20 @@ OSGACTOR_INLINE void fitAxisBatch(const RetargetAxisBatch& batch, const ActorDef
         storeRotation(local[lane], multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
     }
     const AxisLanesFit fit = fitAxisLanes(batch, lanes, dofs);
+    // In locals, as in placeJoints.
+    double* const laneAngles = s.laneAngles.data();
+    double* const laneCosSin = s.laneCosSin.data();
+    std::uint8_t* const laneFitted = s.laneFitted.data();
+    const unsigned numRotations = batch.numRotations;
     for (unsigned lane = 0; lane < batch.numJoints; ++lane)
     {
         const unsigned t = batch.joints[lane];
-        s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-        for (unsigned r = 0; r < batch.numRotations; ++r)
+        laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+        for (unsigned r = 0; r < numRotations; ++r)
         {
-            s.laneAngles[3 * t + r] = fit.angles[r][lane];
-            s.laneCosSin[4 * t + 2 * r] = fit.cosines[r][lane];
-            s.laneCosSin[4 * t + 2 * r + 1] = fit.sines[r][lane];
+            laneAngles[3 * t + r] = fit.angles[r][lane];
+            laneCosSin[4 * t + 2 * r] = fit.cosines[r][lane];
+            laneCosSin[4 * t + 2 * r + 1] = fit.sines[r][lane];
         }
     }
 }
