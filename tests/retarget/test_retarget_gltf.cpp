@@ -141,6 +141,52 @@ TEST(RetargetOntoGltf, EveryJointsSlideButTheRootsComesBackToRestWhateverTheFram
     EXPECT_LE(glm::length(workspace.targetPosition(root) - goal), 1e-9);
 }
 
+TEST(RetargetOntoGltf, TheSourcesPoseReadBackIsItsOwnThoughTheFacingsDiffer)
+{
+    // Cesium Man faces another way than CMU's skeleton, so the rig's alignment A is a turn; the job keeps the source's
+    // model matrices turned by A (folded into the root once), and what it gives back through sourceModel() and
+    // sourcePosition() (what the IK pass and the measures read) is still the source's own forward kinematics; the
+    // joints it places exactly take A * R_s(b) * postRotation (RetargetJointPlan), worked out here with GLM.
+    const WalkOntoCesiumMan onto = walkOntoCesiumMan();
+    ASSERT_TRUE(onto.rig);
+    const RetargetRig& rig = *onto.rig;
+    ASSERT_FALSE(rig.isAlignmentIdentity());
+    const MocapImport& walk = onto.walk;
+    const ActorDefinition& source = *walk.definition;
+    const std::vector<std::uint8_t>& read = rig.getJobTables().sourceJointsRead;
+    std::vector<double> values = rig.getTargetRestDofs();
+    RetargetWorkspace workspace;
+    unsigned exact = 0;
+    for (unsigned f = 0; f < walk.clip->getNumFrames(); f += 250)
+    {
+        RetargetJob job =
+            retargetJob(rig, Span<const double>(walk.clip->getFrame(f), walk.clip->getNumChannels()), values, workspace);
+        ASSERT_TRUE(job.run());
+        const std::vector<glm::dmat4> full = modelsAt(walk.definition, *walk.clip, f);
+        for (unsigned j = 0; j < source.getNumJoints(); ++j)
+        {
+            const glm::dmat4 expected = read[j] ? full[j] : glm::dmat4(1.0);
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    EXPECT_NEAR(workspace.sourceModel(j)[c][r], expected[c][r], 1e-12) << source.getJointName(j);
+            if (read[j])
+            {
+                EXPECT_LE(glm::length(workspace.sourcePosition(j) - glm::dvec3(full[j][3])), 1e-12);
+            }
+        }
+        for (unsigned t = 0; t < rig.getTargetDefinition()->getNumJoints(); ++t)
+        {
+            const RetargetJointPlan& plan = rig.getPlan(t);
+            if (!workspace.targetExact[t] || plan.weight != 1.0 || plan.sourceB < 0) continue;
+            const glm::dmat3 desired = rig.getAlignment() * glm::dmat3(full[static_cast<unsigned>(plan.sourceB)]) *
+                                       plan.postRotation;
+            EXPECT_LE(angleBetween(workspace.targetRotation(t), desired), 1e-12);
+            ++exact;
+        }
+    }
+    EXPECT_GE(exact, 10u);
+}
+
 TEST(RetargetFromGltf, ReadingAModelAsMotionRefusesWhatItCannotRead)
 {
     MotionFileOptions options;

@@ -48,6 +48,10 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     scratch.sourceDirty.assign(numSource, 1);
     scratch.sourceLocalChanged.assign(numSource, 0);
     scratch.sourceModelStale.assign(numSource, 1);
+    scratch.posedRoots.clear();
+    for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
+        if (tables.sourcePosedParents[i] < 0) scratch.posedRoots.push_back(static_cast<std::uint32_t>(i));
+    scratch.alignedRootLocals.assign(scratch.posedRoots.size(), glm::dmat4(1.0));
     scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
     scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
     scratch.laneFitted.assign(numTarget, 0);
@@ -65,6 +69,7 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
            sourceLocals.size() == numSource && s.sourceLocalPointers.size() == numSource &&
            s.posedLocalPointers.size() == tables.sourcePosed.size() && s.sourceDirty.size() == numSource &&
            s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
+           s.alignedRootLocals.size() == s.posedRoots.size() &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
            s.laneAngles.size() == numTarget * 3 &&
@@ -103,13 +108,18 @@ bool RetargetJob::validate() const
 namespace {
 
 /** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourcePosed): their local
-  * matrices (LocalMatricesJob, the others not built), composed as a skeleton of their own (LocalToModelJob). */
-OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const RetargetJobTables& tables, const double* dofs,
+  * matrices (LocalMatricesJob, the others not built), composed as a skeleton of their own (LocalToModelJob). Where the
+  * rig's alignment A is not the identity, the roots' local matrices are turned by it first, so every model matrix
+  * comes out turned (A * M) with one product a root instead of one a followed joint (RetargetWorkspace::
+  * sourceModels). */
+OSGACTOR_INLINE void poseSource(const RetargetRig& rig, const RetargetJobTables& tables, const double* dofs,
                                 RetargetWorkspace& w)
 {
+    const ActorDefinition& source = *rig.getSourceDefinition();
     RetargetWorkspace::Scratch& s = w.scratch;
     const unsigned numJoints = source.getNumJoints();
     const std::size_t numPosed = tables.sourcePosed.size();
+    w.sourceAlignment = nullptr;
     if (numPosed == 0) return;
     // Pointers into sourceLocals, set again whenever the workspace has moved (a copy, a vector of workspaces grown).
     if (s.sourceLocalPointers[0] != &w.sourceLocals[0][0][0])
@@ -126,6 +136,29 @@ OSGACTOR_INLINE void poseSource(const ActorDefinition& source, const RetargetJob
     local.localChanged = s.sourceLocalChanged;
     local.modelStale = s.sourceModelStale;
     local.run();
+    const bool turned = !rig.isAlignmentIdentity();
+    for (std::size_t r = 0; r < s.posedRoots.size(); ++r)
+    {
+        const std::uint32_t i = s.posedRoots[r];
+        const std::uint32_t joint = tables.sourcePosed[i];
+        if (turned)
+        {
+            // A * L: the rotation's columns and the translation turned; the bottom row stays (0, 0, 0, 1).
+            const RotationColumns alignment = loadRotation(tables.alignment);
+            const double* const rootLocal = s.sourceLocalPointers[joint];
+            double* const alignedLocal = &s.alignedRootLocals[r][0][0];
+            for (unsigned col = 0; col < 4; ++col)
+            {
+                Column c = combine(alignment, loadColumn(rootLocal + 4 * col));
+                c[3] = rootLocal[4 * col + 3];
+                storeColumn(alignedLocal + 4 * col, c);
+            }
+            s.posedLocalPointers[i] = alignedLocal;
+        }
+        else
+            s.posedLocalPointers[i] = s.sourceLocalPointers[joint];
+    }
+    if (turned) w.sourceAlignment = &rig.getAlignment();
     LocalToModelJob toModel;
     toModel.parents = tables.sourcePosedParents;
     toModel.local = s.posedLocalPointers;
@@ -147,31 +180,40 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
 {
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
-    const std::vector<RetargetJointPlan>& plans = rig.getPlans();
-    const bool aligned = rig.isAlignmentIdentity();
-    const RotationColumns alignment = loadRotation(tables.alignment);
+    // The source's model rotations are stored turned by the alignment already (poseSource): A * R_s(b). The tables in
+    // locals, as in placeJoints.
+    const glm::dmat4* const turnedSourceModels = w.sourceModels.data();
+    const RetargetDesire* const desire = tables.desire.data();
+    const std::uint32_t* const desireSlot = tables.desireSlot.data();
+    const double* const postRotations = tables.postRotations.data();
+    const double* const restLocalRotations = tables.restLocalRotations.data();
+    const int* const parents = target.getParents().data();
     double* const desired = w.scratch.desired.data();
     const unsigned numJoints = target.getNumJoints();
     for (unsigned t = 0; t < numJoints; ++t)
     {
-        const RetargetJointPlan& plan = plans[t];
-        const int parent = target.getParent(t);
         RotationColumns d;
-        if (plan.kind == RetargetJointKind::Rest)
+        switch (desire[t])
         {
-            d = loadRotation(&tables.restLocalRotations[t * kRotationDoubles]);
-            if (parent >= 0) d = multiply(loadRotation(desired + parent * kRotationDoubles), d);
-        }
-        else if (plan.weight == 1.0)
+        case RetargetDesire::Follow: d = loadRotation(turnedSourceModels[desireSlot[t]]); break;
+        case RetargetDesire::FollowThenPost:
+            d = multiply(loadRotation(turnedSourceModels[desireSlot[t]]),
+                         loadRotation(postRotations + t * kRotationDoubles));
+            break;
+        case RetargetDesire::Rest:
+            d = loadRotation(restLocalRotations + t * kRotationDoubles);
+            if (parents[t] >= 0) d = multiply(loadRotation(desired + parents[t] * kRotationDoubles), d);
+            break;
+        default:
         {
-            // A * R_s(b) * postRotation, skipping the products with an identity.
-            d = plan.sourceB >= 0 ? loadRotation(w.sourceModel(static_cast<unsigned>(plan.sourceB)))
-                                  : identityColumns();
-            if (!aligned) d = multiply(alignment, d);
-            if (!plan.postIsIdentity) d = multiply(d, loadRotation(&tables.postRotations[t * kRotationDoubles]));
-        }
-        else
-        {
+            const RetargetJointPlan& plan = rig.getPlan(t);
+            if (plan.weight == 1.0)
+            {
+                // No source joint: A * postRotation.
+                d = loadRotation(tables.alignment);
+                if (!plan.postIsIdentity) d = multiply(d, loadRotation(postRotations + t * kRotationDoubles));
+                break;
+            }
             const glm::dmat3 blended = rig.getAlignment() *
                                        glm::mat3_cast(glm::slerp(changeSinceRest(rig, w, plan.sourceA),
                                                                  changeSinceRest(rig, w, plan.sourceB), plan.weight)) *
@@ -179,6 +221,7 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
             double columns[kRotationDoubles];
             storeRotation(columns, blended);
             d = loadRotation(columns);
+        }
         }
         storeRotation(desired + t * kRotationDoubles, d);
     }
@@ -205,11 +248,18 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
     constexpr std::size_t kGroup = 4;
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
-    const std::vector<RetargetEulerBatch>& batches = tables.eulerBatches;
-    RetargetWorkspace::Scratch& s = w.scratch;
-    for (std::size_t first = 0; first < batches.size(); first += kGroup)
+    // The tables in locals, as in placeJoints: the byte flags written below would otherwise make them be read again.
+    const RetargetEulerBatch* const batches = tables.eulerBatches.data();
+    const std::size_t numBatches = tables.eulerBatches.size();
+    const int* const parents = target.getParents().data();
+    const std::uint8_t* const offsetIsIdentity = tables.offsetIsIdentity.data();
+    const double* const offsetRotations = tables.offsetRotations.data();
+    const double* const desiredRotations = w.scratch.desired.data();
+    double* const laneAngles = w.scratch.laneAngles.data();
+    std::uint8_t* const laneFitted = w.scratch.laneFitted.data();
+    for (std::size_t first = 0; first < numBatches; first += kGroup)
     {
-        const std::size_t numInGroup = std::min(kGroup, batches.size() - first);
+        const std::size_t numInGroup = std::min(kGroup, numBatches - first);
         EulerArctangents in[kGroup];
         for (std::size_t b = 0; b < numInGroup; ++b)
         {
@@ -221,21 +271,22 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
             {
                 // The joint's frame (jointFrame) is its parent's desired rotation times its offset rotation.
                 const unsigned t = batch.joints[lane];
-                const int parent = target.getParent(t);
-                const double* const desired = &s.desired[t * kRotationDoubles];
+                const int parent = parents[t];
+                const double* const desired = desiredRotations + t * kRotationDoubles;
                 const double* const parentDesired =
-                    parent >= 0 ? &s.desired[static_cast<unsigned>(parent) * kRotationDoubles] : kIdentityColumns;
-                for (unsigned r = 0; r < 3; ++r) lanes[lane].desired[r] = loadColumn(desired + 4 * batch.axes[r][lane]);
-                if (tables.offsetIsIdentity[t])
+                    parent >= 0 ? desiredRotations + static_cast<unsigned>(parent) * kRotationDoubles
+                                : kIdentityColumns;
+                for (unsigned r = 0; r < 3; ++r) lanes[lane].desired[r] = loadColumn(desired + batch.columnAt[r][lane]);
+                if (offsetIsIdentity[t])
                     for (unsigned r = 0; r < 3; ++r)
-                        lanes[lane].frame[r] = loadColumn(parentDesired + 4 * batch.axes[r][lane]);
+                        lanes[lane].frame[r] = loadColumn(parentDesired + batch.columnAt[r][lane]);
                 else
                 {
                     const RotationColumns parentRotation = loadRotation(parentDesired);
-                    const double* const offset = &tables.offsetRotations[t * kRotationDoubles];
+                    const double* const offset = offsetRotations + t * kRotationDoubles;
                     for (unsigned r = 0; r < 3; ++r)
                     {
-                        const double* const column = offset + 4 * batch.axes[r][lane];
+                        const double* const column = offset + batch.columnAt[r][lane];
                         lanes[lane].frame[r] = combine(parentRotation, column[0], column[1], column[2]);
                     }
                 }
@@ -252,8 +303,8 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
             for (unsigned lane = 0; lane < batch.numJoints; ++lane)
             {
                 const unsigned t = batch.joints[lane];
-                s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-                for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = fit.angles[r][lane];
+                laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+                for (unsigned r = 0; r < 3; ++r) laneAngles[3 * t + r] = fit.angles[r][lane];
             }
         }
     }
@@ -263,7 +314,9 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
   * lie within its limits. */
 OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const double* sourceValues, RetargetWorkspace& w)
 {
-    RetargetWorkspace::Scratch& s = w.scratch;
+    // In locals, as in placeJoints.
+    double* const laneAngles = w.scratch.laneAngles.data();
+    std::uint8_t* const laneFitted = w.scratch.laneFitted.data();
     for (const RetargetCopyBatch& batch : tables.copyBatches)
     {
         Column angles[3];
@@ -276,8 +329,8 @@ OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const doub
         for (unsigned lane = 0; lane < batch.numJoints; ++lane)
         {
             const unsigned t = batch.joints[lane];
-            s.laneFitted[t] = within[lane] != 0 ? 1 : 0;
-            for (unsigned r = 0; r < 3; ++r) s.laneAngles[3 * t + r] = angles[r][lane];
+            laneFitted[t] = within[lane] != 0 ? 1 : 0;
+            for (unsigned r = 0; r < 3; ++r) laneAngles[3 * t + r] = angles[r][lane];
         }
     }
 }
@@ -314,15 +367,20 @@ OSGACTOR_INLINE void fitAxisBatch(const RetargetAxisBatch& batch, const ActorDef
         storeRotation(local[lane], multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
     }
     const AxisLanesFit fit = fitAxisLanes(batch, lanes, dofs);
+    // In locals, as in placeJoints.
+    double* const laneAngles = s.laneAngles.data();
+    double* const laneCosSin = s.laneCosSin.data();
+    std::uint8_t* const laneFitted = s.laneFitted.data();
+    const unsigned numRotations = batch.numRotations;
     for (unsigned lane = 0; lane < batch.numJoints; ++lane)
     {
         const unsigned t = batch.joints[lane];
-        s.laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-        for (unsigned r = 0; r < batch.numRotations; ++r)
+        laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
+        for (unsigned r = 0; r < numRotations; ++r)
         {
-            s.laneAngles[3 * t + r] = fit.angles[r][lane];
-            s.laneCosSin[4 * t + 2 * r] = fit.cosines[r][lane];
-            s.laneCosSin[4 * t + 2 * r + 1] = fit.sines[r][lane];
+            laneAngles[3 * t + r] = fit.angles[r][lane];
+            laneCosSin[4 * t + 2 * r] = fit.cosines[r][lane];
+            laneCosSin[4 * t + 2 * r + 1] = fit.sines[r][lane];
         }
     }
 }
@@ -351,54 +409,84 @@ glm::dvec3 placeRoot(const RetargetRig& rig, const RetargetWorkspace& w, unsigne
     return offset + (beforeRotation ? offsetRotation : localRotation) * jointSlide(k, dofs);
 }
 
-/** One target joint's DOFs and model matrix, its parent placed. Returns whether it counts as inexact (the source
-  * drives it, and it could not take its desired rotation). */
-OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double* sourceValues, double* targetValues,
-                                RetargetWorkspace& w)
+/** What the placement reads and writes per joint, as plain pointers taken once per frame into locals: the byte flags
+  * it writes (asDesired, targetExact) may alias anything, so pointers read from the vectors would be read again after
+  * each joint; locals whose address is never taken stay in registers. */
+struct PlacementArrays
 {
-    const ActorDefinition& source = *rig.getSourceDefinition();
+    const JointKinematics* kinematics;
+    const int* parents;
+    const RetargetPlacement* placement;
+    const double* desired;
+    const double* laneAngles;
+    const std::uint8_t* laneFitted;
+    const double* laneCosSin;
+    const double* rest;
+    const double* origins;
+    const std::uint8_t* originMoves;
+    const double* restLocalRotations;
+    std::uint8_t* asDesired;
+    std::uint8_t* targetExact;
+    glm::dmat4* targetModels;
+};
+
+OSGACTOR_INLINE PlacementArrays placementArrays(const RetargetRig& rig, RetargetWorkspace& w)
+{
     const ActorDefinition& target = *rig.getTargetDefinition();
     const RetargetJobTables& tables = rig.getJobTables();
-    const std::vector<double>& rest = rig.getTargetRestDofs();
-    const int targetRoot = rig.getTargetRoot();
     RetargetWorkspace::Scratch& s = w.scratch;
-    const JointKinematics& k = target.getKinematics(t);
-    const int parent = target.getParent(t);
+    return {target.getAllKinematics().data(), target.getParents().data(), tables.placement.data(),
+            s.desired.data(), s.laneAngles.data(), s.laneFitted.data(), s.laneCosSin.data(),
+            rig.getTargetRestDofs().data(), tables.origins.data(), tables.originMoves.data(),
+            tables.restLocalRotations.data(), s.asDesired.data(), w.targetExact.data(), w.targetModels.data()};
+}
+
+/** One target joint's DOFs and model matrix, its parent placed. Returns whether it counts as inexact (the source
+  * drives it, and it could not take its desired rotation). */
+OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a, unsigned t,
+                                const double* __restrict sourceValues, double* __restrict targetValues,
+                                RetargetWorkspace& w)
+{
+    const RetargetJobTables& tables = rig.getJobTables();
+    const JointKinematics& k = a.kinematics[t];
+    const int parent = a.parents[t];
     const bool hasParent = parent >= 0;
     const unsigned p = hasParent ? static_cast<unsigned>(parent) : 0;
-    const RotationColumns parentRotation = hasParent ? loadRotation(w.targetModels[p]) : identityColumns();
-    const Column parentPosition = hasParent ? loadColumn(&w.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
-    const bool parentExact = !hasParent || w.targetExact[p] != 0;
-    const bool parentAsDesired = !hasParent || s.asDesired[p] != 0;
-    const RotationColumns desired = loadRotation(&s.desired[t * kRotationDoubles]);
+    const RotationColumns parentRotation = hasParent ? loadRotation(a.targetModels[p]) : identityColumns();
+    const Column parentPosition = hasParent ? loadColumn(&a.targetModels[p][3][0]) : Column{0.0, 0.0, 0.0, 1.0};
+    const bool parentExact = !hasParent || a.targetExact[p] != 0;
+    const bool parentAsDesired = !hasParent || a.asDesired[p] != 0;
+    const RotationColumns desired = loadRotation(a.desired + t * kRotationDoubles);
 
-    const RetargetPlacement how = tables.placement[t];
+    const RetargetPlacement how = a.placement[t];
     RotationColumns rotation;
     bool exact = false;
-    if (how == RetargetPlacement::Rest)
+    if (how == RetargetPlacement::Euler && a.laneFitted[t] && parentAsDesired)
     {
-        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = rest[k.rotationDof[r]];
-        // Under a parent at its desired rotation (or none), the desired rotation is this product already.
-        rotation = parentAsDesired
-                       ? desired
-                       : multiply(parentRotation, loadRotation(&tables.restLocalRotations[t * kRotationDoubles]));
-    }
-    else if (how == RetargetPlacement::Euler && s.laneFitted[t] && parentAsDesired)
-    {
-        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
         exact = true;
         rotation = desired;
     }
-    else if (how == RetargetPlacement::Copy && parentExact && s.laneFitted[t])
+    else if (how == RetargetPlacement::Rest)
+    {
+        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = a.rest[k.rotationDof[r]];
+        // Under a parent at its desired rotation (or none), the desired rotation is this product already.
+        rotation = parentAsDesired
+                       ? desired
+                       : multiply(parentRotation, loadRotation(a.restLocalRotations + t * kRotationDoubles));
+    }
+    else if (how == RetargetPlacement::Copy && parentExact && a.laneFitted[t])
     {
         // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches).
-        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
+        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
         exact = true;
         rotation = desired;
     }
     else if (how == RetargetPlacement::Copy && parentExact)
     {
         // The same local frames as the source joint's: its angles, turned or clamped into the limits.
+        const ActorDefinition& source = *rig.getSourceDefinition();
+        const ActorDefinition& target = *rig.getTargetDefinition();
         const JointKinematics& sk = source.getKinematics(static_cast<unsigned>(rig.getPlans()[t].sourceB));
         bool clamped = false;
         for (unsigned r = 0; r < k.numRotations; ++r)
@@ -416,32 +504,33 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
         rotation =
             exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
     }
-    else if (how == RetargetPlacement::Axis && s.laneFitted[t])
+    else if (how == RetargetPlacement::Axis && a.laneFitted[t])
     {
         // Fewer than three rotations: the nearest the joint can come, never exact (as fitJointRotationDofs).
         rotation = jointFrame(tables, t, hasParent, parentRotation);
         for (unsigned r = 0; r < k.numRotations; ++r)
         {
-            targetValues[k.rotationDof[r]] = s.laneAngles[3 * t + r];
-            postRotate(rotation, k.rotationAxis[r], s.laneCosSin[4 * t + 2 * r], s.laneCosSin[4 * t + 2 * r + 1]);
+            targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+            postRotate(rotation, k.rotationAxis[r], a.laneCosSin[4 * t + 2 * r], a.laneCosSin[4 * t + 2 * r + 1]);
         }
     }
     else
     {
         const RotationColumns frame = jointFrame(tables, t, hasParent, parentRotation);
-        exact = fitJointRotationDofs(target, t, toMat3(multiply(transpose(frame), desired)), targetValues);
+        exact = fitJointRotationDofs(*rig.getTargetDefinition(), t, toMat3(multiply(transpose(frame), desired)),
+                                     targetValues);
         rotation = exact ? desired : rotateByDofs(frame, k, targetValues);
     }
     const bool counted = !exact && how != RetargetPlacement::Rest && k.numRotations > 0;
-    s.asDesired[t] = exact || (how == RetargetPlacement::Rest && parentAsDesired) ? 1 : 0;
+    a.asDesired[t] = exact || (how == RetargetPlacement::Rest && parentAsDesired) ? 1 : 0;
 
-    Column origin = loadColumn(&tables.origins[4 * t]);
-    if (tables.originMoves[t])
+    Column origin = loadColumn(a.origins + 4 * t);
+    if (a.originMoves[t])
     {
         const glm::dmat3 parentMatrix = toMat3(parentRotation);
         const glm::dmat3 localRotation = glm::transpose(parentMatrix) * toMat3(rotation);
         glm::dvec3 moved;
-        if (static_cast<int>(t) == targetRoot && rig.getSourceRoot() >= 0)
+        if (static_cast<int>(t) == rig.getTargetRoot() && rig.getSourceRoot() >= 0)
             moved = placeRoot(rig, w, t, parentMatrix, glm::dvec3(parentPosition[0], parentPosition[1],
                                                                   parentPosition[2]),
                               localRotation, targetValues);
@@ -449,10 +538,10 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, unsigned t, const double
             moved = glm::dvec3(k.offset[3]) + localRotation * jointSlide(k, targetValues);
         origin = Column{moved.x, moved.y, moved.z, 0.0};
     }
-    glm::dmat4& model = w.targetModels[t];
+    glm::dmat4& model = a.targetModels[t];
     storeRotation(&model[0][0], rotation);
     storeColumn(&model[3][0], parentPosition + combine(parentRotation, origin));
-    w.targetExact[t] = exact ? 1 : 0;
+    a.targetExact[t] = exact ? 1 : 0;
     return counted;
 }
 
@@ -468,19 +557,21 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
         std::memcpy(targetValues + first, rest + first, 3 * sizeof(double));
     for (const std::uint32_t dof : tables.translationDofs) targetValues[dof] = rest[dof];
     unsigned numInexact = 0;
-    // The bounds in locals: the joints' byte flags written in the loops could otherwise alias the tables' vectors, and
-    // the compiler would read them again on every step.
+    // The bounds and arrays in locals: the joints' byte flags written in the loops could otherwise alias the tables'
+    // vectors, and the compiler would read them again on every step.
+    const PlacementArrays arrays = placementArrays(rig, w);
     const std::size_t numLevels = tables.levelJoints.empty() ? 0 : tables.levelJoints.size() - 1;
     const std::uint32_t* const levelJoints = tables.levelJoints.data();
     const std::uint32_t* const levelBatches = tables.levelBatches.data();
     const std::uint32_t* const placeOrder = tables.placeOrder.data();
+    const RetargetAxisBatch* const axisBatches = tables.axisBatches.data();
     for (std::size_t level = 0; level < numLevels; ++level)
     {
         const std::uint32_t lastBatch = levelBatches[level + 1], lastJoint = levelJoints[level + 1];
         for (std::uint32_t b = levelBatches[level]; b < lastBatch; ++b)
-            fitAxisBatch(tables.axisBatches[b], target, tables, targetValues, w);
+            fitAxisBatch(axisBatches[b], target, tables, targetValues, w);
         for (std::uint32_t i = levelJoints[level]; i < lastJoint; ++i)
-            numInexact += placeJoint(rig, placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
+            numInexact += placeJoint(rig, arrays, placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
     }
     return numInexact;
 }
@@ -491,7 +582,7 @@ OSGACTOR_HOT_PATH bool RetargetJob::run()
 {
     if (!validate()) return false;
     RetargetWorkspace& w = *workspace;
-    poseSource(*rig->getSourceDefinition(), rig->getJobTables(), sourceDofs.data(), w);
+    poseSource(*rig, rig->getJobTables(), sourceDofs.data(), w);
     desireRotations(*rig, w);
     fitEulerBatches(*rig, targetDofs.data(), w);
     takeCopyBatches(rig->getJobTables(), sourceDofs.data(), w);

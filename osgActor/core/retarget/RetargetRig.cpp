@@ -606,6 +606,19 @@ struct RetargetRigBuilder
             tables.sourcePosedParents.push_back(parent < 0 ? -1
                                                            : static_cast<int>(tables.sourceSlots[static_cast<unsigned>(parent)]));
         }
+        tables.desire.assign(numTarget, RetargetDesire::FromPlan);
+        tables.desireSlot.assign(numTarget, 0);
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const RetargetJointPlan& plan = rig->_plans[j];
+            if (plan.kind == RetargetJointKind::Rest)
+                tables.desire[j] = RetargetDesire::Rest;
+            else if (plan.weight == 1.0 && plan.sourceB >= 0)
+            {
+                tables.desire[j] = plan.postIsIdentity ? RetargetDesire::Follow : RetargetDesire::FollowThenPost;
+                tables.desireSlot[j] = tables.sourceSlots[static_cast<unsigned>(plan.sourceB)];
+            }
+        }
         for (unsigned j = 0; j < numTarget; ++j)
         {
             storeRotation(&tables.postRotations[j * kRotationDoubles], rig->_plans[j].postRotation);
@@ -783,7 +796,7 @@ struct RetargetRigBuilder
         const JointKinematics& k = t.getKinematics(joint);
         const unsigned i = k.rotationAxis[0], j = k.rotationAxis[1];
         batch.joints[lane] = joint;
-        for (unsigned r = 0; r < 3; ++r) batch.axes[r][lane] = static_cast<std::uint8_t>(k.rotationAxis[r]);
+        for (unsigned r = 0; r < 3; ++r) batch.columnAt[r][lane] = static_cast<std::uint8_t>(4 * k.rotationAxis[r]);
         batch.parity[lane] = j == (i + 1) % 3 ? 1.0 : -1.0;
         for (unsigned r = 0; r < 3; ++r)
         {
