@@ -96,6 +96,17 @@ float bitsFloat(std::uint32_t bits)
     return value;
 }
 
+/** Sets whether the node's bound covers its rotations, as the actor's bound mode and the joint's DOFs say. */
+void giveBoundMode(SkeletonNode& node, const ActorDefinition& def, ActorNode::BoundMode mode)
+{
+    // A joint that translates moves its subtree's centre; one with no DOF never moves, and its bound following the
+    // pose is then both exact and never dirtied.
+    const DofMask dofs = def.getDofMask(node.getJointIndex());
+    const bool covers =
+        mode == ActorNode::BOUND_COVERS_ROTATIONS && (dofs & kRotationDofs) != 0 && (dofs & kTranslationDofs) == 0;
+    node.setBoundCoversRotations(covers, toOsg(def.getOffsetTranslation(node.getJointIndex())));
+}
+
 } // namespace
 
 ActorNode::ActorNode()
@@ -171,10 +182,10 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
     _pose = ActorPose(std::move(definition));
     updateSharedObjects();
     dropUnfittingIkChains();
-    buildSkeletonNodes();
-    // Pose the new nodes at once, so a fresh actor has correct bounds and queries before its first frame.
+    // Pose the actor before its nodes exist, so a fresh actor has correct bounds and queries before its first
+    // frame: FK then reads and writes the pose's own arrays in order, rather than the new nodes scattered on the heap.
     _pose.updateMatrices();
-    writeJointMatrices();
+    buildSkeletonNodes();
     writeActorMatrix();
 }
 
@@ -247,10 +258,19 @@ void ActorNode::buildSkeletonNodes()
 {
     const ActorDefinition* def = getDefinition().get();
     if (!def) return;
+    // Each node is made, linked, given its bound mode and its place for the local matrix in one visit, while its
+    // cache lines are fresh: a large actor's nodes do not fit the caches, and every later pass over them would fetch
+    // them again.
+    std::vector<double*> targets;
+    targets.reserve(def->getNumJoints());
     _skeletonNodes.reserve(def->getNumJoints());
     for (unsigned j = 0; j < def->getNumJoints(); ++j)
     {
         osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def->getJointName(j));
+        giveBoundMode(*node, *def, _boundMode);
+        // Its matrix is written in place below (the redirect copies the pose's): its inverse must be made afresh.
+        SkeletonNodeAccess::matrixWritten(*node);
+        targets.push_back(SkeletonNodeAccess::matrixStorage(*node));
         const int parent = def->getParent(j);
         // osg::Group's own addChild(): the skeleton node's would report each edit up its chain to this actor, a walk
         // as deep as the joint; the plan is dirtied once below.
@@ -260,7 +280,13 @@ void ActorNode::buildSkeletonNodes()
         _skeletonNodes.push_back(node);
     }
     dirtyCullPlan();
-    bindLocalMatricesToNodes();
+    // Copies the pose's local matrices into the nodes; they are written, so the changes are consumed here: no pass
+    // over the nodes to dirty them (a new node's bound is not computed yet, nor are its parents').
+    _pose.redirectLocalMatrices(targets);
+    bool written = false;
+    _pose.consumeChangedLocals([&written](unsigned, double*) { written = true; });
+    if (written) ++_poseVersion;
+    _boundsToPropagate = true;
 }
 
 void ActorNode::bindLocalMatricesToNodes()
@@ -284,16 +310,8 @@ void ActorNode::applyBoundMode()
 {
     const ActorDefinition* def = getDefinition().get();
     if (!def) return;
-    for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes)
-    {
-        // A joint that translates moves its subtree's centre; one with no DOF never moves, and its bound following
-        // the pose is then both exact and never dirtied.
-        const DofMask dofs = def->getDofMask(node->getJointIndex());
-        // Set on every node, changed or not: a new definition bound to the same nodes may move a joint's centre.
-        const bool covers =
-            _boundMode == BOUND_COVERS_ROTATIONS && (dofs & kRotationDofs) != 0 && (dofs & kTranslationDofs) == 0;
-        node->setBoundCoversRotations(covers, toOsg(def->getOffsetTranslation(node->getJointIndex())));
-    }
+    // Set on every node, changed or not: a new definition bound to the same nodes may move a joint's centre.
+    for (const osg::ref_ptr<SkeletonNode>& node : _skeletonNodes) giveBoundMode(*node, *def, _boundMode);
 }
 
 void ActorNode::releaseSkeletonNodes()

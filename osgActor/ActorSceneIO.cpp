@@ -107,8 +107,9 @@ void applyJointState(ActorNode& actor, unsigned joint, const JointDocument& docu
     const ActorDefinition& definition = *actor.getDefinition();
     for (unsigned d = 0; d < kNumDofTypes; ++d)
     {
+        if (!document.values[d]) continue; // most joints carry no value: no look-up in the definition for them
         const int dof = definition.getDofIndex(joint, static_cast<Dof>(d));
-        if (document.values[d] && dof >= 0) actor.setDof(static_cast<unsigned>(dof), *document.values[d]);
+        if (dof >= 0) actor.setDof(static_cast<unsigned>(dof), *document.values[d]);
     }
     // A new node is shown: touch only those the document hides (a pass over every node of a large actor is paid in
     // cache misses).

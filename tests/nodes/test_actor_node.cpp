@@ -146,6 +146,16 @@ TEST(ActorNode, AFreshActorIsPosedBeforeItsFirstFrame)
     EXPECT_TRUE(vec3Near(actor->getJointWorldPosition(3), osg::Vec3d(2.5, 0, 0)));
 }
 
+TEST(ActorNode, AFreshActorsSkeletonNodesGiveTheInverseOfTheirPoseBeforeItsFirstFrame)
+{
+    // The nodes' matrices are written in place as the actor is made, not through setMatrix(): their inverses must
+    // be made from those matrices, not kept from the identity the nodes were made with.
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    EXPECT_TRUE(vec3Near(actor->getSkeletonNode(1u)->getInverseMatrix().getTrans(), osg::Vec3d(-1, 0, 0)));
+    EXPECT_TRUE(vec3Near(actor->getSkeletonNode(2u)->getInverseMatrix().getTrans(), osg::Vec3d(-1, 0, 0)));
+    EXPECT_TRUE(vec3Near(actor->getSkeletonNode(3u)->getInverseMatrix().getTrans(), osg::Vec3d(-0.5, 0, 0)));
+}
+
 // --- DOFs reach the node matrices in the update traversal ---
 
 TEST(ActorNode, UpdateTraversalWritesTheJointMatrices)
