@@ -53,6 +53,23 @@ ActorCullPlan::ActorCullPlan(osg::Group& actor)
 {
     for (unsigned i = 0; i < actor.getNumChildren(); ++i) addChild(*actor.getChild(i), -1);
     std::unordered_set<const osg::Referenced*>().swap(_checked);
+    noteShape();
+}
+
+void ActorCullPlan::noteShape()
+{
+    for (unsigned i = 0; i < _steps.size(); i = _steps[i].end ? _steps[i].end : i + 1)
+    {
+        if (_steps[i].kind == JOINT) _topJointSteps.push_back(i);
+        else _topStepsAllJoints = false;
+    }
+    for (unsigned i = 0; i < _steps.size(); ++i)
+    {
+        const Step& step = _steps[i];
+        if (step.kind != JOINT && step.kind != GEODE && step.kind != DRAWABLE) continue;
+        if (std::find(_masks.begin(), _masks.end(), step.mask) == _masks.end()) _masks.push_back(step.mask);
+        if (step.kind == DRAWABLE) _drawableSteps.push_back(i);
+    }
 }
 
 bool ActorCullPlan::isPlainJoint(const SkeletonNode& joint)

@@ -214,7 +214,7 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
     {
-        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}, false, {}, {}, {}, {}};
+        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}, false, {}, {}};
         const osg::StateSet* geodeState = nullptr;
         auto note = [](std::vector<const osg::StateSet*>& states, const osg::StateSet* state) {
             if (state && std::find(states.begin(), states.end(), state) == states.end()) states.push_back(state);
@@ -410,22 +410,10 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
 
 void InstancedCull::compilePlainInstances(InstancedCullState::PlanVerdict& verdict)
 {
-    const ActorCullPlan& plan = *verdict.plan;
-    const std::vector<Step>& steps = plan.getSteps();
-    // The steps at the top, each a joint in the actor's frame: the only ones addPlainInstances() tests.
-    for (unsigned i = 0; i < steps.size(); i = steps[i].end)
-    {
-        if (steps[i].kind != ActorCullPlan::JOINT) return;
-        verdict.topJointSteps.push_back(i);
-    }
-    for (std::size_t i = 0; i < steps.size(); ++i)
+    const std::vector<Step>& steps = verdict.plan->getSteps();
+    for (unsigned i : verdict.plan->getDrawableSteps())
     {
         const Step& step = steps[i];
-        if (step.kind != ActorCullPlan::JOINT && step.kind != ActorCullPlan::GEODE && step.kind != ActorCullPlan::DRAWABLE)
-            continue;
-        if (std::find(verdict.masks.begin(), verdict.masks.end(), step.mask) == verdict.masks.end())
-            verdict.masks.push_back(step.mask);
-        if (step.kind != ActorCullPlan::DRAWABLE) continue;
         const unsigned batch = verdict.batchOfStep[i];
         verdict.plainInstances.push_back({static_cast<unsigned>(step.joint + 1), batch, step.node->asDrawable()});
         auto counted = std::find_if(verdict.instancesPerBatch.begin(), verdict.instancesPerBatch.end(),
@@ -442,21 +430,11 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
     // is a small feature, a subtree below a top joint with no proof that none of its spheres is one. The instances
     // being recorded for an idle actor go through the steps too.
     if (!verdict.compiled || _computeNearFar || _recording) return false;
-    for (osg::Node::NodeMask mask : verdict.masks)
-        if (isMasked(mask)) return false;
-    if (_smallFeatureCulling)
-    {
-        const ActorCullPlan& plan = *verdict.plan;
-        const std::vector<Step>& steps = plan.getSteps();
-        for (unsigned i : verdict.topJointSteps)
-        {
-            const Step& step = steps[i];
-            if (step.cullingActive && isSmallFeature(step.node->getBound(), 0)) return false;
-            if (!plan.provesNoSmallFeatureBelow(step, _state._smallFeatureProof, actorPixelSizeVector(),
-                                                _smallFeaturePixelSize))
-                return false;
-        }
-    }
+    if (!verdict.plan->needsNoTestBelowTopJoints(
+            _traversalMask, _maskOverride, _smallFeatureCulling ? &_state._smallFeatureProof : nullptr,
+            _smallFeatureCulling ? actorPixelSizeVector() : osg::Vec4(), _smallFeaturePixelSize,
+            [this](const osg::BoundingSphere& bound) { return isSmallFeature(bound, 0); }))
+        return false;
     // Every instance in its batch's region (nextInstance() moves a batch that outgrows it: the steps do that).
     std::vector<InstancedCullState::Batch>& batches = _state._batches;
     for (const std::pair<unsigned, unsigned>& counted : verdict.instancesPerBatch)

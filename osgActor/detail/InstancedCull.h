@@ -123,10 +123,9 @@ private:
         std::vector<unsigned> batchOfStep;
         /** The batches of its skinned meshes, in step order. */
         std::vector<unsigned> skinBatches;
-        /** A plan of rigid parts only, whose every top step is a joint (in the actor's frame), compiled for the cull
-          * that need test nothing below those joints (addPlainInstances()): its drawables in step order, each with
-          * its frame and batch; the batches with their instances per actor; the distinct node masks of its joints,
-          * geodes and drawables; and its top joints' steps. */
+        /** A plan of rigid parts only, compiled for the cull that need test nothing below its top joints
+          * (addPlainInstances()): its drawables in step order, each with its frame and batch, and the batches with
+          * their instances per actor. */
         struct PlainInstance
         {
             unsigned frame; // the joint's + 1
@@ -136,8 +135,6 @@ private:
         bool compiled = false;
         std::vector<PlainInstance> plainInstances;
         std::vector<std::pair<unsigned, unsigned>> instancesPerBatch;
-        std::vector<osg::Node::NodeMask> masks;
-        std::vector<unsigned> topJointSteps;
     };
     /** The drawables of one (geode state set, drawable) or (geode state set, skinned mesh) and their instances' data
       * this cull: a rigid part's model-view matrices (4 texels, 16 floats, OSG's rows one after the other), or a
