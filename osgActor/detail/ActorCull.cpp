@@ -272,8 +272,11 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
                                      const ActorCullState::Versions& versions)
 {
     // What ActorCull's constructor would find, ahead: kept calls for this key and these counters, the plan current.
+    // Near and far computed from primitives take the current culling set's frustum, the actor's when entered: only
+    // without them.
     const bool planKept = state._plan && state._planVersion == versions.plan;
-    if (state._prepared || !planKept || !state._replayable || state._callsTraverse || !(state._versions == versions))
+    if (state._prepared || !planKept || !state._replayable || state._callsTraverse || !(state._versions == versions) ||
+        cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
         return false;
     // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it, the same call.
     osg::Matrixd actorModelView = *cv.getModelViewMatrix();

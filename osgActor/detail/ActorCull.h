@@ -261,9 +261,9 @@ public:
     /** For an actor (culled as one, no cull callback or state set, a relative frame) the visitor is about to enter
       * (ActorNode::accept()), with the state acquired: if its last cull's calls hold for what the visitor holds now
       * (the key with the actor's model-view matrix as the visitor will compute it, the same counters and a current
-      * plan) and none of them traverses a subtree (which would need the actor's frame on the visitor's stacks), tests
-      * the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is seen, makes the calls again; true
-      * then. false, having made no call, where the visitor must enter the actor. */
+      * plan), none of them traverses a subtree (which would need the actor's frame on the visitor's stacks) and near
+      * and far are not computed, tests the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is
+      * seen, makes the calls again; true then. false, having made no call, where the visitor must enter the actor. */
     static bool replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
                                      const ActorCullState::Versions& versions);
 
