@@ -684,6 +684,28 @@ bool ActorNode::poseWorkDue(const osg::FrameStamp* stamp)
     return due;
 }
 
+void ActorNode::accept(osg::NodeVisitor& nv)
+{
+    if (!nv.validNodeMask(*this)) return;
+    nv.pushOntoNodePath(this);
+    osgUtil::CullVisitor* cv = nv.getVisitorType() == osg::NodeVisitor::CULL_VISITOR ? nv.asCullVisitor() : nullptr;
+    // Only where the visitor would do nothing but test the bound, push the actor's frame and cull it as one: no cull
+    // callback or state set here, a relative frame, no update policy noting the view, no ActorGroup's preparation.
+    const bool replayed = cv && _cullMode == CULL_AS_ONE && !_updatePolicy.onlyWhenSeen && !getCullCallback() &&
+                          !getStateSet() && getReferenceFrame() == RELATIVE_RF && !_cullState->isHeldBy(cv) &&
+                          detail::ActorCull::canCullAsOne(*cv) && _cullState->tryAcquire() &&
+                          [&] {
+                              getBound(); // as the ordinary way computes it first: a recomputed bound is a change
+                              const bool done = detail::ActorCull::replayBeforeEntering(
+                                  *cv, *_cullState, *this,
+                                  detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
+                              _cullState->release();
+                              return done;
+                          }();
+    if (!replayed) nv.apply(*this);
+    nv.popFromNodePath();
+}
+
 void ActorNode::traverse(osg::NodeVisitor& nv)
 {
     if (nv.getVisitorType() != osg::NodeVisitor::CULL_VISITOR)

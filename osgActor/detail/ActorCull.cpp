@@ -182,6 +182,7 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     if (replayable) return;
     _replayable = false;
     _calls.clear();
+    _callsTraverse = false;
     _keptModelViews = nullptr; // free for the pool again once the render graph lets go of it
 
     // Every planned joint's model-view matrix, parents first.
@@ -210,6 +211,22 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     const osg::Matrixd* frames = matrices.data();
     std::size_t provenUntil = 0; // the steps before it are below a joint with no small feature below it
     const bool frustumCullingForNearFar = view.computeNearFar() && view.frustumCulling();
+    if (!frustumCullingForNearFar &&
+        _plan->needsNoTestBelowTopJoints(view.traversalMask, view.nodeMaskOverride,
+                                         smallFeatureCulling ? &_smallFeatureProof : nullptr, pixelSizeVector,
+                                         view.smallFeaturePixelSize, [&](const osg::BoundingSphere& bound) {
+                                             return isSmallFeature(bound, 0, view);
+                                         }))
+    {
+        // Nothing culled (as the loop below would find, step by step): the drawables' depths alone.
+        for (unsigned i : _plan->getDrawableSteps())
+        {
+            const ActorCullPlan::Step& step = stepData[i];
+            const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
+            depths[i] = box.valid() ? eyeDepth(box.center(), frames[step.joint + 1]) : 0.0f;
+        }
+        return;
+    }
     for (std::size_t i = 0; i < numSteps; ++i)
     {
         const ActorCullPlan::Step& step = stepData[i];
@@ -251,22 +268,45 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     }
 }
 
-void ActorCull::replay()
+bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
+                                     const ActorCullState::Versions& versions)
 {
-    for (const Call& c : _state._calls)
+    // What ActorCull's constructor would find, ahead: kept calls for this key and these counters, the plan current.
+    // Near and far computed from primitives take the current culling set's frustum, the actor's when entered: only
+    // without them.
+    const bool planKept = state._plan && state._planVersion == versions.plan;
+    if (state._prepared || !planKept || !state._replayable || state._callsTraverse || !(state._versions == versions) ||
+        cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
+        return false;
+    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it, the same call.
+    osg::Matrixd actorModelView = *cv.getModelViewMatrix();
+    actor.computeLocalToWorldMatrix(actorModelView, &cv);
+    if (!(ActorCullState::keyOf(ActorCullView(cv), actorModelView) == state._key)) return false;
+    const ActorCullPlan* kept = state._plan.get();
+    state.currentPlan(actor, versions.plan);
+    if (state._plan.get() != kept) return false; // changed: culled afresh, the visitor in the actor
+    // The visitor's own test on its way in (the mask was tested by accept()), its writes included; a culled actor
+    // adds nothing.
+    if (!cv.isCulled(actor)) replayCalls(cv, state._calls);
+    return true;
+}
+
+void ActorCull::replayCalls(osgUtil::CullVisitor& cv, const std::vector<Call>& calls)
+{
+    for (const Call& c : calls)
     {
         switch (c.kind)
         {
-        case Call::PUSH_STATE: _cv.pushStateSet(static_cast<osg::StateSet*>(c.object)); break;
-        case Call::POP_STATE: _cv.popStateSet(); break;
-        case Call::PUSH_PATH: _cv.pushOntoNodePath(static_cast<osg::Node*>(c.object)); break;
-        case Call::POP_PATH: _cv.popFromNodePath(); break;
-        case Call::ADD_LEAF: _cv.addDrawableAndDepth(static_cast<osg::Drawable*>(c.object), c.matrix, c.depth); break;
-        case Call::NEAR_FAR: _cv.updateCalculatedNearFar(*c.modelView, *static_cast<osg::Drawable*>(c.object), true); break;
+        case Call::PUSH_STATE: cv.pushStateSet(static_cast<osg::StateSet*>(c.object)); break;
+        case Call::POP_STATE: cv.popStateSet(); break;
+        case Call::PUSH_PATH: cv.pushOntoNodePath(static_cast<osg::Node*>(c.object)); break;
+        case Call::POP_PATH: cv.popFromNodePath(); break;
+        case Call::ADD_LEAF: cv.addDrawableAndDepth(static_cast<osg::Drawable*>(c.object), c.matrix, c.depth); break;
+        case Call::NEAR_FAR: cv.updateCalculatedNearFar(*c.modelView, *static_cast<osg::Drawable*>(c.object), true); break;
         case Call::TRAVERSE:
-            if (c.matrix) _cv.pushModelViewMatrix(c.matrix, osg::Transform::RELATIVE_RF);
-            static_cast<osg::Node*>(c.object)->accept(_cv);
-            if (c.matrix) _cv.popModelViewMatrix();
+            if (c.matrix) cv.pushModelViewMatrix(c.matrix, osg::Transform::RELATIVE_RF);
+            static_cast<osg::Node*>(c.object)->accept(cv);
+            if (c.matrix) cv.popModelViewMatrix();
             break;
         }
     }

@@ -201,6 +201,7 @@ private:
     Versions _versions;
     Key _key;
     std::vector<Call> _calls;
+    bool _callsTraverse = false; // a TRAVERSE among them
     Pool<JointModelViews> _modelViews;
     Pool<JointDrawBatch> _batches;
     Pool<osg::RefMatrix> _matrices;
@@ -257,11 +258,21 @@ public:
     ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
               const ActorCullState::Versions& versions);
 
+    /** For an actor (culled as one, no cull callback or state set, a relative frame) the visitor is about to enter
+      * (ActorNode::accept()), with the state acquired: if its last cull's calls hold for what the visitor holds now
+      * (the key with the actor's model-view matrix as the visitor will compute it, the same counters and a current
+      * plan), none of them traverses a subtree (which would need the actor's frame on the visitor's stacks) and near
+      * and far are not computed, tests the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is
+      * seen, makes the calls again; true then. false, having made no call, where the visitor must enter the actor. */
+    static bool replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
+                                     const ActorCullState::Versions& versions);
+
 private:
     using Step = ActorCullPlan::Step;
     using Call = ActorCullState::Call;
 
-    void replay();
+    void replay() { replayCalls(_cv, _state._calls); }
+    static void replayCalls(osgUtil::CullVisitor& cv, const std::vector<Call>& calls);
     /** The plan followed afresh from the prepared decisions, every call kept for the next frame. */
     void cull();
     void addDrawable(const Step& step, unsigned stepIndex);
@@ -280,6 +291,7 @@ private:
               const osg::Matrixd* modelView = nullptr)
     {
         _state._calls.push_back({kind, depth, object, matrix, modelView});
+        if (kind == Call::TRAVERSE) _state._callsTraverse = true;
     }
 
     /** The batch open for the current state graph, or null. */

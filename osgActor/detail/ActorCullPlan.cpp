@@ -1,6 +1,7 @@
 #include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/Prefetch.h>
+#include <osgActor/core/detail/HotPath.h>
 
 #include <osg/Geometry>
 #include <osg/ShapeDrawable>
@@ -52,6 +53,23 @@ ActorCullPlan::ActorCullPlan(osg::Group& actor)
 {
     for (unsigned i = 0; i < actor.getNumChildren(); ++i) addChild(*actor.getChild(i), -1);
     std::unordered_set<const osg::Referenced*>().swap(_checked);
+    noteShape();
+}
+
+void ActorCullPlan::noteShape()
+{
+    for (unsigned i = 0; i < _steps.size(); i = _steps[i].end ? _steps[i].end : i + 1)
+    {
+        if (_steps[i].kind == JOINT) _topJointSteps.push_back(i);
+        else _topStepsAllJoints = false;
+    }
+    for (unsigned i = 0; i < _steps.size(); ++i)
+    {
+        const Step& step = _steps[i];
+        if (step.kind != JOINT && step.kind != GEODE && step.kind != DRAWABLE) continue;
+        if (std::find(_masks.begin(), _masks.end(), step.mask) == _masks.end()) _masks.push_back(step.mask);
+        if (step.kind == DRAWABLE) _drawableSteps.push_back(i);
+    }
 }
 
 bool ActorCullPlan::isPlainJoint(const SkeletonNode& joint)
@@ -149,15 +167,33 @@ void ActorCullPlan::addJoint(SkeletonNode& node, int parent)
     if (parent < 0) noteGeodesBelow(index);
 }
 
+namespace {
+
+// Built for x86-64-v3 too (four doubles a lane): every actor's every joint goes through both at every cull. The file
+// is compiled without contracting products and sums into fused multiply-adds, so each clone gives the same bits.
+
+OSGACTOR_HOT_PATH void composeJointModelViews(const ActorCullPlan::Joint* joints, std::size_t numJoints,
+                                              osg::Matrixd* modelViews)
+{
+    for (std::size_t j = 0; j < numJoints; ++j)
+        composeModelView(joints[j].node->getMatrix().ptr(),
+                         modelViews[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
+}
+
+OSGACTOR_HOT_PATH void addJointsToProof(const ActorCullPlan::Joint* joints, std::size_t numJoints,
+                                        SmallFeatureProof& proof)
+{
+    proof.reset(numJoints);
+    for (std::size_t j = 0; j < numJoints; ++j) proof.addJoint(j, joints[j].parent, joints[j].node->getMatrix());
+}
+
+} // namespace
+
 void ActorCullPlan::composeModelViews(osg::Matrixd* modelViews, SmallFeatureProof* proof) const
 {
-    for (std::size_t j = 0; j < _joints.size(); ++j)
-        composeModelView(_joints[j].node->getMatrix().ptr(),
-                         modelViews[static_cast<std::size_t>(_joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
-    if (!proof) return;
+    composeJointModelViews(_joints.data(), _joints.size(), modelViews);
     // Apart, so that the products above keep a loop of their own (the matrices are in the cache now).
-    proof->reset(_joints.size());
-    for (std::size_t j = 0; j < _joints.size(); ++j) proof->addJoint(j, _joints[j].parent, _joints[j].node->getMatrix());
+    if (proof) addJointsToProof(_joints.data(), _joints.size(), *proof);
 }
 
 bool ActorCullPlan::provesNoSmallFeatureBelow(const Step& step, const SmallFeatureProof& proof,

@@ -98,6 +98,29 @@ public:
       * feature), for the actor frame's pixel-size vector. */
     bool provesNoSmallFeatureBelow(const Step& step, const SmallFeatureProof& proof, const osg::Vec4& actorVector,
                                    float pixelSize) const;
+    /** The DRAWABLE steps, in order. */
+    const std::vector<unsigned>& getDrawableSteps() const { return _drawableSteps; }
+    /** Whether a cull would test nothing below the top joints' own spheres, so that it culls nothing below them: no
+      * joint, geode or drawable ruled out by the visitor's masks, and either no small-feature culling (proof null) or
+      * every step at the top a joint whose sphere is no small feature in the actor's frame (isSmallFeatureAtTop(),
+      * the visitor's test there) and below which the proof holds, for the actor frame's pixel-size vector. */
+    template <class SmallFeatureTest>
+    bool needsNoTestBelowTopJoints(unsigned traversalMask, unsigned nodeMaskOverride, const SmallFeatureProof* proof,
+                                   const osg::Vec4& actorVector, float pixelSize,
+                                   SmallFeatureTest&& isSmallFeatureAtTop) const
+    {
+        for (osg::Node::NodeMask mask : _masks)
+            if ((traversalMask & (nodeMaskOverride | mask)) == 0) return false;
+        if (!proof) return true;
+        if (!_topStepsAllJoints) return false;
+        for (unsigned i : _topJointSteps)
+        {
+            const Step& step = _steps[i];
+            if (step.cullingActive && isSmallFeatureAtTop(step.node->getBound())) return false;
+            if (!provesNoSmallFeatureBelow(step, *proof, actorVector, pixelSize)) return false;
+        }
+        return true;
+    }
 
 protected:
     ~ActorCullPlan() override = default;
@@ -144,8 +167,16 @@ private:
     bool isUnchanged(const NodeCheck& check) const;
     static bool isUnchanged(const StateCheck& check);
 
+    /** Once planned: the distinct masks of the JOINT, GEODE and DRAWABLE steps, the steps at the top (each a joint:
+      * _topStepsAllJoints) and the DRAWABLE steps. */
+    void noteShape();
+
     std::vector<Step> _steps;
     std::vector<Joint> _joints;
+    std::vector<osg::Node::NodeMask> _masks;
+    std::vector<unsigned> _topJointSteps;
+    bool _topStepsAllJoints = true;
+    std::vector<unsigned> _drawableSteps;
     std::vector<const osg::Node*> _geodesBelow; // runs of Joint::firstGeode, numGeodes
     std::vector<NodeCheck> _checks;
     std::vector<StateCheck> _stateChecks;

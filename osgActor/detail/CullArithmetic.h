@@ -99,14 +99,14 @@ public:
     void reset(std::size_t numJoints)
     {
         _reach.resize(numJoints);
-        _deviation = 0.0;
+        for (double& lane : _deviation) lane = 0.0;
         _maxReach = 0.0;
     }
     /** A planned joint's local matrix (in its parent's frame), parents first (parent -1: the actor's frame). */
     void addJoint(std::size_t joint, int parent, const osg::Matrixd& local)
     {
         const double* m = local.ptr();
-        _deviation += deviationFromRigid(m);
+        addDeviationFromRigid(m);
         // How far the joint's origin can be from the actor's (actor units, frames rigid): the sum of the
         // translations' lengths on the way, each at most its components' absolute sum.
         const double reach = (parent < 0 ? 0.0 : _reach[static_cast<std::size_t>(parent)]) + std::abs(m[12]) +
@@ -119,8 +119,9 @@ public:
     bool holds(const osg::BoundingSphere& top, const osg::Vec4& actorVector, float pixelSize,
                double smallestRadius) const
     {
-        // Every joint's rows orthonormal and last column (0, 0, 0, 1) to within 1e-9 (NaN fails too).
-        if (!(_deviation < 1e-18) || !top.valid() || !(pixelSize > 0.0f)) return false;
+        // Every joint's rows orthonormal and last column (0, 0, 0, 1) to within about 1e-9 (NaN fails too).
+        const double deviation = (_deviation[0] + _deviation[1]) + (_deviation[2] + _deviation[3]);
+        if (!(deviation < 1e-18) || !top.valid() || !(pixelSize > 0.0f)) return false;
         const double gradient = osg::Vec3d(actorVector.x(), actorVector.y(), actorVector.z()).length();
         const osg::Vec3d centre(top.center());
         const double extent = centre.length() + top.radius() + 2.0 * _maxReach; // coordinates in any frame below
@@ -137,25 +138,30 @@ private:
       * so that only spheres within this share of the threshold are tested exactly. */
     static constexpr double kRelativeTolerance = 1e-4;
 
-    /** How far a matrix is from rotation and translation only: the sum of the squares of its rows' dot products'
-      * departures from orthonormal and of its last column's from (0, 0, 0, 1). Without branches: it is summed over
-      * every joint of every actor, and compared once. */
-    static double deviationFromRigid(const double* m)
+    /** Adds how far a matrix is from rotation and translation only: the squares of the departures of its upper 3x3
+      * block's columns from orthonormal (for a square block, as far as its rows' are: R^T R and R R^T depart from the
+      * identity by the same Frobenius norm), and of its last column's from (0, 0, 0, 1). Kept in four sums (one per
+      * column of the block, one for the last column) until holds() adds them: summed over every joint of every
+      * actor, without branches, so that the compiler may take the columns two or four at once. */
+    void addDeviationFromRigid(const double* m)
     {
-        double sum = m[3] * m[3] + m[7] * m[7] + m[11] * m[11] + (m[15] - 1.0) * (m[15] - 1.0);
-        for (int a = 0; a < 3; ++a)
-            for (int b = a; b < 3; ++b)
-            {
-                const double dot = m[4 * a] * m[4 * b] + m[4 * a + 1] * m[4 * b + 1] + m[4 * a + 2] * m[4 * b + 2];
-                const double departure = dot - (a == b ? 1.0 : 0.0);
-                sum += departure * departure;
-            }
-        return sum;
+        // Lane k: column k's squared length less 1, and its product with column (k + 1) mod 3; lane 3 the last
+        // column's first three entries, squared (they are 0 in a rigid matrix).
+        static constexpr int kNext[3] = {1, 2, 0};
+        double column[4], across[3];
+        for (int k = 0; k < 3; ++k)
+        {
+            column[k] = m[k] * m[k] + m[4 + k] * m[4 + k] + m[8 + k] * m[8 + k] - 1.0;
+            across[k] = m[k] * m[kNext[k]] + m[4 + k] * m[4 + kNext[k]] + m[8 + k] * m[8 + kNext[k]];
+        }
+        column[3] = m[3] * m[3] + m[7] * m[7] + m[11] * m[11];
+        for (int k = 0; k < 3; ++k) _deviation[k] += column[k] * column[k] + across[k] * across[k];
+        _deviation[3] += column[3] + (m[15] - 1.0) * (m[15] - 1.0);
     }
 
     std::vector<double> _reach;
     double _maxReach = 0.0;
-    double _deviation = 0.0;
+    double _deviation[4] = {0.0, 0.0, 0.0, 0.0};
 };
 
 /** Whether a box in a frame lies wholly outside one plane of a frustum given in eye space (the projection's culling

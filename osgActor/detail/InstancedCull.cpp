@@ -135,6 +135,14 @@ bool isCullingActive(const osg::Node& node)
     return node.getCullingActive() && node.getNumChildrenWithCullingDisabled() == 0;
 }
 
+/** A rigid part's instance: its model-view matrix (eye space) as OSG hands a matrix to OpenGL (glLoadMatrixd, which
+  * keeps floats): each double rounded to the nearest float, OSG's rows one after the other. */
+void writeInstanceMatrix(const osg::Matrixd& modelView, float* out)
+{
+    const double* m = modelView.ptr();
+    for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
+}
+
 } // namespace
 
 bool InstancedCull::isInstanceableState(const osg::StateSet* state)
@@ -241,7 +249,7 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
     {
-        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}};
+        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}, false, {}, {}};
         const osg::StateSet* geodeState = nullptr;
         auto note = [](std::vector<const osg::StateSet*>& states, const osg::StateSet* state) {
             if (state && std::find(states.begin(), states.end(), state) == states.end()) states.push_back(state);
@@ -267,6 +275,7 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
             if (verdict.plain && mesh) verdict.skinBatches.push_back(batch = batchOf(geodeState, nullptr, mesh));
             verdict.batchOfStep.push_back(batch);
         }
+        if (verdict.plain && verdict.skinBatches.empty()) compilePlainInstances(verdict);
         found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
     }
     // The map's entries stay where they are until erased, which the plan held here prevents.
@@ -393,8 +402,16 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         kept.kept = false;
     // Each joint's frame, parents first, as ActorCull composes them.
     plan.composeModelViews(modelViews.data(), _smallFeatureCulling ? &_state._smallFeatureProof : nullptr);
+    if (!addPlainInstances(verdict)) cullSteps(verdict);
+    _recording = nullptr;
+}
+
+void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
+{
     // The plan's steps as ActorCull::cull() follows them: a joint or geode masked out or too small in the frame it
     // is in is skipped with its subtree.
+    const ActorCullPlan& plan = *verdict.plan;
+    const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
     const std::vector<Step>& steps = plan.getSteps();
     unsigned skin = 0;           // the next of the actor's skinned meshes
     std::size_t provenUntil = 0; // the steps before it are below a joint with no small feature below it
@@ -432,7 +449,56 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         }
         ++i;
     }
-    _recording = nullptr;
+}
+
+void InstancedCull::compilePlainInstances(InstancedCullState::PlanVerdict& verdict)
+{
+    const std::vector<Step>& steps = verdict.plan->getSteps();
+    for (unsigned i : verdict.plan->getDrawableSteps())
+    {
+        const Step& step = steps[i];
+        const unsigned batch = verdict.batchOfStep[i];
+        verdict.plainInstances.push_back({static_cast<unsigned>(step.joint + 1), batch, step.node->asDrawable()});
+        auto counted = std::find_if(verdict.instancesPerBatch.begin(), verdict.instancesPerBatch.end(),
+                                    [batch](const std::pair<unsigned, unsigned>& entry) { return entry.first == batch; });
+        if (counted == verdict.instancesPerBatch.end()) verdict.instancesPerBatch.emplace_back(batch, 1u);
+        else ++counted->second;
+    }
+    verdict.compiled = true;
+}
+
+bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& verdict)
+{
+    // What cullSteps() would test: near and far from each drawable's box, a node a mask rules out, a top joint that
+    // is a small feature, a subtree below a top joint with no proof that none of its spheres is one. The instances
+    // being recorded for an idle actor go through the steps too.
+    if (!verdict.compiled || _computeNearFar || _recording) return false;
+    if (!verdict.plan->needsNoTestBelowTopJoints(
+            _traversalMask, _maskOverride, _smallFeatureCulling ? &_state._smallFeatureProof : nullptr,
+            _smallFeatureCulling ? actorPixelSizeVector() : osg::Vec4(), _smallFeaturePixelSize,
+            [this](const osg::BoundingSphere& bound) { return isSmallFeature(bound, 0); }))
+        return false;
+    // Every instance in its batch's region (nextInstance() moves a batch that outgrows it: the steps do that).
+    std::vector<InstancedCullState::Batch>& batches = _state._batches;
+    for (const std::pair<unsigned, unsigned>& counted : verdict.instancesPerBatch)
+    {
+        const InstancedCullState::Batch& batch = batches[counted.first];
+        if ((batch.count + counted.second) * batch.texels > batch.capacity) return false;
+    }
+    // Then what addDrawable() does without near and far: a drawable whose depth is not a number is dropped (the
+    // visitor drops it), the others' matrices written in step order, so each batch's instances are in the order the
+    // steps would give them.
+    const osg::Matrixd* modelViews = _state._modelViews.data();
+    for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
+    {
+        const osg::Matrixd& modelView = modelViews[instance.frame];
+        const osg::BoundingBox& box = instance.drawable->getBoundingBox();
+        if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) continue;
+        InstancedCullState::Batch& batch = batches[instance.batch];
+        writeInstanceMatrix(modelView, _state._texels + 4 * std::size_t(batch.base) + 16 * std::size_t(batch.count));
+        ++batch.count;
+    }
+    return true;
 }
 
 bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions)
@@ -449,11 +515,29 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
     if (mayReplay(kept, versions) &&
         std::memcmp(kept.actorModelView.ptr(), actorModelView.ptr(), sizeof(osg::Matrixd)) == 0)
     {
+        // Run by run of instances of one batch (an actor's parts of one drawable follow one another): one copy where
+        // the batch's region has room for the run, one instance at a time where it may not.
         const float* matrix = kept.matrices.data();
-        for (unsigned batch : kept.batches)
+        const unsigned* batches = kept.batches.data();
+        const std::size_t count = kept.batches.size();
+        for (std::size_t i = 0; i < count;)
         {
-            std::memcpy(nextInstance(batch), matrix, 16 * sizeof(float));
-            matrix += 16;
+            const unsigned batch = batches[i];
+            std::size_t end = i + 1;
+            while (end < count && batches[end] == batch) ++end;
+            const unsigned run = static_cast<unsigned>(end - i);
+            InstancedCullState::Batch& into = _state._batches[batch];
+            if ((into.count + run) * into.texels <= into.capacity)
+            {
+                std::memcpy(_state._texels + 4 * std::size_t(into.base) + 16 * std::size_t(into.count), matrix,
+                            16 * sizeof(float) * run);
+                into.count += run;
+                matrix += 16 * std::size_t(run);
+            }
+            else
+                for (unsigned k = 0; k < run; ++k, matrix += 16)
+                    std::memcpy(nextInstance(batch), matrix, 16 * sizeof(float));
+            i = end;
         }
         return true;
     }
@@ -482,9 +566,7 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
     }
     if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
     float* out = nextInstance(batch);
-    const double* m = modelView.ptr();
-    // As OSG hands a matrix to OpenGL (glLoadMatrixd, which keeps floats): each double rounded to the nearest float.
-    for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
+    writeInstanceMatrix(modelView, out);
     if (_recording)
     {
         _recording->batches.push_back(batch);

@@ -150,6 +150,18 @@ private:
         std::vector<unsigned> batchOfStep;
         /** The batches of its skinned meshes, in step order. */
         std::vector<unsigned> skinBatches;
+        /** A plan of rigid parts only, compiled for the cull that need test nothing below its top joints
+          * (addPlainInstances()): its drawables in step order, each with its frame and batch, and the batches with
+          * their instances per actor. */
+        struct PlainInstance
+        {
+            unsigned frame; // the joint's + 1
+            unsigned batch;
+            const osg::Drawable* drawable;
+        };
+        bool compiled = false;
+        std::vector<PlainInstance> plainInstances;
+        std::vector<std::pair<unsigned, unsigned>> instancesPerBatch;
     };
     /** The drawables of one (geode state set, drawable) or (geode state set, skinned mesh) and their instances' data
       * this cull: a rigid part's model-view matrices (4 texels, 16 floats, OSG's rows one after the other), or a
@@ -253,6 +265,17 @@ private:
       * visible. */
     void cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
                    ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
+    /** The plan's steps followed one by one, as ActorCull::cull() follows them, its joints' model-view matrices
+      * composed already. */
+    void cullSteps(const InstancedCullState::PlanVerdict& verdict);
+    /** Compiles, once per verdict, what addPlainInstances() goes by (PlanVerdict::plainInstances and the rest). */
+    static void compilePlainInstances(InstancedCullState::PlanVerdict& verdict);
+    /** For a compiled plan whose model-view matrices are composed: where this cull would test nothing below the
+      * top joints (no mask rules out a node, no top joint is a small feature and the small-feature proof holds below
+      * each, near and far not computed, every batch's region has room, nothing recorded), adds each drawable's
+      * instance straight from the compiled list, as the steps would add them; returns false, having added nothing,
+      * where it cannot. */
+    bool addPlainInstances(const InstancedCullState::PlanVerdict& verdict);
     /** Whether the kept instances of an actor with these counters may hold for this cull (its model-view matrix
       * still to compare). */
     bool mayReplay(const ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions) const

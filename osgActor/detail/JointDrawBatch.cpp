@@ -6,14 +6,6 @@
 namespace osgActor {
 namespace detail {
 
-float eyeDepth(const osg::Vec3& point, const osg::Matrixd& modelView)
-{
-    using Value = osgUtil::CullVisitor::value_type;
-    return static_cast<float>(-(static_cast<Value>(point[0]) * modelView(0, 2) +
-                                static_cast<Value>(point[1]) * modelView(1, 2) +
-                                static_cast<Value>(point[2]) * modelView(2, 2) + modelView(3, 2)));
-}
-
 JointDrawBatch::JointDrawBatch()
 {
     // Drawn afresh every frame from its entries: nothing to compile or cache.

@@ -141,6 +141,26 @@ TEST(CullPlan, AnUnchangedActorBeforeAStillCameraGivesTheLeavesOfItsPreviousFram
     EXPECT_GT(std::abs(afreshHead->modelView[12] - keptHead->modelView[12]), 0.2);
 }
 
+TEST(CullPlan, UnchangedActorsPartlyOutOfViewGiveTheOrdinaryGraphFrameAfterFrame)
+{
+    // An unchanged actor before a still camera is not entered by the visitor (ActorNode::accept()): its bound is
+    // tested where the visitor would test it, and its calls made again. One figure out of view, one in it.
+    Scene scene;
+    const std::size_t allInView = scene.cullExpectingTheOrdinaryGraph().size();
+    scene.probe.lookAt(osg::Vec3d(2.2, -3.0, 1.2), osg::Vec3d(3.2, 0.0, 0.9));
+    scene.setCullMode(ActorNode::CULL_NODE_BY_NODE);
+    const std::vector<CulledLeaf> ordinary = scene.probe.cull(++scene.frame);
+    scene.setCullMode(ActorNode::CULL_AS_ONE);
+    ASSERT_FALSE(ordinary.empty());
+    ASSERT_LT(ordinary.size(), allInView); // the test can fail: a figure is out of view
+    for (int frame = 0; frame < 4; ++frame)
+    {
+        const std::vector<CulledLeaf> asOne = scene.probe.cull(++scene.frame);
+        ASSERT_EQ(asOne.size(), ordinary.size()) << "frame " << frame;
+        for (std::size_t i = 0; i < asOne.size(); ++i) EXPECT_TRUE(asOne[i] == ordinary[i]) << "frame " << frame << ", leaf " << i;
+    }
+}
+
 TEST(CullPlan, AMovedCameraOrAPoseChangeIsCulledAfresh)
 {
     Scene scene;
