@@ -79,6 +79,7 @@ InstancedActorGroup::Statistics InstancedActorGroup::getStatistics() const
     Statistics statistics;
     statistics.actorsInstanced = s.actorsInstanced;
     statistics.actorsOrdinary = s.actorsOrdinary;
+    statistics.actorsOutOfView = s.actorsOutOfView;
     statistics.draws = s.draws;
     statistics.instances = s.instances;
     statistics.skinnedDraws = s.skinnedDraws;

@@ -212,6 +212,14 @@ void InstancedCull::cullChild(ActorNode& actor)
     ActorCullState& actorState = *actor._cullState;
     if (isPlainActor(actor) && actorState.tryAcquire())
     {
+        // What the visitor does on its way into the actor, first: its mask, then its bound in the group's frame. An
+        // actor out of view costs that test alone, not its plan's check (a cache line per joint).
+        if (!_cv.validNodeMask(actor) || _cv.isCulled(actor))
+        {
+            ++_state._statistics.actorsOutOfView;
+            actorState.release();
+            return;
+        }
         ActorCullState::InstancedVerdict& kept = actorState._instancedVerdict;
         const ActorCullState::Versions versions =
             ActorCullState::versionsOf(actor._cullPlanVersion, actor._poseVersion, actor._boundVersion);
@@ -232,8 +240,7 @@ void InstancedCull::cullChild(ActorNode& actor)
         if (verdict && canInstanceSkins(actor, *verdict))
         {
             ++_state._statistics.actorsInstanced;
-            // What the visitor does on its way into the actor: its mask, then its bound in the group's frame.
-            if (_cv.validNodeMask(actor) && !_cv.isCulled(actor)) cullActor(actor, *verdict, kept, versions);
+            cullActor(actor, *verdict, kept, versions);
             actorState.release();
             return;
         }

@@ -112,6 +112,7 @@ public:
     {
         unsigned actorsInstanced = 0;
         unsigned actorsOrdinary = 0;
+        unsigned actorsOutOfView = 0;
         unsigned draws = 0;
         unsigned instances = 0;
         unsigned skinnedDraws = 0;

@@ -130,10 +130,12 @@ TEST_F(InstancedImages, ActorsThatNeedTheOrdinaryTraversalAreDrawnOrdinarily)
     drawOrdinaryPathWithTheSameShader();
     renderWith(InstancedActorGroup::INSTANCED);
     const InstancedActorGroup::Statistics statistics = group->getStatistics();
-    EXPECT_EQ(statistics.actorsOrdinary, 6u);
-    EXPECT_EQ(statistics.actorsInstanced, 3u);
     // Actors 1 to 5 are in view (the others beyond the image's sides or behind the camera): of them only 5 is drawn
-    // instanced.
+    // instanced. Actors 0 and 6 are handed to the ordinary traversal whether in view or not; 7 and 8 are found out of
+    // view by the instanced cull's first test.
+    EXPECT_EQ(statistics.actorsOrdinary, 6u);
+    EXPECT_EQ(statistics.actorsInstanced, 1u);
+    EXPECT_EQ(statistics.actorsOutOfView, 2u);
     EXPECT_EQ(statistics.instances, numParts(*prototype));
     EXPECT_EQ(statistics.draws, numParts(*prototype));
     // And the image is the image of the ordinary path.
@@ -144,14 +146,16 @@ TEST_F(InstancedImages, ActorsThatNeedTheOrdinaryTraversalAreDrawnOrdinarily)
 TEST_F(InstancedImages, ATextureAddedInPlaceToASharedPartsStateTakesEveryActorSharingItOffTheInstancedPath)
 {
     renderWith(InstancedActorGroup::INSTANCED);
-    EXPECT_EQ(group->getStatistics().actorsInstanced, 8u);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 6u); // all but 3 (a hidden arm) and 7 and 8 (behind the camera)
+    EXPECT_EQ(group->getStatistics().actorsOutOfView, 2u);
     // The clones share the head's geode and its state set; OSG lets a state set change without telling anyone.
     osg::Node* head = prototype->getSkeletonNode("head")->getChild(0);
     ASSERT_NE(head->getStateSet(), nullptr);
     head->getStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D);
     renderWith(InstancedActorGroup::INSTANCED);
     EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
-    EXPECT_EQ(group->getStatistics().actorsOrdinary, 9u);
+    EXPECT_EQ(group->getStatistics().actorsOrdinary, 7u);
+    EXPECT_EQ(group->getStatistics().actorsOutOfView, 2u);
     EXPECT_EQ(group->getStatistics().draws, 0u);
 }
 
@@ -160,10 +164,11 @@ TEST_F(InstancedImages, InstancedCrowdIsTheSameBytesAsTheOrdinaryPathDrawnWithTh
     drawOrdinaryPathWithTheSameShader();
     expectTheSameBytes();
     const InstancedActorGroup::Statistics statistics = group->getStatistics();
-    // Eight actors instanced, the one with a hidden arm (3) drawn ordinarily; of the instanced, 1, 2, 4 and 5 are in
-    // view (0 and 6 beyond the image's sides, 7 and 8 behind the camera): one draw per part of the figure, four
-    // instances each.
-    EXPECT_EQ(statistics.actorsInstanced, 8u);
+    // Of the nine clones, 7 and 8 stand behind the camera, out of view; the one with a hidden arm (3) is drawn
+    // ordinarily; the six others are instanced, and of them the parts of 1, 2, 4 and 5 are in view (0 and 6 are cut by
+    // the image's sides, their parts beyond them): one draw per part of the figure, four instances each.
+    EXPECT_EQ(statistics.actorsInstanced, 6u);
+    EXPECT_EQ(statistics.actorsOutOfView, 2u);
     EXPECT_EQ(statistics.actorsOrdinary, 1u);
     EXPECT_EQ(statistics.draws, numParts(*prototype));
     EXPECT_EQ(statistics.instances, 4u * numParts(*prototype));

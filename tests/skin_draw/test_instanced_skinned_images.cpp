@@ -101,12 +101,13 @@ protected:
         EXPECT_TRUE(isTheSameBytesCovering(*instanced, *ordinary, kBackground, minShare));
     }
 
-    /** The last cull took every clone instanced and drew the seven in view (the last stands behind the camera) with
-      * one instanced draw of their shared mesh. */
+    /** The last cull found the last clone out of view (it stands behind the camera) and took the seven others
+      * instanced, with one instanced draw of their shared mesh. */
     void expectEveryCloneInOneDraw()
     {
         const InstancedActorGroup::Statistics statistics = group->getStatistics();
-        EXPECT_EQ(statistics.actorsInstanced, kClones);
+        EXPECT_EQ(statistics.actorsInstanced, kClones - 1);
+        EXPECT_EQ(statistics.actorsOutOfView, 1u);
         EXPECT_EQ(statistics.actorsOrdinary, 0u);
         EXPECT_EQ(statistics.skinnedDraws, 1u);
         EXPECT_EQ(statistics.skinnedInstances, kClones - 1);
@@ -128,9 +129,10 @@ TEST_F(InstancedSkinnedImages, AnActorSkinnedOnTheCpuIsDrawnOrdinarilyAndTheOthe
     const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
     const InstancedActorGroup::Statistics statistics = group->getStatistics();
     EXPECT_EQ(statistics.actorsOrdinary, 1u);
-    EXPECT_EQ(statistics.actorsInstanced, kClones - 1);
+    EXPECT_EQ(statistics.actorsInstanced, kClones - 2);
+    EXPECT_EQ(statistics.actorsOutOfView, 1u); // the one behind the camera
     EXPECT_EQ(statistics.skinnedDraws, 1u);
-    EXPECT_EQ(statistics.skinnedInstances, kClones - 2); // the one behind the camera is culled
+    EXPECT_EQ(statistics.skinnedInstances, kClones - 2);
     // The CPU-skinned actor is drawn: hidden, pixels change.
     actors[1]->setNodeMask(0u);
     const osg::ref_ptr<osg::Image> without = renderWith(InstancedActorGroup::INSTANCED);
@@ -144,18 +146,18 @@ TEST_F(InstancedSkinnedImages, AnActorSkinnedOnTheCpuIsDrawnOrdinarilyAndTheOthe
 TEST_F(InstancedSkinnedImages, AMeshOfItsOwnRenderBinTakesEveryActorWearingItOffTheInstancedPath)
 {
     renderWith(InstancedActorGroup::INSTANCED);
-    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones - 1); // the last is behind the camera
     // A render bin of its own (a transparent mesh sorted by depth): the instances of one draw cannot be sorted.
     prototype.mesh->getStateSet()->setRenderingHint(osg::StateSet::TRANSPARENT_BIN);
     const osg::ref_ptr<osg::Image> image = renderWith(InstancedActorGroup::INSTANCED);
     EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
-    EXPECT_EQ(group->getStatistics().actorsOrdinary, kClones);
+    EXPECT_EQ(group->getStatistics().actorsOrdinary, kClones - 1);
     EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
     EXPECT_GT(countDrawnPixels(*image, kBackground), 500u); // drawn ordinarily
     prototype.mesh->getStateSet()->setRenderingHint(osg::StateSet::DEFAULT_BIN);
     prototype.mesh->getStateSet()->setRenderBinToInherit();
     renderWith(InstancedActorGroup::INSTANCED);
-    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones - 1);
 }
 
 TEST_F(InstancedSkinnedImages, ClonesOfADualQuaternionSkinAreTheSameBytesAsTheOrdinaryDualQuaternionPathDrawnAlike)
@@ -210,7 +212,7 @@ TEST_F(InstancedSkinnedImages, DualQuaternionAndLinearBlendClonesAreDrawnInstanc
     prototype.mesh->getParent(0)->getStateSet()->removeAttribute(osg::StateAttribute::PROGRAM);
     dual.mesh->getParent(0)->getStateSet()->removeAttribute(osg::StateAttribute::PROGRAM);
     const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
-    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones + 3);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones - 1 + 3);
     EXPECT_EQ(group->getStatistics().skinnedDraws, 2u);
     EXPECT_EQ(group->getStatistics().skinnedInstances, kClones - 1 + 3);
     EXPECT_TRUE(isTheSameBytesCovering(*instanced, *ordinary, kBackground, 0.03));
@@ -293,7 +295,8 @@ TEST_F(InstancedSkinnedImages, ActorsOutOfViewAndMaskedMeshesAddNoInstance)
     renderWith(InstancedActorGroup::INSTANCED);
     EXPECT_EQ(group->getStatistics().skinnedInstances, 0u);
     EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
-    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 1u); // clone 3, the one in view
+    EXPECT_EQ(group->getStatistics().actorsOutOfView, kClones - 1);
 }
 
 TEST_F(InstancedSkinnedImages, RigidPartsAndSkinnedMeshesOfOneActorShareTheFramesBuffer)
@@ -405,7 +408,7 @@ TEST_F(InstancedSkinnedImages, AMeshWhoseOneInstanceIsMoreThanABufferHoldsTakesI
     const osg::ref_ptr<osg::Image> capped = renderWith(InstancedActorGroup::INSTANCED);
     EXPECT_EQ(group->getStatistics().texelLimit, 16u);
     EXPECT_EQ(group->getStatistics().actorsInstanced, 0u);
-    EXPECT_EQ(group->getStatistics().actorsOrdinary, kClones);
+    EXPECT_EQ(group->getStatistics().actorsOrdinary, kClones - 1); // the last is behind the camera
     EXPECT_EQ(group->getStatistics().skinnedDraws, 0u);
     EXPECT_EQ(group->getStatistics().buffers, 0u);
     // Drawn as the ordinary path draws them: the same bytes.
@@ -414,7 +417,7 @@ TEST_F(InstancedSkinnedImages, AMeshWhoseOneInstanceIsMoreThanABufferHoldsTakesI
     // Without the cap they are instanced again.
     group->setMaxTexelsPerBuffer(0);
     renderWith(InstancedActorGroup::INSTANCED);
-    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones);
+    EXPECT_EQ(group->getStatistics().actorsInstanced, kClones - 1);
     EXPECT_EQ(group->getStatistics().buffers, 1u);
 }
 
