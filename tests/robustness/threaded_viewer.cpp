@@ -61,7 +61,8 @@ int main(int argc, char** argv)
     {
         const InstancedActorGroup::Statistics statistics = static_cast<InstancedActorGroup&>(*actors).getStatistics();
         std::cout << "last cull: " << statistics.actorsInstanced << " actors instanced, " << statistics.actorsOrdinary
-                  << " ordinarily, " << statistics.instances << " instances in " << statistics.draws << " draws\n";
+                  << " ordinarily, " << statistics.actorsOutOfView << " out of view, " << statistics.instances
+                  << " instances in " << statistics.draws << " draws\n";
     }
     return 0;
 }

@@ -129,8 +129,8 @@ int main(int argc, char** argv)
         // ordinary traversal): the last cull drew the GPU-skinned men instanced and the others ordinarily.
         const InstancedActorGroup::Statistics statistics = static_cast<InstancedActorGroup&>(*actors).getStatistics();
         std::cout << "last cull: " << statistics.actorsInstanced << " actors instanced, " << statistics.actorsOrdinary
-                  << " ordinarily, " << statistics.skinnedDraws << " skinned draws of " << statistics.skinnedInstances
-                  << " instances\n";
+                  << " ordinarily, " << statistics.actorsOutOfView << " out of view, " << statistics.skinnedDraws
+                  << " skinned draws of " << statistics.skinnedInstances << " instances\n";
         if (statistics.skinnedDraws == 0 || statistics.skinnedInstances == 0 || statistics.actorsOrdinary == 0)
         {
             std::cerr << "the skinned meshes were not drawn instanced\n";
