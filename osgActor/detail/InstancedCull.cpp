@@ -488,10 +488,7 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
     // Every instance in its batch's region (nextInstance() moves a batch that outgrows it: the steps do that).
     std::vector<InstancedCullState::Batch>& batches = _state._batches;
     for (const std::pair<unsigned, unsigned>& counted : verdict.instancesPerBatch)
-    {
-        const InstancedCullState::Batch& batch = batches[counted.first];
-        if ((batch.count + counted.second) * batch.texels > batch.capacity) return false;
-    }
+        if (!roomInRegion(batches[counted.first], counted.second)) return false;
     // Then what addDrawable() does without near and far: a drawable whose depth is not a number is dropped (the
     // visitor drops it), the others' matrices written in step order, so each batch's instances are in the order the
     // steps would give them.
@@ -502,7 +499,7 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
         const osg::BoundingBox& box = instance.drawable->getBoundingBox();
         if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) continue;
         InstancedCullState::Batch& batch = batches[instance.batch];
-        writeInstanceMatrix(modelView, _state._texels + 4 * std::size_t(batch.base) + 16 * std::size_t(batch.count));
+        writeInstanceMatrix(modelView, roomInRegion(batch, 1));
         ++batch.count;
     }
     return true;
@@ -534,10 +531,9 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
             while (end < count && batches[end] == batch) ++end;
             const unsigned run = static_cast<unsigned>(end - i);
             InstancedCullState::Batch& into = _state._batches[batch];
-            if ((into.count + run) * into.texels <= into.capacity)
+            if (float* out = roomInRegion(into, run))
             {
-                std::memcpy(_state._texels + 4 * std::size_t(into.base) + 16 * std::size_t(into.count), matrix,
-                            16 * sizeof(float) * run);
+                std::memcpy(out, matrix, 16 * sizeof(float) * run);
                 into.count += run;
                 matrix += 16 * std::size_t(run);
             }
@@ -581,14 +577,18 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
     }
 }
 
+float* InstancedCull::roomInRegion(const InstancedCullState::Batch& batch, unsigned count) const
+{
+    if ((batch.count + count) * batch.texels > batch.capacity) return nullptr;
+    return _state._texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count);
+}
+
 float* InstancedCull::nextInstance(unsigned batch)
 {
     InstancedCullState::Batch& into = _state._batches[batch];
     const std::size_t floats = 4 * std::size_t(into.texels);
-    float* out;
-    if ((into.count + 1) * into.texels <= into.capacity)
-        out = _state._texels + 4 * std::size_t(into.base) + floats * into.count;
-    else
+    float* out = roomInRegion(into, 1);
+    if (!out)
     {
         into.overflow.resize(into.overflow.size() + floats);
         out = into.overflow.data() + into.overflow.size() - floats;

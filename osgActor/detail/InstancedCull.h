@@ -293,6 +293,9 @@ private:
     void addDrawable(const Step& step, unsigned batch);
     /** The actor's instance of a skinned mesh, culled as the mesh's own cull culls it. */
     void addSkinned(const SkinnedMeshInstance& instance, unsigned batch);
+    /** Where the batch's next count instances go in its region, in this cull's buffer, or null where the region has
+      * no room for them. */
+    float* roomInRegion(const InstancedCullState::Batch& batch, unsigned count) const;
     /** Where the next instance of a batch goes: its region, or its overflow. */
     float* nextInstance(unsigned batch);
     /** Gives each batch its region in a frame's buffer, as large as its data of the previous cull. */
