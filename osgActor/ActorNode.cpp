@@ -179,12 +179,11 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
         if (getDefinition() && getDefinition()->getParent(node->getJointIndex()) == kNoParent) removeChild(node.get());
     }
     releaseSkeletonNodes();
-    _pose = ActorPose(std::move(definition));
-    updateSharedObjects();
-    dropUnfittingIkChains();
     // Pose the actor before its nodes exist, so a fresh actor has correct bounds and queries before its first
     // frame: FK then reads and writes the pose's own arrays in order, rather than the new nodes scattered on the heap.
-    _pose.updateMatrices();
+    _pose = ActorPose(std::move(definition), ActorPose::PosedAtDefaults());
+    updateSharedObjects();
+    dropUnfittingIkChains();
     buildSkeletonNodes();
     writeActorMatrix();
 }
@@ -264,13 +263,17 @@ void ActorNode::buildSkeletonNodes()
     std::vector<double*> targets;
     targets.reserve(def->getNumJoints());
     _skeletonNodes.reserve(def->getNumJoints());
+    double* const* const posedLocals = _pose.getLocalMatrixTargets();
     for (unsigned j = 0; j < def->getNumJoints(); ++j)
     {
         osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def->getJointName(j));
         giveBoundMode(*node, *def, _boundMode);
-        // Its matrix is written in place below (the redirect copies the pose's): its inverse must be made afresh.
+        // The pose's local matrix goes into the node now (the pose is redirected to it below): its inverse must be
+        // made afresh.
+        double* const matrix = SkeletonNodeAccess::matrixStorage(*node);
+        std::memcpy(matrix, posedLocals[j], 16 * sizeof(double));
         SkeletonNodeAccess::matrixWritten(*node);
-        targets.push_back(SkeletonNodeAccess::matrixStorage(*node));
+        targets.push_back(matrix);
         const int parent = def->getParent(j);
         // osg::Group's own addChild(): the skeleton node's would report each edit up its chain to this actor, a walk
         // as deep as the joint; the plan is dirtied once below.
@@ -280,9 +283,9 @@ void ActorNode::buildSkeletonNodes()
         _skeletonNodes.push_back(node);
     }
     dirtyCullPlan();
-    // Copies the pose's local matrices into the nodes; they are written, so the changes are consumed here: no pass
+    // The nodes hold the pose's local matrices already; they are written, so the changes are consumed here: no pass
     // over the nodes to dirty them (a new node's bound is not computed yet, nor are its parents').
-    _pose.redirectLocalMatrices(targets);
+    _pose.redirectLocalMatrices(std::move(targets), LocalMatrices::Values::AlreadyThere);
     bool written = false;
     _pose.consumeChangedLocals([&written](unsigned, double*) { written = true; });
     if (written) ++_poseVersion;

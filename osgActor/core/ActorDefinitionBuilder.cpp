@@ -93,16 +93,16 @@ std::vector<unsigned> parentFirstOrder(const std::vector<int>& parents)
     return order;
 }
 
-unsigned countActiveDofs(const std::vector<JointSpec>& joints)
+unsigned countActiveDofs(const JointSpecList& joints)
 {
     unsigned count = 0;
-    for (const JointSpec& joint : joints)
-        for (const DofSpec& dof : joint.dofs) count += dof.active ? 1u : 0u;
+    for (std::size_t j = 0; j < joints.size(); ++j)
+        for (const DofSpec& dof : joints[j].dofs) count += dof.active ? 1u : 0u;
     return count;
 }
 
 /** Describes the parent cycle above joint start ("a -> b -> a"). */
-std::string describeCycle(const std::vector<JointSpec>& joints, const std::vector<int>& parents, unsigned start)
+std::string describeCycle(const JointSpecList& joints, const std::vector<int>& parents, unsigned start)
 {
     // Walk up until a joint repeats; that joint is on the cycle.
     std::vector<bool> seen(joints.size(), false);
@@ -204,71 +204,73 @@ ActorDefinitionBuilder::JointRef ActorDefinitionBuilder::addJoint(const JointSpe
     return JointRef(*this, static_cast<unsigned>(_joints.size() - 1));
 }
 
-BuildResult ActorDefinitionBuilder::build() const
+BuildResult ActorDefinitionBuilder::build() const { return buildFrom(_name, JointSpecList(_joints)); }
+
+BuildResult ActorDefinitionBuilder::buildFrom(const std::string& name, const JointSpecList& joints)
 {
     BuildResult result;
-    const std::string actor = _name.empty() ? std::string("actor") : "actor " + quoted(_name);
+    const std::string actor = name.empty() ? std::string("actor") : "actor " + quoted(name);
     auto fail = [&](const std::string& message, int joint = -1) {
         result.error = actor + ": " + message;
         result.errorJoint = joint;
         return result;
     };
 
-    if (_joints.empty()) return fail("has no joints");
+    if (joints.empty()) return fail("has no joints");
 
     // Keyed by views of the joints' own names: no copy of each name.
     std::unordered_map<std::string_view, unsigned> byName;
-    byName.reserve(_joints.size());
-    for (unsigned j = 0; j < _joints.size(); ++j)
+    byName.reserve(joints.size());
+    for (unsigned j = 0; j < joints.size(); ++j)
     {
-        const std::string error = checkJoint(_joints[j]);
+        const std::string error = checkJoint(joints[j]);
         if (!error.empty()) return fail(error, static_cast<int>(j));
-        if (!byName.emplace(_joints[j].name, j).second)
-            return fail("joint name " + quoted(_joints[j].name) + " is used twice", static_cast<int>(j));
+        if (!byName.emplace(joints[j].name, j).second)
+            return fail("joint name " + quoted(joints[j].name) + " is used twice", static_cast<int>(j));
     }
 
-    std::vector<int> parents(_joints.size(), kNoParent);
-    for (unsigned j = 0; j < _joints.size(); ++j)
+    std::vector<int> parents(joints.size(), kNoParent);
+    for (unsigned j = 0; j < joints.size(); ++j)
     {
-        const std::string& parent = _joints[j].parent;
+        const std::string& parent = joints[j].parent;
         if (parent.empty()) continue;
         const auto it = byName.find(parent);
         if (it == byName.end())
-            return fail("joint " + quoted(_joints[j].name) + " names an unknown parent " + quoted(parent),
+            return fail("joint " + quoted(joints[j].name) + " names an unknown parent " + quoted(parent),
                         static_cast<int>(j));
         parents[j] = static_cast<int>(it->second);
     }
 
     const std::vector<unsigned> order = parentFirstOrder(parents);
-    if (order.size() != _joints.size())
+    if (order.size() != joints.size())
     {
-        std::vector<bool> placed(_joints.size(), false);
+        std::vector<bool> placed(joints.size(), false);
         for (unsigned j : order) placed[j] = true;
         unsigned stray = 0;
         while (placed[stray]) ++stray;
-        return fail("the joints form a parent cycle: " + describeCycle(_joints, parents, stray),
+        return fail("the joints form a parent cycle: " + describeCycle(joints, parents, stray),
                     static_cast<int>(stray));
     }
 
     // Depth of each joint, the root's being 1: its parent's plus one, the parent coming first in the order.
-    std::vector<unsigned> depths(_joints.size(), 1);
+    std::vector<unsigned> depths(joints.size(), 1);
     for (unsigned j : order)
     {
         if (parents[j] >= 0) depths[j] = depths[static_cast<unsigned>(parents[j])] + 1;
         if (depths[j] > kMaxJointDepth)
-            return fail("joint " + quoted(_joints[j].name) + " is " + std::to_string(depths[j]) +
+            return fail("joint " + quoted(joints[j].name) + " is " + std::to_string(depths[j]) +
                             " joints deep (its root included); a skeleton may be at most " +
                             std::to_string(kMaxJointDepth) + " deep",
                         static_cast<int>(j));
     }
 
     std::shared_ptr<ActorDefinition> def(new ActorDefinition());
-    def->_name = _name;
-    std::vector<int> newIndex(_joints.size(), -1);
+    def->_name = name;
+    std::vector<int> newIndex(joints.size(), -1);
     for (unsigned i = 0; i < order.size(); ++i) newIndex[order[i]] = static_cast<int>(i);
 
     // Every per-joint and per-DOF array at its final size at once, rather than grown a joint at a time.
-    const std::size_t numJoints = _joints.size(), numDofs = countActiveDofs(_joints);
+    const std::size_t numJoints = joints.size(), numDofs = countActiveDofs(joints);
     def->_jointNames.reserve(numJoints);
     def->_parents.reserve(numJoints);
     def->_offsetTranslations.reserve(numJoints);
@@ -285,7 +287,7 @@ BuildResult ActorDefinitionBuilder::build() const
     def->_firstDofs.push_back(0);
     for (unsigned i = 0; i < order.size(); ++i)
     {
-        const JointSpec& joint = _joints[order[i]];
+        const JointSpec& joint = joints[order[i]];
         const int oldParent = parents[order[i]];
         DofMask mask = 0;
         for (unsigned d = 0; d < kNumDofTypes; ++d)

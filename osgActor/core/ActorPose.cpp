@@ -70,6 +70,23 @@ void markJointsWithDofs(const DofMask* dofMasks, std::uint8_t* jointDirty, unsig
 ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(definition))
 {
     if (!_definition) return;
+    takeDefinition();
+    _local = LocalMatrices(_numJoints);
+    _model.assign(_numJoints, glm::dmat4(1.0));
+}
+
+ActorPose::ActorPose(ActorDefinitionPtr definition, PosedAtDefaults) : _definition(std::move(definition))
+{
+    if (!_definition) return;
+    takeDefinition();
+    // Every joint is dirty, so the update below writes every local matrix and, from them, every model matrix.
+    _local = LocalMatrices::unwritten(_numJoints);
+    _model.resize(_numJoints); // default-initialized (AlignedAllocator): not written
+    updateMatrices();
+}
+
+void ActorPose::takeDefinition()
+{
     const unsigned numJoints = _definition->getNumJoints();
     _dofs = _definition->getDefaultDofs();
     _dofMins = _definition->getDofRangeMins().data();
@@ -79,8 +96,6 @@ ActorPose::ActorPose(ActorDefinitionPtr definition) : _definition(std::move(defi
     _numJoints = numJoints;
     _jointFlags.assign(3 * std::size_t(numJoints), 0);
     std::fill_n(jointDirtyFlags(), numJoints, 1);
-    _local = LocalMatrices(numJoints);
-    _model.assign(numJoints, glm::dmat4(1.0));
     _anyDirty = numJoints > 0;
 }
 

@@ -1090,6 +1090,11 @@ private:
   * (joints at the actor's level with 'parent' statements come in any). */
 void putInDefinitionOrder(const ActorDefinition& definition, std::vector<JointDocument>& joints)
 {
+    // A file that nests its joints (or lists parents first) gives them in this order already: then a look at the
+    // names is all, with no second copy of every joint.
+    bool inOrder = true;
+    for (unsigned j = 0; j < joints.size() && inOrder; ++j) inOrder = joints[j].spec.name == definition.getJointName(j);
+    if (inOrder) return;
     // The definition was built from these joints, so it knows each name once: its index is the joint's place.
     std::vector<JointDocument> ordered(joints.size());
     for (JointDocument& joint : joints)

@@ -245,3 +245,48 @@ TEST(Builder, ToBuilderRebuildsAnEqualDefinition)
     EXPECT_EQ(copy->getTranslationMode(1), TranslationMode::BeforeRotation);
     EXPECT_EQ(copy->getOffsetTranslation(1), original->getOffsetTranslation(1));
 }
+
+TEST(Builder, BuildsFromSpecsHeldInsideLargerRecordsWithoutCopyingThem)
+{
+    // A document's joints: each spec is one member of a larger record, read in place one record size apart.
+    struct Record
+    {
+        int line = 0;
+        JointSpec spec;
+        double padding[3] = {};
+    };
+    std::vector<Record> records(3);
+    records[0].spec.name = "hand";
+    records[0].spec.parent = "forearm";
+    records[0].spec.translation = glm::dvec3(0.0, 0.0, -0.25);
+    records[1].spec.name = "shoulder";
+    records[1].spec.dofs[static_cast<unsigned>(Dof::RZ)].active = true;
+    records[2].spec.name = "forearm";
+    records[2].spec.parent = "shoulder";
+    records[2].spec.dofs[static_cast<unsigned>(Dof::RX)] = DofSpec{true, -1.0, 2.0, 0.5, 3.0};
+    const BuildResult result =
+        ActorDefinitionBuilder::buildFrom("arm", JointSpecList(&records[0].spec, records.size(), sizeof(Record)));
+    ASSERT_TRUE(result) << result.error;
+    const ActorDefinition& def = *result.definition;
+    EXPECT_EQ(def.getName(), "arm");
+    ASSERT_EQ(def.getNumJoints(), 3u);
+    EXPECT_EQ(def.getJointName(0), "shoulder");
+    EXPECT_EQ(def.getJointName(1), "forearm");
+    EXPECT_EQ(def.getJointName(2), "hand");
+    EXPECT_EQ(def.getParent(2), 1);
+    EXPECT_EQ(def.getOffsetTranslation(2), glm::dvec3(0.0, 0.0, -0.25));
+    ASSERT_EQ(def.getNumDofs(), 2u);
+    EXPECT_EQ(def.getDofIndex(1, Dof::RX), 1);
+    EXPECT_EQ(def.getDofMin(1), -1.0);
+    EXPECT_EQ(def.getDofMax(1), 2.0);
+    EXPECT_EQ(def.getDofDefault(1), 0.5);
+    EXPECT_EQ(def.getDofWeight(1), 3.0);
+
+    // Errors name the record's index, as build() names the builder's.
+    records[1].spec.parent = "nobody";
+    const BuildResult refused =
+        ActorDefinitionBuilder::buildFrom("arm", JointSpecList(&records[0].spec, records.size(), sizeof(Record)));
+    EXPECT_FALSE(refused);
+    EXPECT_EQ(refused.errorJoint, 1);
+    EXPECT_NE(refused.error.find("'nobody'"), std::string::npos) << refused.error;
+}

@@ -217,6 +217,52 @@ TEST(ActorPose, RedirectedLocalMatricesAreWrittenInPlace)
     EXPECT_NE(pose.getLocalMatrix(1), kept);
 }
 
+TEST(ActorPose, APosedPoseIsWhatAnUpdateOfANewPoseGives)
+{
+    ActorPose updated(makeArm());
+    EXPECT_EQ(updated.updateMatrices(), updated.getNumJoints());
+    ActorPose posed(makeArm(), ActorPose::PosedAtDefaults());
+    ASSERT_EQ(posed.getNumJoints(), updated.getNumJoints());
+    EXPECT_FALSE(posed.hasDirtyJoints());
+    EXPECT_EQ(posed.getTotalRecomputedJoints(), updated.getTotalRecomputedJoints());
+    EXPECT_EQ(posed.getDofs(), updated.getDofs());
+    for (unsigned j = 0; j < posed.getNumJoints(); ++j)
+    {
+        EXPECT_EQ(posed.getLocalMatrix(j), updated.getLocalMatrix(j)) << j;
+        EXPECT_EQ(posed.getModelMatrix(j), updated.getModelMatrix(j)) << j;
+    }
+    EXPECT_EQ(posed.getLocalMatrix(1)[3], glm::dvec4(0.0, 0.0, -0.3, 1.0)) << "the elbow's offset";
+    unsigned changed = 0;
+    posed.consumeChangedLocals([&changed](unsigned, double*) { ++changed; });
+    EXPECT_EQ(changed, posed.getNumJoints()) << "every local matrix is new, for the scene graph to take";
+    EXPECT_EQ(posed.updateMatrices(), 0u) << "nothing left to do";
+
+    ActorPose empty(ActorDefinitionPtr(), ActorPose::PosedAtDefaults());
+    EXPECT_EQ(empty.getNumJoints(), 0u);
+}
+
+TEST(ActorPose, ARedirectToMatricesThatHoldTheValuesCopiesNothing)
+{
+    ActorPose pose(makeArm());
+    pose.setDof(3, 0.5); // the elbow
+    pose.updateMatrices();
+    // The caller put the current values in place itself, except for one it left as a marker.
+    std::vector<glm::dmat4> outside(pose.getNumJoints());
+    std::vector<double*> targets;
+    for (unsigned j = 0; j < pose.getNumJoints(); ++j)
+    {
+        outside[j] = pose.getLocalMatrix(j);
+        targets.push_back(&outside[j][0][0]);
+    }
+    outside[4] = glm::dmat4(2.0);
+    ASSERT_TRUE(pose.redirectLocalMatrices(targets, LocalMatrices::Values::AlreadyThere));
+    EXPECT_EQ(pose.getLocalMatrix(4), glm::dmat4(2.0)) << "the pose now reads them where they are, as they are";
+    EXPECT_EQ(pose.getLocalMatrixTargets()[1], &outside[1][0][0]);
+    pose.setDof(3, 1.0);
+    pose.updateMatrices();
+    EXPECT_NEAR(outside[1][1][1], std::cos(1.0), 1e-15) << "and writes them there";
+}
+
 TEST(ActorPose, RefusesBadLocalMatrixTargets)
 {
     ActorPose pose(makeArm());

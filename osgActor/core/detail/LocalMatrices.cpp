@@ -5,12 +5,21 @@
 
 namespace osgActor {
 
-LocalMatrices::LocalMatrices(unsigned numJoints) : _own(numJoints, glm::dmat4(1.0)), _targets(numJoints)
+LocalMatrices::LocalMatrices(unsigned numJoints) : LocalMatrices(unwritten(numJoints))
 {
-    for (unsigned j = 0; j < numJoints; ++j) _targets[j] = &_own[j][0][0];
+    std::fill(_own.begin(), _own.end(), glm::dmat4(1.0));
 }
 
-LocalMatrices::LocalMatrices(const LocalMatrices& other) : LocalMatrices(other.size())
+LocalMatrices LocalMatrices::unwritten(unsigned numJoints)
+{
+    LocalMatrices matrices;
+    matrices._own.resize(numJoints); // default-initialized (AlignedAllocator): not written
+    matrices._targets.resize(numJoints);
+    for (unsigned j = 0; j < numJoints; ++j) matrices._targets[j] = &matrices._own[j][0][0];
+    return matrices;
+}
+
+LocalMatrices::LocalMatrices(const LocalMatrices& other) : LocalMatrices(unwritten(other.size()))
 {
     copyValuesFrom(other.targets());
 }
@@ -28,14 +37,17 @@ glm::dmat4 LocalMatrices::get(unsigned joint) const
     return m;
 }
 
-bool LocalMatrices::redirect(const std::vector<double*>& targets)
+bool LocalMatrices::redirect(std::vector<double*> targets, Values values)
 {
     if (targets.size() != _targets.size() ||
         std::any_of(targets.begin(), targets.end(), [](const double* t) { return t == nullptr; }))
         return false;
-    for (unsigned j = 0; j < size(); ++j)
-        if (targets[j] != _targets[j]) std::memcpy(targets[j], _targets[j], sizeof(glm::dmat4));
-    _targets = targets;
+    if (values == Values::Copy)
+    {
+        for (unsigned j = 0; j < size(); ++j)
+            if (targets[j] != _targets[j]) std::memcpy(targets[j], _targets[j], sizeof(glm::dmat4));
+    }
+    _targets = std::move(targets);
     _redirected = true;
     decltype(_own)().swap(_own);
     return true;
