@@ -1,5 +1,6 @@
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/core/detail/JointChildren.h>
+#include <osgActor/core/detail/NameIndex>
 
 #include <glm/ext/matrix_transform.hpp>
 #include <glm/ext/quaternion_geometric.hpp>
@@ -10,7 +11,6 @@
 #include <cmath>
 #include <sstream>
 #include <string_view>
-#include <unordered_map>
 
 namespace osgActor {
 
@@ -91,14 +91,6 @@ std::vector<unsigned> parentFirstOrder(const std::vector<int>& parents)
         for (std::size_t c = below.size(); c-- > 0;) stack.push_back(below[c]);
     }
     return order;
-}
-
-unsigned countActiveDofs(const JointSpecList& joints)
-{
-    unsigned count = 0;
-    for (std::size_t j = 0; j < joints.size(); ++j)
-        for (const DofSpec& dof : joints[j].dofs) count += dof.active ? 1u : 0u;
-    return count;
 }
 
 /** Describes the parent cycle above joint start ("a -> b -> a"). */
@@ -218,27 +210,31 @@ BuildResult ActorDefinitionBuilder::buildFrom(const std::string& name, const Joi
 
     if (joints.empty()) return fail("has no joints");
 
-    // Keyed by views of the joints' own names: no copy of each name.
-    std::unordered_map<std::string_view, unsigned> byName;
-    byName.reserve(joints.size());
-    for (unsigned j = 0; j < joints.size(); ++j)
-    {
-        const std::string error = checkJoint(joints[j]);
-        if (!error.empty()) return fail(error, static_cast<int>(j));
-        if (!byName.emplace(joints[j].name, j).second)
-            return fail("joint name " + quoted(joints[j].name) + " is used twice", static_cast<int>(j));
-    }
-
+    // One index of the joints' own names (no copy of a name, no allocation per name), then one visit per joint that
+    // checks it, finds its parent and counts its DOFs: a large actor's joints do not fit the caches, and every
+    // further pass over them would fetch them again. A name given twice is found at its first place.
+    const auto nameOf = [&joints](std::size_t j) -> std::string_view { return joints[j].name; };
+    NameIndex byName;
+    byName.build(joints.size(), nameOf);
     std::vector<int> parents(joints.size(), kNoParent);
+    std::size_t numDofs = 0;
+    int unknownParent = -1; // the first joint whose parent is no joint: reported after the joints' own errors
     for (unsigned j = 0; j < joints.size(); ++j)
     {
-        const std::string& parent = joints[j].parent;
-        if (parent.empty()) continue;
-        const auto it = byName.find(parent);
-        if (it == byName.end())
-            return fail("joint " + quoted(joints[j].name) + " names an unknown parent " + quoted(parent),
-                        static_cast<int>(j));
-        parents[j] = static_cast<int>(it->second);
+        const JointSpec& joint = joints[j];
+        const std::string error = checkJoint(joint);
+        if (!error.empty()) return fail(error, static_cast<int>(j));
+        if (byName.find(joint.name, nameOf) != static_cast<int>(j))
+            return fail("joint name " + quoted(joint.name) + " is used twice", static_cast<int>(j));
+        for (const DofSpec& dof : joint.dofs) numDofs += dof.active ? 1u : 0u;
+        if (joint.parent.empty()) continue;
+        parents[j] = byName.find(joint.parent, nameOf);
+        if (parents[j] < 0 && unknownParent < 0) unknownParent = static_cast<int>(j);
+    }
+    if (unknownParent >= 0)
+    {
+        const JointSpec& joint = joints[static_cast<unsigned>(unknownParent)];
+        return fail("joint " + quoted(joint.name) + " names an unknown parent " + quoted(joint.parent), unknownParent);
     }
 
     const std::vector<unsigned> order = parentFirstOrder(parents);
@@ -270,7 +266,7 @@ BuildResult ActorDefinitionBuilder::buildFrom(const std::string& name, const Joi
     for (unsigned i = 0; i < order.size(); ++i) newIndex[order[i]] = static_cast<int>(i);
 
     // Every per-joint and per-DOF array at its final size at once, rather than grown a joint at a time.
-    const std::size_t numJoints = joints.size(), numDofs = countActiveDofs(joints);
+    const std::size_t numJoints = joints.size();
     def->_jointNames.reserve(numJoints);
     def->_parents.reserve(numJoints);
     def->_offsetTranslations.reserve(numJoints);
@@ -313,7 +309,12 @@ BuildResult ActorDefinitionBuilder::buildFrom(const std::string& name, const Joi
         def->_kinematics.push_back(makeKinematics(joint, def->_firstDofs.back(), mask));
         def->_firstDofs.push_back(static_cast<unsigned>(def->_dofJoints.size()));
     }
-    def->_jointIndex.build(def->_jointNames);
+    // The joints kept their places (a file that gives parents first, as most do): the index of their names is the
+    // definition's.
+    bool samePlaces = true;
+    for (unsigned i = 0; i < order.size() && samePlaces; ++i) samePlaces = order[i] == i;
+    if (samePlaces) def->_jointIndex = std::move(byName);
+    else def->_jointIndex.build(def->_jointNames);
     def->_jointBatches = planJointBatches(def->_kinematics);
     result.definition = def;
     return result;

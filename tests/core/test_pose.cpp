@@ -237,7 +237,7 @@ TEST(ActorPose, APosedPoseIsWhatAnUpdateOfANewPoseGives)
     EXPECT_EQ(changed, posed.getNumJoints()) << "every local matrix is new, for the scene graph to take";
     EXPECT_EQ(posed.updateMatrices(), 0u) << "nothing left to do";
 
-    ActorPose empty(ActorDefinitionPtr(), ActorPose::PosedAtDefaults());
+    ActorPose empty(nullptr, ActorPose::PosedAtDefaults{});
     EXPECT_EQ(empty.getNumJoints(), 0u);
 }
 
