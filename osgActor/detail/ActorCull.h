@@ -220,7 +220,6 @@ private:
     // joint's): its matrix for the render graph, or null; its pixel-size vector.
     std::vector<osg::RefMatrix*> _leafMatrices;
     FramePixelSizeVectors _pixelSizeVectors;
-    SmallFeatureProof _smallFeatureProof;
     std::vector<osg::StateSet*> _wantedStates;
     std::vector<osg::StateSet*> _appliedStates;
     /** What the last InstancedActorGroup cull to take the actor found for its plan (InstancedCull), so that the

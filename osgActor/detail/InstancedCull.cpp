@@ -256,7 +256,7 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
     {
-        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}, false, {}, {}};
+        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}, {}, {}};
         const osg::StateSet* geodeState = nullptr;
         auto note = [](std::vector<const osg::StateSet*>& states, const osg::StateSet* state) {
             if (state && std::find(states.begin(), states.end(), state) == states.end()) states.push_back(state);
@@ -282,7 +282,7 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
             if (verdict.plain && mesh) verdict.skinBatches.push_back(batch = batchOf(geodeState, nullptr, mesh));
             verdict.batchOfStep.push_back(batch);
         }
-        if (verdict.plain && verdict.skinBatches.empty()) compilePlainInstances(verdict);
+        if (verdict.compiled()) compilePlainInstances(verdict);
         found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
     }
     // The map's entries stay where they are until erased, which the plan held here prevents.
@@ -408,7 +408,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     else
         kept.kept = false;
     // Each joint's frame, parents first, as ActorCull composes them.
-    plan.composeModelViews(modelViews.data(), _smallFeatureCulling ? &_state._smallFeatureProof : nullptr);
+    plan.composeModelViews(modelViews.data());
     if (!addPlainInstances(verdict)) cullSteps(verdict);
     _recording = nullptr;
 }
@@ -438,8 +438,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
                 i = step.end;
                 continue;
             }
-            if (tested && plan.provesNoSmallFeatureBelow(step, _state._smallFeatureProof, actorPixelSizeVector(),
-                                                         _smallFeaturePixelSize))
+            if (tested && plan.provesNoSmallFeatureBelow(step, actorPixelSizeVector(), _smallFeaturePixelSize))
                 provenUntil = step.end;
             break;
         }
@@ -471,7 +470,6 @@ void InstancedCull::compilePlainInstances(InstancedCullState::PlanVerdict& verdi
         if (counted == verdict.instancesPerBatch.end()) verdict.instancesPerBatch.emplace_back(batch, 1u);
         else ++counted->second;
     }
-    verdict.compiled = true;
 }
 
 bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& verdict)
@@ -479,9 +477,9 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
     // What cullSteps() would test: near and far from each drawable's box, a node a mask rules out, a top joint that
     // is a small feature, a subtree below a top joint with no proof that none of its spheres is one. The instances
     // being recorded for an idle actor go through the steps too.
-    if (!verdict.compiled || _computeNearFar || _recording) return false;
+    if (!verdict.compiled() || _computeNearFar || _recording) return false;
     if (!verdict.plan->needsNoTestBelowTopJoints(
-            _traversalMask, _maskOverride, _smallFeatureCulling ? &_state._smallFeatureProof : nullptr,
+            _traversalMask, _maskOverride, _smallFeatureCulling,
             _smallFeatureCulling ? actorPixelSizeVector() : osg::Vec4(), _smallFeaturePixelSize,
             [this](const osg::BoundingSphere& bound) { return isSmallFeature(bound, 0); }))
         return false;

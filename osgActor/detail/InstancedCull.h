@@ -160,7 +160,7 @@ private:
             unsigned batch;
             const osg::Drawable* drawable;
         };
-        bool compiled = false;
+        bool compiled() const { return plain && skinBatches.empty(); }
         std::vector<PlainInstance> plainInstances;
         std::vector<std::pair<unsigned, unsigned>> instancesPerBatch;
     };
@@ -217,7 +217,6 @@ private:
     std::vector<const SkinnedMeshInstance*> _skinInstances; // the actor's, in step order
     std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
     FramePixelSizeVectors _pixelSizeVectors;  // per frame, made where a test needs it
-    SmallFeatureProof _smallFeatureProof;
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
     InstancedFrame* _frame = nullptr; // this cull's, if any batch has a region
@@ -286,7 +285,7 @@ private:
     }
     /** Adds the kept instances of an actor that did not change, if they hold for this cull. */
     bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
-    bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
+    bool isMasked(osg::Node::NodeMask mask) const { return isMaskedOut(_traversalMask, _maskOverride, mask); }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
     /** The pixel-size vector of the actor's own frame. */
     const osg::Vec4& actorPixelSizeVector();
