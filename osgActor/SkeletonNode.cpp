@@ -1,11 +1,13 @@
 #include <osgActor/SkeletonNode>
 #include <osgActor/ActorNode>
 #include <osgActor/detail/CullArithmetic.h>
+#include <osgActor/detail/PlacedSkeletonNode.h>
 
 #include <osgUtil/IntersectionVisitor>
 
 #include <algorithm>
 #include <cmath>
+#include <typeinfo>
 
 namespace osgActor {
 
@@ -116,16 +118,18 @@ osg::BoundingSphere SkeletonNode::computeBound() const
 void SkeletonNode::noteSubtreeShape(bool rigid) const
 {
     // The bounds of the relative children are computed: a child skeleton node's shape is as of that computation,
-    // unless a callback computed its bound instead of computeBound().
+    // unless a callback computed its bound instead of computeBound(). Only the classes an actor's cull plans count
+    // (exactly these: a subclass, and all below it, is traversed ordinarily); a type's identity, not a dynamic_cast,
+    // since a joint that translates computes its bound, and so this, at every frame.
     double reach = 0.0;
     for (const osg::ref_ptr<osg::Node>& child : _children)
     {
-        const osg::Transform* transform = child->asTransform();
-        if (!transform || transform->getReferenceFrame() != RELATIVE_RF) continue;
-        const SkeletonNode* joint = dynamic_cast<const SkeletonNode*>(transform);
-        if (!joint) continue;
-        rigid = rigid && joint->_subtreeRigid && !joint->getComputeBoundingSphereCallback();
-        reach = std::max(reach, detail::translationReach(joint->_matrix.ptr()) + joint->_reachBelow);
+        const std::type_info& type = typeid(*child);
+        if (type != typeid(detail::PlacedSkeletonNode) && type != typeid(SkeletonNode)) continue;
+        const SkeletonNode& joint = static_cast<const SkeletonNode&>(*child);
+        if (joint._referenceFrame != RELATIVE_RF) continue;
+        rigid = rigid && joint._subtreeRigid && !joint.getComputeBoundingSphereCallback();
+        reach = std::max(reach, detail::translationReach(joint._matrix.ptr()) + joint._reachBelow);
     }
     _subtreeRigid = rigid;
     _reachBelow = reach;
