@@ -423,8 +423,8 @@ void ActorCull::applyWantedStates()
 {
     std::vector<osg::StateSet*>& wanted = _state._wantedStates;
     std::vector<osg::StateSet*>& applied = _state._appliedStates;
-    std::size_t common = 0;
-    while (common < wanted.size() && common < applied.size() && wanted[common] == applied[common]) ++common;
+    const std::size_t common = _statesInCommon;
+    if (common == wanted.size() && common == applied.size()) return; // what is wanted is on the stack
     while (applied.size() > common)
     {
         _cv.popStateSet();
@@ -438,6 +438,7 @@ void ActorCull::applyWantedStates()
         call(Call::PUSH_STATE, state);
         applied.push_back(state);
     }
+    _statesInCommon = applied.size();
 }
 
 osg::RefMatrix* ActorCull::leafMatrix(unsigned frame)
