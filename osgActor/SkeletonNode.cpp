@@ -2,6 +2,7 @@
 #include <osgActor/ActorNode>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
+#include <osgActor/core/detail/HotPath.h>
 
 #include <osgUtil/IntersectionVisitor>
 
@@ -79,12 +80,20 @@ void SkeletonNode::traverse(osg::NodeVisitor& nv)
     osg::MatrixTransform::traverse(nv);
 }
 
+namespace {
+
+// Built for x86-64-v3 too: where the bounds follow the pose, every moving joint computes its bound, and so this, at
+// every frame.
+OSGACTOR_HOT_PATH bool isRigidMatrix(const double* m) { return detail::isRigid(m); }
+
+} // namespace
+
 osg::BoundingSphere SkeletonNode::computeBound() const
 {
     if (!_boundCoversRotations || _referenceFrame != RELATIVE_RF)
     {
         const osg::BoundingSphere bound = osg::MatrixTransform::computeBound();
-        noteSubtreeShape(detail::isRigid(_matrix.ptr()));
+        noteSubtreeShape(isRigidMatrix(_matrix.ptr()));
         return bound;
     }
     // The joint turns about its own origin, so a ball about that origin that holds every child's bound holds it in
@@ -98,7 +107,7 @@ osg::BoundingSphere SkeletonNode::computeBound() const
         const osg::BoundingSphere& bound = child->getBound();
         if (bound.valid()) reach = std::max(reach, osg::Vec3d(bound.center()).length() + bound.radius());
     }
-    const bool rigid = detail::isRigid(_matrix.ptr());
+    const bool rigid = isRigidMatrix(_matrix.ptr());
     noteSubtreeShape(rigid);
     // About the centre the matrix shows; if that is not the joint's (a matrix set by hand), the actor's next
     // write, which puts it back, must make a new ball; so too where the matrix is not rigid (a scale set by hand),
@@ -124,9 +133,13 @@ void SkeletonNode::noteSubtreeShape(bool rigid) const
     double reach = 0.0;
     for (const osg::ref_ptr<osg::Node>& child : _children)
     {
-        const std::type_info& type = typeid(*child);
+        // Transforms first (geodes, most children, answer at once), then the classes; a type that is not the one
+        // compared with is told by its name.
+        const osg::Transform* transform = child->asTransform();
+        if (!transform) continue;
+        const std::type_info& type = typeid(*transform);
         if (type != typeid(detail::PlacedSkeletonNode) && type != typeid(SkeletonNode)) continue;
-        const SkeletonNode& joint = static_cast<const SkeletonNode&>(*child);
+        const SkeletonNode& joint = static_cast<const SkeletonNode&>(*transform);
         if (joint._referenceFrame != RELATIVE_RF) continue;
         rigid = rigid && joint._subtreeRigid && !joint.getComputeBoundingSphereCallback();
         reach = std::max(reach, detail::translationReach(joint._matrix.ptr()) + joint._reachBelow);
