@@ -419,12 +419,11 @@ void ActorCull::traverseOrdinarily(const Step& step)
     if (matrix) _cv.popModelViewMatrix();
 }
 
-void ActorCull::applyWantedStates()
+void ActorCull::changeToWantedStates()
 {
     std::vector<osg::StateSet*>& wanted = _state._wantedStates;
     std::vector<osg::StateSet*>& applied = _state._appliedStates;
     const std::size_t common = _statesInCommon;
-    if (common == wanted.size() && common == applied.size()) return; // what is wanted is on the stack
     while (applied.size() > common)
     {
         _cv.popStateSet();

@@ -299,7 +299,13 @@ private:
         _state._wantedStates.pop_back();
         _statesInCommon = std::min(_statesInCommon, _state._wantedStates.size());
     }
-    void applyWantedStates();
+    /** Pushes and pops what the visitor's stack needs to hold the wanted state sets: nothing, mostly, found inline. */
+    void applyWantedStates()
+    {
+        if (_statesInCommon == _state._wantedStates.size() && _statesInCommon == _state._appliedStates.size()) return;
+        changeToWantedStates();
+    }
+    void changeToWantedStates();
 
     void call(Call::Kind kind, osg::Referenced* object, osg::RefMatrix* matrix = nullptr, float depth = 0.0f,
               const osg::Matrixd* modelView = nullptr)
