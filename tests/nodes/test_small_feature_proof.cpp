@@ -188,58 +188,68 @@ TEST(SmallFeatureProof, TheInstancedCullDrawsTheOrdinaryTraversalsPartsAtEveryDi
 // matrices are rigid. The actor writes rigid matrices; a matrix set by hand through osg::MatrixTransform::setMatrix()
 // (not virtual) must still be seen, whatever the state of the bounds when it is set.
 
-TEST(SmallFeatureProof, SeesAMatrixScaledByHandAfterTheBoundsWereComputed)
+namespace {
+
+/** Four posed test figures whose bounds are computed, and what their top joint keeps of its subtree. */
+struct BoundedCrowd
 {
     osg::ref_ptr<osg::Group> scene = new osg::Group;
-    Crowd crowd(*scene);
-    ActorNode& actor = *crowd.actors[1];
-    actor.getBound();
-    EXPECT_TRUE(shapeOf(*actor.getSkeletonNode("pelvis")).rigid);
-    osg::MatrixTransform& knee = *actor.getSkeletonNode("l_knee"); // through the base class, as a user would
-    knee.setMatrix(osg::Matrixd::scale(1.0, 1.0, 0.5) * knee.getMatrix());
-    EXPECT_FALSE(shapeOf(*actor.getSkeletonNode("pelvis")).rigid);
-    EXPECT_TRUE(shapeOf(*crowd.actors[0]->getSkeletonNode("pelvis")).rigid);
-    EXPECT_GT(expectTheOrdinaryGraphAtEveryDistance(*scene, crowd).size(), 3u);
+    Crowd crowd{*scene};
+
+    BoundedCrowd()
+    {
+        for (osg::ref_ptr<ActorNode>& actor : crowd.actors) actor->getBound();
+    }
+    bool isRigidBelowPelvis(unsigned actor) const { return shapeOf(*crowd.actors[actor]->getSkeletonNode("pelvis")).rigid; }
+    /** Scales a joint of an actor by hand, through the base class's setMatrix(), as a user would. */
+    osg::MatrixTransform& scaleByHand(unsigned actor, const char* joint, double scale)
+    {
+        osg::MatrixTransform& node = *crowd.actors[actor]->getSkeletonNode(joint);
+        node.setMatrix(osg::Matrixd::scale(scale, scale, scale) * node.getMatrix());
+        return node;
+    }
+    std::size_t countGraphsThroughTheThreshold() { return expectTheOrdinaryGraphAtEveryDistance(*scene, crowd).size(); }
+};
+
+} // namespace
+
+TEST(SmallFeatureProof, SeesAMatrixScaledByHandAfterTheBoundsWereComputed)
+{
+    BoundedCrowd crowd;
+    EXPECT_TRUE(crowd.isRigidBelowPelvis(1));
+    crowd.scaleByHand(1, "l_knee", 0.5);
+    EXPECT_FALSE(crowd.isRigidBelowPelvis(1));
+    EXPECT_TRUE(crowd.isRigidBelowPelvis(0));
+    EXPECT_GT(crowd.countGraphsThroughTheThreshold(), 3u);
 }
 
 TEST(SmallFeatureProof, SeesAMatrixScaledByHandWhileItsBoundWasDirty)
 {
-    osg::ref_ptr<osg::Group> scene = new osg::Group;
-    Crowd crowd(*scene);
-    ActorNode& actor = *crowd.actors[2];
-    actor.getBound();
+    BoundedCrowd crowd;
     // Dirtied first (by a user, or by the actor's write of a joint whose bound follows the pose): setMatrix()'s own
     // dirtying then stops at the knee.
-    SkeletonNode& knee = *actor.getSkeletonNode("r_knee");
-    knee.dirtyBound();
-    knee.setMatrix(osg::Matrixd::scale(2.0, 2.0, 2.0) * knee.getMatrix());
-    EXPECT_FALSE(shapeOf(*actor.getSkeletonNode("pelvis")).rigid);
-    EXPECT_GT(expectTheOrdinaryGraphAtEveryDistance(*scene, crowd).size(), 3u);
+    crowd.crowd.actors[2]->getSkeletonNode("r_knee")->dirtyBound();
+    crowd.scaleByHand(2, "r_knee", 2.0);
+    EXPECT_FALSE(crowd.isRigidBelowPelvis(2));
+    EXPECT_GT(crowd.countGraphsThroughTheThreshold(), 3u);
 }
 
 TEST(SmallFeatureProof, TrustsTheSubtreeAgainOnceTheActorHasWrittenItsRigidMatrixBack)
 {
-    osg::ref_ptr<osg::Group> scene = new osg::Group;
-    Crowd crowd(*scene);
-    ActorNode& actor = *crowd.actors[1];
-    actor.getBound();
-    SkeletonNode& knee = *actor.getSkeletonNode("l_knee");
-    knee.setMatrix(osg::Matrixd::scale(0.5, 0.5, 0.5) * knee.getMatrix());
-    EXPECT_FALSE(shapeOf(*actor.getSkeletonNode("pelvis")).rigid);
+    BoundedCrowd crowd;
+    const osg::MatrixTransform& knee = crowd.scaleByHand(1, "l_knee", 0.5);
+    EXPECT_FALSE(crowd.isRigidBelowPelvis(1));
     // The knee's next pose is written over the scale: the ball made for the scaled matrix is made anew.
-    actor.setDof("l_knee.rx", 0.3);
-    actor.update(nullptr);
-    EXPECT_TRUE(shapeOf(*actor.getSkeletonNode("pelvis")).rigid);
+    crowd.crowd.actors[1]->setDof("l_knee.rx", 0.3);
+    crowd.crowd.actors[1]->update(nullptr);
+    EXPECT_TRUE(crowd.isRigidBelowPelvis(1));
     EXPECT_TRUE(detail::isRigid(knee.getMatrix().ptr()));
-    EXPECT_GT(expectTheOrdinaryGraphAtEveryDistance(*scene, crowd).size(), 3u);
+    EXPECT_GT(crowd.countGraphsThroughTheThreshold(), 3u);
 }
 
 TEST(SmallFeatureProof, KnowsNothingOfASubtreeWhoseBoundACallbackComputes)
 {
-    osg::ref_ptr<osg::Group> scene = new osg::Group;
-    Crowd crowd(*scene);
-    ActorNode& actor = *crowd.actors[3];
-    actor.getBound();
+    BoundedCrowd crowd;
     // A callback computes the knee's bound in place of computeBound(), which notes the subtree's shape: the
     // callback set without dirtying anything, then a scale.
     struct KneeBound : osg::Node::ComputeBoundingSphereCallback
@@ -249,20 +259,17 @@ TEST(SmallFeatureProof, KnowsNothingOfASubtreeWhoseBoundACallbackComputes)
             return osg::BoundingSphere(osg::Vec3(0.0f, 0.0f, -0.25f), 0.3f);
         }
     };
-    SkeletonNode& knee = *actor.getSkeletonNode("r_knee");
-    knee.setComputeBoundingSphereCallback(new KneeBound);
-    EXPECT_TRUE(shapeOf(*actor.getSkeletonNode("pelvis")).rigid); // nothing changed yet
-    knee.setMatrix(osg::Matrixd::scale(0.5, 0.5, 0.5) * knee.getMatrix());
-    EXPECT_FALSE(shapeOf(*actor.getSkeletonNode("pelvis")).rigid);
-    EXPECT_GT(expectTheOrdinaryGraphAtEveryDistance(*scene, crowd).size(), 3u);
+    crowd.crowd.actors[3]->getSkeletonNode("r_knee")->setComputeBoundingSphereCallback(new KneeBound);
+    EXPECT_TRUE(crowd.isRigidBelowPelvis(3)); // nothing changed yet
+    crowd.scaleByHand(3, "r_knee", 0.5);
+    EXPECT_FALSE(crowd.isRigidBelowPelvis(3));
+    EXPECT_GT(crowd.countGraphsThroughTheThreshold(), 3u);
 }
 
 TEST(SmallFeatureProof, KeepsTheSubtreesReachFromTheActorsOrigin)
 {
-    osg::ref_ptr<osg::Group> scene = new osg::Group;
-    Crowd crowd(*scene);
-    ActorNode& actor = *crowd.actors[0];
-    actor.getBound();
+    BoundedCrowd crowd;
+    ActorNode& actor = *crowd.crowd.actors[0];
     // pelvis 0.95 up; chest 0.45 above it, head above the chest; a hip 0.1 aside and its knee 0.45 below: the
     // farthest sum of translations on the way down is the longest of those chains.
     const detail::SubtreeShape pelvis = shapeOf(*actor.getSkeletonNode("pelvis"));
