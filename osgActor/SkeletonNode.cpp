@@ -1,14 +1,20 @@
 #include <osgActor/SkeletonNode>
 #include <osgActor/ActorNode>
+#include <osgActor/detail/CullArithmetic.h>
+#include <osgActor/detail/PlacedSkeletonNode.h>
+#include <osgActor/core/detail/HotPath.h>
 
 #include <osgUtil/IntersectionVisitor>
 
 #include <algorithm>
 #include <cmath>
+#include <typeinfo>
 
 namespace osgActor {
 
-SkeletonNode::SkeletonNode() : _jointIndex(0), _hidden(false), _boundCoversRotations(false), _ballOffCentre(false)
+SkeletonNode::SkeletonNode()
+    : _jointIndex(0), _hidden(false), _boundCoversRotations(false), _ballOffCentre(false), _subtreeRigid(false),
+      _reachBelow(0.0)
 {
     // The matrix changes from frame to frame: keep osgUtil::Optimizer from flattening it away.
     setDataVariance(osg::Object::DYNAMIC);
@@ -23,7 +29,7 @@ SkeletonNode::SkeletonNode(unsigned jointIndex, const std::string& jointName) : 
 SkeletonNode::SkeletonNode(const SkeletonNode& node, const osg::CopyOp& copyop)
     : osg::MatrixTransform(node, copyop), _jointIndex(node._jointIndex), _hidden(node._hidden),
       _boundCoversRotations(node._boundCoversRotations), _ballOffCentre(node._ballOffCentre),
-      _jointCentre(node._jointCentre)
+      _jointCentre(node._jointCentre), _subtreeRigid(node._subtreeRigid), _reachBelow(node._reachBelow)
 {
 }
 
@@ -74,9 +80,22 @@ void SkeletonNode::traverse(osg::NodeVisitor& nv)
     osg::MatrixTransform::traverse(nv);
 }
 
+namespace {
+
+// Built for x86-64-v3 too: where the bounds follow the pose, every moving joint computes its bound, and so this, at
+// every frame.
+OSGACTOR_HOT_PATH bool isRigidMatrix(const double* m) { return detail::isRigid(m); }
+
+} // namespace
+
 osg::BoundingSphere SkeletonNode::computeBound() const
 {
-    if (!_boundCoversRotations || _referenceFrame != RELATIVE_RF) return osg::MatrixTransform::computeBound();
+    if (!_boundCoversRotations || _referenceFrame != RELATIVE_RF)
+    {
+        const osg::BoundingSphere bound = osg::MatrixTransform::computeBound();
+        noteSubtreeShape(isRigidMatrix(_matrix.ptr()));
+        return bound;
+    }
     // The joint turns about its own origin, so a ball about that origin that holds every child's bound holds it in
     // any rotation: its radius is the farthest reach of a child's sphere. Children are taken as osg::Group takes
     // them: those with an absolute reference frame, and empty ones, do not count.
@@ -88,10 +107,13 @@ osg::BoundingSphere SkeletonNode::computeBound() const
         const osg::BoundingSphere& bound = child->getBound();
         if (bound.valid()) reach = std::max(reach, osg::Vec3d(bound.center()).length() + bound.radius());
     }
+    const bool rigid = isRigidMatrix(_matrix.ptr());
+    noteSubtreeShape(rigid);
     // About the centre the matrix shows; if that is not the joint's (a matrix set by hand), the actor's next
-    // write, which puts it back, must make a new ball.
+    // write, which puts it back, must make a new ball; so too where the matrix is not rigid (a scale set by hand),
+    // which the actor's write makes rigid again: the ball shrinks back, and the subtree's shape is noted anew.
     const osg::Vec3d centre = _matrix.getTrans();
-    _ballOffCentre = centre != _jointCentre;
+    _ballOffCentre = centre != _jointCentre || !rigid;
     if (reach < 0.0) return osg::BoundingSphere();
     // The actor writes rigid matrices; a scale a user set with setMatrix() widens the ball as it would widen
     // osg::Transform's bound (the longest image of a unit axis).
@@ -100,6 +122,30 @@ osg::BoundingSphere SkeletonNode::computeBound() const
         scale2 = std::max(scale2, _matrix(row, 0) * _matrix(row, 0) + _matrix(row, 1) * _matrix(row, 1) +
                                       _matrix(row, 2) * _matrix(row, 2));
     return osg::BoundingSphere(centre, reach * std::sqrt(scale2));
+}
+
+void SkeletonNode::noteSubtreeShape(bool rigid) const
+{
+    // The bounds of the relative children are computed: a child skeleton node's shape is as of that computation,
+    // unless a callback computed its bound instead of computeBound(). Only the classes an actor's cull plans count
+    // (exactly these: a subclass, and all below it, is traversed ordinarily); a type's identity, not a dynamic_cast,
+    // since a joint that translates computes its bound, and so this, at every frame.
+    double reach = 0.0;
+    for (const osg::ref_ptr<osg::Node>& child : _children)
+    {
+        // Transforms first (geodes, most children, answer at once), then the classes; a type that is not the one
+        // compared with is told by its name.
+        const osg::Transform* transform = child->asTransform();
+        if (!transform) continue;
+        const std::type_info& type = typeid(*transform);
+        if (type != typeid(detail::PlacedSkeletonNode) && type != typeid(SkeletonNode)) continue;
+        const SkeletonNode& joint = static_cast<const SkeletonNode&>(*transform);
+        if (joint._referenceFrame != RELATIVE_RF) continue;
+        rigid = rigid && joint._subtreeRigid && !joint.getComputeBoundingSphereCallback();
+        reach = std::max(reach, detail::translationReach(joint._matrix.ptr()) + joint._reachBelow);
+    }
+    _subtreeRigid = rigid;
+    _reachBelow = reach;
 }
 
 } // namespace osgActor

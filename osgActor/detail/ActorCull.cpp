@@ -192,7 +192,7 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     matrices.resize(joints.size() + 1);
     matrices[0] = actorModelView;
     const bool smallFeatureCulling = view.smallFeatureCulling();
-    _plan->composeModelViews(matrices.data(), smallFeatureCulling ? &_smallFeatureProof : nullptr);
+    _plan->composeModelViews(matrices.data());
 
     const std::size_t numFrames = joints.size() + 1;
     _leafMatrices.assign(numFrames, nullptr);
@@ -213,7 +213,7 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     const bool frustumCullingForNearFar = view.computeNearFar() && view.frustumCulling();
     if (!frustumCullingForNearFar &&
         _plan->needsNoTestBelowTopJoints(view.traversalMask, view.nodeMaskOverride,
-                                         smallFeatureCulling ? &_smallFeatureProof : nullptr, pixelSizeVector,
+                                         smallFeatureCulling, pixelSizeVector,
                                          view.smallFeaturePixelSize, [&](const osg::BoundingSphere& bound) {
                                              return isSmallFeature(bound, 0, view);
                                          }))
@@ -240,14 +240,13 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
             const unsigned frame = step.kind == ActorCullPlan::JOINT ? unsigned(jointData[step.joint].parent + 1)
                                                                       : unsigned(step.joint + 1);
             const bool tested = smallFeatureCulling && i >= provenUntil;
-            if ((view.traversalMask & (view.nodeMaskOverride | step.mask)) == 0 ||
+            if (isMaskedOut(view.traversalMask, view.nodeMaskOverride, step.mask) ||
                 (tested && step.cullingActive && isSmallFeature(step.node->getBound(), frame, view)))
             {
                 culled[i] = 1;
                 i = step.end - 1; // its steps are skipped, and left undecided
             }
-            else if (tested && _plan->provesNoSmallFeatureBelow(step, _smallFeatureProof, pixelSizeVector,
-                                                                view.smallFeaturePixelSize))
+            else if (tested && _plan->provesNoSmallFeatureBelow(step, pixelSizeVector, view.smallFeaturePixelSize))
                 provenUntil = step.end;
             break;
         }
@@ -255,7 +254,7 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
         {
             // What CullVisitor::apply(osg::Drawable&) decides for a drawable without a cull callback, with the
             // frustum test kept where it changes the image: near and far planes computed from what is drawn.
-            const bool masked = (view.traversalMask & (view.nodeMaskOverride | step.mask)) == 0;
+            const bool masked = isMaskedOut(view.traversalMask, view.nodeMaskOverride, step.mask);
             const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
             const osg::Matrixd& modelView = frames[step.joint + 1];
             culled[i] = masked || (frustumCullingForNearFar && box.valid() && step.cullingActive &&
@@ -420,12 +419,11 @@ void ActorCull::traverseOrdinarily(const Step& step)
     if (matrix) _cv.popModelViewMatrix();
 }
 
-void ActorCull::applyWantedStates()
+void ActorCull::changeToWantedStates()
 {
     std::vector<osg::StateSet*>& wanted = _state._wantedStates;
     std::vector<osg::StateSet*>& applied = _state._appliedStates;
-    std::size_t common = 0;
-    while (common < wanted.size() && common < applied.size() && wanted[common] == applied[common]) ++common;
+    const std::size_t common = _statesInCommon;
     while (applied.size() > common)
     {
         _cv.popStateSet();
@@ -439,6 +437,7 @@ void ActorCull::applyWantedStates()
         call(Call::PUSH_STATE, state);
         applied.push_back(state);
     }
+    _statesInCommon = applied.size();
 }
 
 osg::RefMatrix* ActorCull::leafMatrix(unsigned frame)

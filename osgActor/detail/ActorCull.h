@@ -43,6 +43,7 @@
 #include <osg/Matrixd>
 #include <osgUtil/CullVisitor>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <vector>
@@ -220,7 +221,6 @@ private:
     // joint's): its matrix for the render graph, or null; its pixel-size vector.
     std::vector<osg::RefMatrix*> _leafMatrices;
     FramePixelSizeVectors _pixelSizeVectors;
-    SmallFeatureProof _smallFeatureProof;
     std::vector<osg::StateSet*> _wantedStates;
     std::vector<osg::StateSet*> _appliedStates;
     /** What the last InstancedActorGroup cull to take the actor found for its plan (InstancedCull), so that the
@@ -283,9 +283,29 @@ private:
     // The state sets wanted on the visitor's stack, pushed and popped only when a leaf or a traversal needs them:
     // the geodes under an actor's joints mostly carry one state set, and a pop followed by a push of the same
     // set leaves the visitor where it was.
-    void wantState(osg::StateSet* state) { _state._wantedStates.push_back(state); }
-    void unwantState() { _state._wantedStates.pop_back(); }
-    void applyWantedStates();
+    // How many state sets at the bottom of the wanted ones are those on the visitor's stack (_statesInCommon) is
+    // kept as they are wanted and unwanted, so that a drawable wanting what is pushed already (most do) finds it
+    // without comparing the two lists.
+    void wantState(osg::StateSet* state)
+    {
+        std::vector<osg::StateSet*>& wanted = _state._wantedStates;
+        const std::vector<osg::StateSet*>& applied = _state._appliedStates;
+        if (_statesInCommon == wanted.size() && wanted.size() < applied.size() && applied[wanted.size()] == state)
+            ++_statesInCommon;
+        wanted.push_back(state);
+    }
+    void unwantState()
+    {
+        _state._wantedStates.pop_back();
+        _statesInCommon = std::min(_statesInCommon, _state._wantedStates.size());
+    }
+    /** Pushes and pops what the visitor's stack needs to hold the wanted state sets: nothing, mostly, found inline. */
+    void applyWantedStates()
+    {
+        if (_statesInCommon == _state._wantedStates.size() && _statesInCommon == _state._appliedStates.size()) return;
+        changeToWantedStates();
+    }
+    void changeToWantedStates();
 
     void call(Call::Kind kind, osg::Referenced* object, osg::RefMatrix* matrix = nullptr, float depth = 0.0f,
               const osg::Matrixd* modelView = nullptr)
@@ -314,6 +334,9 @@ private:
     static constexpr unsigned kMaxOpenBatches = 8;
     OpenBatch _open[kMaxOpenBatches];
     unsigned _numOpen;
+    /** The wanted state sets' first ones that are on the visitor's stack, in the same order (both lists start a
+      * cull empty). */
+    std::size_t _statesInCommon = 0;
 };
 
 } // namespace detail

@@ -1,6 +1,7 @@
 #include <osgActor/detail/ActorCullPlan.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/Prefetch.h>
+#include <osgActor/detail/SkeletonNodeAccess.h>
 #include <osgActor/core/detail/HotPath.h>
 
 #include <osg/Geometry>
@@ -169,9 +170,8 @@ void ActorCullPlan::addJoint(SkeletonNode& node, int parent)
 
 namespace {
 
-// Built for x86-64-v3 too (four doubles a lane): every actor's every joint goes through both at every cull. The file
-// is compiled without contracting products and sums into fused multiply-adds, so each clone gives the same bits.
-
+// Built for x86-64-v3 too (four doubles a lane): every actor's every joint goes through it at every cull. The file is
+// compiled without contracting products and sums into fused multiply-adds, so each clone gives the same bits.
 OSGACTOR_HOT_PATH void composeJointModelViews(const ActorCullPlan::Joint* joints, std::size_t numJoints,
                                               osg::Matrixd* modelViews)
 {
@@ -180,30 +180,22 @@ OSGACTOR_HOT_PATH void composeJointModelViews(const ActorCullPlan::Joint* joints
                          modelViews[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
 }
 
-OSGACTOR_HOT_PATH void addJointsToProof(const ActorCullPlan::Joint* joints, std::size_t numJoints,
-                                        SmallFeatureProof& proof)
-{
-    proof.reset(numJoints);
-    for (std::size_t j = 0; j < numJoints; ++j) proof.addJoint(j, joints[j].parent, joints[j].node->getMatrix());
-}
-
 } // namespace
 
-void ActorCullPlan::composeModelViews(osg::Matrixd* modelViews, SmallFeatureProof* proof) const
+void ActorCullPlan::composeModelViews(osg::Matrixd* modelViews) const
 {
     composeJointModelViews(_joints.data(), _joints.size(), modelViews);
-    // Apart, so that the products above keep a loop of their own (the matrices are in the cache now).
-    if (proof) addJointsToProof(_joints.data(), _joints.size(), *proof);
 }
 
-bool ActorCullPlan::provesNoSmallFeatureBelow(const Step& step, const SmallFeatureProof& proof,
-                                              const osg::Vec4& actorVector, float pixelSize) const
+bool ActorCullPlan::provesNoSmallFeatureBelow(const Step& step, const osg::Vec4& actorVector, float pixelSize) const
 {
     if (step.kind != JOINT) return false;
     const Joint& joint = _joints[static_cast<std::size_t>(step.joint)];
     double smallestRadius;
+    // The joint's node keeps its subtree's shape with its bound, so the joints below are not read.
     return joint.parent < 0 && smallestGeodeRadiusBelow(joint, smallestRadius) &&
-           proof.holds(joint.node->getBound(), actorVector, pixelSize, smallestRadius);
+           SmallFeatureProof::holds(joint.node->getBound(), SkeletonNodeAccess::subtreeShape(*joint.node),
+                                    actorVector, pixelSize, smallestRadius);
 }
 
 void ActorCullPlan::noteGeodesBelow(unsigned jointStep)

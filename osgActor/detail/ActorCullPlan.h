@@ -92,32 +92,32 @@ public:
       * that does not hold (a joint below without a geode, or a geode with no bound). */
     bool smallestGeodeRadiusBelow(const Joint& joint, double& radius) const;
     /** Each planned joint's model-view matrix, parents first, into modelViews[joint + 1] from the actor's in
-      * modelViews[0] (composeModelView()); each joint's local matrix given to proof too, unless it is null. */
-    void composeModelViews(osg::Matrixd* modelViews, SmallFeatureProof* proof) const;
-    /** For a step the cull keeps: whether it is a joint in the actor's frame below which the proof holds (no small
-      * feature), for the actor frame's pixel-size vector. */
-    bool provesNoSmallFeatureBelow(const Step& step, const SmallFeatureProof& proof, const osg::Vec4& actorVector,
-                                   float pixelSize) const;
+      * modelViews[0] (composeModelView()). */
+    void composeModelViews(osg::Matrixd* modelViews) const;
+    /** For a step the cull keeps: whether it is a joint in the actor's frame below which SmallFeatureProof holds
+      * (no small feature), for the actor frame's pixel-size vector, from the shape the joint's node keeps of its
+      * subtree. */
+    bool provesNoSmallFeatureBelow(const Step& step, const osg::Vec4& actorVector, float pixelSize) const;
     /** The DRAWABLE steps, in order. */
     const std::vector<unsigned>& getDrawableSteps() const { return _drawableSteps; }
     /** Whether a cull would test nothing below the top joints' own spheres, so that it culls nothing below them: no
-      * joint, geode or drawable ruled out by the visitor's masks, and either no small-feature culling (proof null) or
-      * every step at the top a joint whose sphere is no small feature in the actor's frame (isSmallFeatureAtTop(),
-      * the visitor's test there) and below which the proof holds, for the actor frame's pixel-size vector. */
+      * joint, geode or drawable ruled out by the visitor's masks, and either no small-feature culling or every step at
+      * the top a joint whose sphere is no small feature in the actor's frame (isSmallFeatureAtTop(), the visitor's
+      * test there) and below which the proof holds, for the actor frame's pixel-size vector. */
     template <class SmallFeatureTest>
-    bool needsNoTestBelowTopJoints(unsigned traversalMask, unsigned nodeMaskOverride, const SmallFeatureProof* proof,
+    bool needsNoTestBelowTopJoints(unsigned traversalMask, unsigned nodeMaskOverride, bool smallFeatureCulling,
                                    const osg::Vec4& actorVector, float pixelSize,
                                    SmallFeatureTest&& isSmallFeatureAtTop) const
     {
         for (osg::Node::NodeMask mask : _masks)
-            if ((traversalMask & (nodeMaskOverride | mask)) == 0) return false;
-        if (!proof) return true;
+            if (isMaskedOut(traversalMask, nodeMaskOverride, mask)) return false;
+        if (!smallFeatureCulling) return true;
         if (!_topStepsAllJoints) return false;
         for (unsigned i : _topJointSteps)
         {
             const Step& step = _steps[i];
             if (step.cullingActive && isSmallFeatureAtTop(step.node->getBound())) return false;
-            if (!provesNoSmallFeatureBelow(step, *proof, actorVector, pixelSize)) return false;
+            if (!provesNoSmallFeatureBelow(step, actorVector, pixelSize)) return false;
         }
         return true;
     }

@@ -19,6 +19,12 @@
 namespace osgActor {
 namespace detail {
 
+/** Whether the cull visitor's masks rule out a node of this mask (osg::NodeVisitor::validNodeMask()). */
+inline bool isMaskedOut(unsigned traversalMask, unsigned nodeMaskOverride, unsigned nodeMask)
+{
+    return (traversalMask & (nodeMaskOverride | nodeMask)) == 0;
+}
+
 /** modelView = local * parent (OSG's row-vector order): what MatrixTransform::computeLocalToWorldMatrix() computes
   * for a relative frame, the call the visitor makes (osg::Matrixd::preMult), term for term and in the same order,
   * so the bits are the same; inline, into other memory than its inputs (so the compiler may take two columns at
@@ -80,11 +86,45 @@ private:
     std::vector<unsigned char> _known;
 };
 
+/** Whether a local matrix moves by rotation and translation only, to within about 1e-9 (NaN fails): its upper 3x3
+  * block's columns orthonormal (for a square block, as far as its rows are: R^T R and R R^T depart from the identity
+  * by the same Frobenius norm), and its last column (0, 0, 0, 1). */
+inline bool isRigid(const double* m)
+{
+    // Lane k: column k's squared length less 1, and its product with column (k + 1) mod 3; the last column's first
+    // three entries, squared (0 in a rigid matrix). Summed without branches, so that the compiler may take the
+    // columns two or four at once.
+    static constexpr int kNext[3] = {1, 2, 0};
+    double deviation = m[3] * m[3] + m[7] * m[7] + m[11] * m[11] + (m[15] - 1.0) * (m[15] - 1.0);
+    for (int k = 0; k < 3; ++k)
+    {
+        const double column = m[k] * m[k] + m[4 + k] * m[4 + k] + m[8 + k] * m[8 + k] - 1.0;
+        const double across = m[k] * m[kNext[k]] + m[4 + k] * m[4 + kNext[k]] + m[8 + k] * m[8 + kNext[k]];
+        deviation += column * column + across * across;
+    }
+    return deviation < 1e-18;
+}
+
+/** How far a rigid local matrix moves its frame's origin, at most: its translation's absolute components, summed
+  * (parent frame units). */
+inline double translationReach(const double* m) { return std::abs(m[12]) + std::abs(m[13]) + std::abs(m[14]); }
+
+/** What the small-feature proof needs of the joints of a subtree in an actor's own frame: whether every joint's
+  * local matrix is rigid (isRigid()), and how far the joints' origins can be from the actor's origin (actor frame
+  * units, the frames rigid: the largest sum of translationReach() on the way down). Kept by each skeleton node for its
+  * subtree as its bound is computed (SkeletonNode::computeBound(), detail::SkeletonNodeAccess::subtreeShape()), so
+  * that a cull reads it at the top joints instead of every joint's matrix. */
+struct SubtreeShape
+{
+    bool rigid;
+    double reach;
+};
+
 /** A proof, for the subtree of a joint in an actor's own frame, that the cull visitor would find no small feature in
   * it, so that its joints' and geodes' spheres need not be read nor tested (most of a moving crowd's tests; each
   * would read a joint's bound and make its frame's pixel-size vector).
   *
-  * Where every planned joint's local matrix is rigid, every frame below the actor's has the actor frame's
+  * Where every joint's local matrix in the subtree is rigid, every frame below the actor's has the actor frame's
   * pixel-size vector, moved: for a point, the product with its frame's vector (its eye-space w times a factor that
   * only a scale would change) is the product of the same point, taken in the actor's frame, with the actor frame's
   * vector. The spheres below the joint lie in the joint's own sphere (each bound holds its children's), so none is
@@ -92,39 +132,18 @@ private:
   * geode's below it, when every joint below has a geode below it. When that largest value times the pixel size is
   * below that radius by more than a bound on the rounding (the vectors and the bounds are floats, made in other
   * frames than this product), no test below can find a small feature. Otherwise the exact tests run. */
-class SmallFeatureProof
+struct SmallFeatureProof
 {
-public:
-    /** Starts an actor with numJoints planned joints. */
-    void reset(std::size_t numJoints)
-    {
-        _reach.resize(numJoints);
-        for (double& lane : _deviation) lane = 0.0;
-        _maxReach = 0.0;
-    }
-    /** A planned joint's local matrix (in its parent's frame), parents first (parent -1: the actor's frame). */
-    void addJoint(std::size_t joint, int parent, const osg::Matrixd& local)
-    {
-        const double* m = local.ptr();
-        addDeviationFromRigid(m);
-        // How far the joint's origin can be from the actor's (actor units, frames rigid): the sum of the
-        // translations' lengths on the way, each at most its components' absolute sum.
-        const double reach = (parent < 0 ? 0.0 : _reach[static_cast<std::size_t>(parent)]) + std::abs(m[12]) +
-                             std::abs(m[13]) + std::abs(m[14]);
-        _reach[joint] = reach;
-        if (reach > _maxReach) _maxReach = reach;
-    }
     /** Whether no sphere below a joint of the actor's frame is a small feature: top is the joint's sphere (actor's
-      * frame), actorVector the actor frame's pixel-size vector, smallestRadius smallestGeodeRadiusBelow()'s. */
-    bool holds(const osg::BoundingSphere& top, const osg::Vec4& actorVector, float pixelSize,
-               double smallestRadius) const
+      * frame), shape its subtree's, actorVector the actor frame's pixel-size vector, smallestRadius
+      * ActorCullPlan::smallestGeodeRadiusBelow()'s. */
+    static bool holds(const osg::BoundingSphere& top, const SubtreeShape& shape, const osg::Vec4& actorVector,
+                      float pixelSize, double smallestRadius)
     {
-        // Every joint's rows orthonormal and last column (0, 0, 0, 1) to within about 1e-9 (NaN fails too).
-        const double deviation = (_deviation[0] + _deviation[1]) + (_deviation[2] + _deviation[3]);
-        if (!(deviation < 1e-18) || !top.valid() || !(pixelSize > 0.0f)) return false;
+        if (!shape.rigid || !top.valid() || !(pixelSize > 0.0f)) return false;
         const double gradient = osg::Vec3d(actorVector.x(), actorVector.y(), actorVector.z()).length();
         const osg::Vec3d centre(top.center());
-        const double extent = centre.length() + top.radius() + 2.0 * _maxReach; // coordinates in any frame below
+        const double extent = centre.length() + top.radius() + 2.0 * shape.reach; // coordinates in any frame below
         const double tolerance = kRelativeTolerance * extent;  // each bound's containment of its children's
         const double largest =
             centre * osg::Vec3d(actorVector.x(), actorVector.y(), actorVector.z()) + actorVector.w() +
@@ -133,35 +152,9 @@ public:
         return (largest + rounding) * pixelSize * (1.0 + kRelativeTolerance) < smallestRadius - tolerance;
     }
 
-private:
     /** A relative bound on the rounding, far above what floats and doubles accumulate over any skeleton's depth,
       * so that only spheres within this share of the threshold are tested exactly. */
     static constexpr double kRelativeTolerance = 1e-4;
-
-    /** Adds how far a matrix is from rotation and translation only: the squares of the departures of its upper 3x3
-      * block's columns from orthonormal (for a square block, as far as its rows' are: R^T R and R R^T depart from the
-      * identity by the same Frobenius norm), and of its last column's from (0, 0, 0, 1). Kept in four sums (one per
-      * column of the block, one for the last column) until holds() adds them: summed over every joint of every
-      * actor, without branches, so that the compiler may take the columns two or four at once. */
-    void addDeviationFromRigid(const double* m)
-    {
-        // Lane k: column k's squared length less 1, and its product with column (k + 1) mod 3; lane 3 the last
-        // column's first three entries, squared (they are 0 in a rigid matrix).
-        static constexpr int kNext[3] = {1, 2, 0};
-        double column[4], across[3];
-        for (int k = 0; k < 3; ++k)
-        {
-            column[k] = m[k] * m[k] + m[4 + k] * m[4 + k] + m[8 + k] * m[8 + k] - 1.0;
-            across[k] = m[k] * m[kNext[k]] + m[4 + k] * m[4 + kNext[k]] + m[8 + k] * m[8 + kNext[k]];
-        }
-        column[3] = m[3] * m[3] + m[7] * m[7] + m[11] * m[11];
-        for (int k = 0; k < 3; ++k) _deviation[k] += column[k] * column[k] + across[k] * across[k];
-        _deviation[3] += column[3] + (m[15] - 1.0) * (m[15] - 1.0);
-    }
-
-    std::vector<double> _reach;
-    double _maxReach = 0.0;
-    double _deviation[4] = {0.0, 0.0, 0.0, 0.0};
 };
 
 /** Whether a box in a frame lies wholly outside one plane of a frustum given in eye space (the projection's culling

@@ -9,6 +9,7 @@
 
 #include "../SkinnedMeshDrawState.h"
 #include <osgActor/detail/Prefetch.h>
+#include <osgActor/core/detail/HotPath.h>
 
 #include <osg/Material>
 #include <osg/Notify>
@@ -140,7 +141,21 @@ bool isCullingActive(const osg::Node& node)
 void writeInstanceMatrix(const osg::Matrixd& modelView, float* out)
 {
     const double* m = modelView.ptr();
+#if defined(__GNUC__)
+    // Four entries at a time, which a caller built for x86-64-v3 converts in one instruction (the compiler, left to
+    // itself, converts them one by one); rounded to the nearest float either way.
+    typedef double FourDoubles __attribute__((vector_size(32)));
+    typedef float FourFloats __attribute__((vector_size(16)));
+    for (int k = 0; k < 16; k += 4)
+    {
+        FourDoubles entries;
+        std::memcpy(&entries, m + k, sizeof entries);
+        const FourFloats rounded = __builtin_convertvector(entries, FourFloats);
+        std::memcpy(out + k, &rounded, sizeof rounded);
+    }
+#else
     for (int k = 0; k < 16; ++k) out[k] = static_cast<float>(m[k]);
+#endif
 }
 
 } // namespace
@@ -256,7 +271,7 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
     {
-        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}, false, {}, {}};
+        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}, {}, {}};
         const osg::StateSet* geodeState = nullptr;
         auto note = [](std::vector<const osg::StateSet*>& states, const osg::StateSet* state) {
             if (state && std::find(states.begin(), states.end(), state) == states.end()) states.push_back(state);
@@ -282,7 +297,7 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
             if (verdict.plain && mesh) verdict.skinBatches.push_back(batch = batchOf(geodeState, nullptr, mesh));
             verdict.batchOfStep.push_back(batch);
         }
-        if (verdict.plain && verdict.skinBatches.empty()) compilePlainInstances(verdict);
+        if (verdict.compiled()) compilePlainInstances(verdict);
         found = _state._verdicts.emplace(&plan, std::move(verdict)).first;
     }
     // The map's entries stay where they are until erased, which the plan held here prevents.
@@ -408,7 +423,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     else
         kept.kept = false;
     // Each joint's frame, parents first, as ActorCull composes them.
-    plan.composeModelViews(modelViews.data(), _smallFeatureCulling ? &_state._smallFeatureProof : nullptr);
+    plan.composeModelViews(modelViews.data());
     if (!addPlainInstances(verdict)) cullSteps(verdict);
     _recording = nullptr;
 }
@@ -438,8 +453,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
                 i = step.end;
                 continue;
             }
-            if (tested && plan.provesNoSmallFeatureBelow(step, _state._smallFeatureProof, actorPixelSizeVector(),
-                                                         _smallFeaturePixelSize))
+            if (tested && plan.provesNoSmallFeatureBelow(step, actorPixelSizeVector(), _smallFeaturePixelSize))
                 provenUntil = step.end;
             break;
         }
@@ -471,7 +485,6 @@ void InstancedCull::compilePlainInstances(InstancedCullState::PlanVerdict& verdi
         if (counted == verdict.instancesPerBatch.end()) verdict.instancesPerBatch.emplace_back(batch, 1u);
         else ++counted->second;
     }
-    verdict.compiled = true;
 }
 
 bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& verdict)
@@ -479,9 +492,9 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
     // What cullSteps() would test: near and far from each drawable's box, a node a mask rules out, a top joint that
     // is a small feature, a subtree below a top joint with no proof that none of its spheres is one. The instances
     // being recorded for an idle actor go through the steps too.
-    if (!verdict.compiled || _computeNearFar || _recording) return false;
+    if (!verdict.compiled() || _computeNearFar || _recording) return false;
     if (!verdict.plan->needsNoTestBelowTopJoints(
-            _traversalMask, _maskOverride, _smallFeatureCulling ? &_state._smallFeatureProof : nullptr,
+            _traversalMask, _maskOverride, _smallFeatureCulling,
             _smallFeatureCulling ? actorPixelSizeVector() : osg::Vec4(), _smallFeaturePixelSize,
             [this](const osg::BoundingSphere& bound) { return isSmallFeature(bound, 0); }))
         return false;
@@ -492,17 +505,25 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
     // Then what addDrawable() does without near and far: a drawable whose depth is not a number is dropped (the
     // visitor drops it), the others' matrices written in step order, so each batch's instances are in the order the
     // steps would give them.
-    const osg::Matrixd* modelViews = _state._modelViews.data();
+    writePlainInstances(verdict, _state._modelViews.data(), batches.data(), _state._texels);
+    return true;
+}
+
+// Built for x86-64-v3 too (the conversions to float four at a time): every instance of a moving crowd goes through
+// it. The depths' products and sums are not contracted (this file's options), so each clone gives the same bits.
+OSGACTOR_HOT_PATH void InstancedCull::writePlainInstances(const InstancedCullState::PlanVerdict& verdict,
+                                                          const osg::Matrixd* modelViews,
+                                                          InstancedCullState::Batch* batches, float* texels)
+{
     for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
     {
         const osg::Matrixd& modelView = modelViews[instance.frame];
         const osg::BoundingBox& box = instance.drawable->getBoundingBox();
         if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) continue;
         InstancedCullState::Batch& batch = batches[instance.batch];
-        writeInstanceMatrix(modelView, roomInRegion(batch, 1));
+        writeInstanceMatrix(modelView, roomInRegion(batch, 1, texels));
         ++batch.count;
     }
-    return true;
 }
 
 bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions)
@@ -575,12 +596,6 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
         _recording->batches.push_back(batch);
         _recording->matrices.insert(_recording->matrices.end(), out, out + 16);
     }
-}
-
-float* InstancedCull::roomInRegion(const InstancedCullState::Batch& batch, unsigned count) const
-{
-    if ((batch.count + count) * batch.texels > batch.capacity) return nullptr;
-    return _state._texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count);
 }
 
 float* InstancedCull::nextInstance(unsigned batch)

@@ -160,7 +160,7 @@ private:
             unsigned batch;
             const osg::Drawable* drawable;
         };
-        bool compiled = false;
+        bool compiled() const { return plain && skinBatches.empty(); }
         std::vector<PlainInstance> plainInstances;
         std::vector<std::pair<unsigned, unsigned>> instancesPerBatch;
     };
@@ -217,7 +217,6 @@ private:
     std::vector<const SkinnedMeshInstance*> _skinInstances; // the actor's, in step order
     std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
     FramePixelSizeVectors _pixelSizeVectors;  // per frame, made where a test needs it
-    SmallFeatureProof _smallFeatureProof;
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
     InstancedFrame* _frame = nullptr; // this cull's, if any batch has a region
@@ -277,6 +276,10 @@ private:
       * instance straight from the compiled list, as the steps would add them; returns false, having added nothing,
       * where it cannot. */
     bool addPlainInstances(const InstancedCullState::PlanVerdict& verdict);
+    /** addPlainInstances()'s writes, each instance where its batch's region has room (it checked), in the buffer
+      * texels, from the actor's frames modelViews. */
+    static void writePlainInstances(const InstancedCullState::PlanVerdict& verdict, const osg::Matrixd* modelViews,
+                                    InstancedCullState::Batch* batches, float* texels);
     /** Whether the kept instances of an actor with these counters may hold for this cull (its model-view matrix
       * still to compare). */
     bool mayReplay(const ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions) const
@@ -286,7 +289,7 @@ private:
     }
     /** Adds the kept instances of an actor that did not change, if they hold for this cull. */
     bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
-    bool isMasked(osg::Node::NodeMask mask) const { return (_traversalMask & (_maskOverride | mask)) == 0; }
+    bool isMasked(osg::Node::NodeMask mask) const { return isMaskedOut(_traversalMask, _maskOverride, mask); }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
     /** The pixel-size vector of the actor's own frame. */
     const osg::Vec4& actorPixelSizeVector();
@@ -295,7 +298,15 @@ private:
     void addSkinned(const SkinnedMeshInstance& instance, unsigned batch);
     /** Where the batch's next count instances go in its region, in this cull's buffer, or null where the region has
       * no room for them. */
-    float* roomInRegion(const InstancedCullState::Batch& batch, unsigned count) const;
+    float* roomInRegion(const InstancedCullState::Batch& batch, unsigned count) const
+    {
+        return roomInRegion(batch, count, _state._texels);
+    }
+    static float* roomInRegion(const InstancedCullState::Batch& batch, unsigned count, float* texels)
+    {
+        if ((batch.count + count) * batch.texels > batch.capacity) return nullptr;
+        return texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count);
+    }
     /** Where the next instance of a batch goes: its region, or its overflow. */
     float* nextInstance(unsigned batch);
     /** Gives each batch its region in a frame's buffer, as large as its data of the previous cull. */

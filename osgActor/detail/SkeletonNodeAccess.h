@@ -7,6 +7,7 @@
 #define OSGACTOR_DETAIL_SKELETONNODEACCESS_H 1
 
 #include <osgActor/SkeletonNode>
+#include <osgActor/detail/CullArithmetic.h>
 
 namespace osgActor {
 namespace detail {
@@ -65,6 +66,16 @@ struct SkeletonNodeAccess
         (void)node;
         (void)boundToo;
 #endif
+    }
+
+    /** The shape of the node's subtree for the small-feature proof (SkeletonNode::_subtreeRigid, its reach from
+      * the node's parent's origin), as of the bound's computation, which this makes if it is due: where a callback
+      * computes the bound instead of computeBound(), not known, so not rigid. */
+    static SubtreeShape subtreeShape(const SkeletonNode& node)
+    {
+        node.getBound();
+        return {node._subtreeRigid && !node.getComputeBoundingSphereCallback(),
+                translationReach(node._matrix.ptr()) + node._reachBelow};
     }
 
 private:
