@@ -63,6 +63,33 @@ const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned pla
     return *_plan;
 }
 
+void ActorCullState::prefetchAhead(AheadStage stage)
+{
+    if (stage == AHEAD_STATE)
+    {
+        // The members a replay reads, from the flag to the kept calls (the key between them).
+        const char* const first = reinterpret_cast<const char*>(this);
+        prefetchForRead(first, static_cast<std::size_t>(reinterpret_cast<const char*>(&_callsTraverse + 1) - first));
+        return;
+    }
+    // The plan may be replaced under a cull on another thread: read only while holding the state.
+    if (!tryAcquire()) return;
+    if (const ActorCullPlan* plan = _plan.get())
+    {
+        switch (stage)
+        {
+        case AHEAD_PLAN:
+            prefetchForRead(plan, sizeof(ActorCullPlan));
+            prefetchForRead(_calls.data(), _calls.size() * sizeof(Call));
+            break;
+        case AHEAD_PLAN_ARRAYS: plan->prefetchChecks(); break;
+        case AHEAD_NODES: plan->prefetchCheckedNodes(); break;
+        default: break;
+        }
+    }
+    release();
+}
+
 ActorCullState::Key ActorCullState::keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView)
 {
     Key key;

@@ -137,6 +137,18 @@ public:
       * fetches overlap those of the check. */
     const ActorCullPlan& currentPlan(osg::Group& actor, unsigned planVersion, bool prefetch = false);
 
+    /** For the look-ahead of a crowd's cull (ActorNode::prefetchCullAhead()): the stages of what a replay of this
+      * actor's cull reads, each fetched once the one before it is in the caches. */
+    enum AheadStage
+    {
+        AHEAD_STATE,      // this state's own members
+        AHEAD_PLAN,       // the plan and the kept calls
+        AHEAD_PLAN_ARRAYS,// the plan's arrays the check reads
+        AHEAD_NODES       // the nodes the check reads
+    };
+    /** A hint, from any thread: the stages past the first only where no other thread holds the state. */
+    void prefetchAhead(AheadStage stage);
+
 protected:
     ~ActorCullState() override = default;
 

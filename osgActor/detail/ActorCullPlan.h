@@ -22,6 +22,7 @@
 #include <osg/Referenced>
 #include <osg/ref_ptr>
 
+#include <cstddef>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -35,11 +36,19 @@ public:
     /** The plan of the actor's children as they are now. */
     explicit ActorCullPlan(osg::Group& actor);
 
+    /** osg::Node's bytes that hold what the plan compares at a node (its cull callback, culling flags, node mask
+      * and state set, next to each other in the class), compared as one block where the layout puts them within
+      * it (otherwise field by field, as geodes and drawables are). */
+    static constexpr std::size_t kNodeFlagBytes = 32;
     /** Whether nothing the plan decided from that OSG does not report has changed since it was made. */
     bool isCurrent() const;
     /** Asks the processor for what a cull of the planned joints reads (their flags, matrices and bounds), so that
       * the fetches overlap: with many actors the nodes have left the caches since the update. */
     void prefetchJoints() const;
+    /** Asks for the plan's own arrays that isCurrent() reads, ahead of it. */
+    void prefetchChecks() const;
+    /** Asks for the nodes' flags that isCurrent() compares (the arrays read, so best once prefetchChecks() is done). */
+    void prefetchCheckedNodes() const;
 
     /** What the cull does at one step, in the visitor's order. A JOINT or GEODE step opens a subtree that ends
       * at step end (exclusive, its closing step end - 1). */
@@ -152,6 +161,17 @@ private:
         osg::Object::DataVariance dataVariance;
     };
 
+    /** What a joint's check compares: its flag block and its reference frame, as the plan saw them. Few distinct
+      * ones per plan (most joints: no callback, no state set, the same mask), each kept once. */
+    struct JointFlags
+    {
+        alignas(16) unsigned char nodeFlags[kNodeFlagBytes];
+        int referenceFrame;
+    };
+    /** Adds a joint's check to the packed ones; false where its flags are not in one block. */
+    bool addJointCheck(const SkeletonNode& node);
+    bool jointsUnchanged() const;
+
     void addChild(osg::Node& child, int joint);
     void addJoint(SkeletonNode& node, int parent);
     void addGeode(osg::Geode& geode, int joint);
@@ -178,6 +198,11 @@ private:
     bool _topStepsAllJoints = true;
     std::vector<unsigned> _drawableSteps;
     std::vector<const osg::Node*> _geodesBelow; // runs of Joint::firstGeode, numGeodes
+    /** The joints' checks, packed apart from the geodes' and drawables': per joint its node and which of
+      * _jointFlags it had, so that the plan's side of the check is a few lines read in order. */
+    std::vector<const SkeletonNode*> _jointCheckNodes;
+    std::vector<unsigned> _jointCheckFlags;
+    std::vector<JointFlags> _jointFlags;
     std::vector<NodeCheck> _checks;
     std::vector<StateCheck> _stateChecks;
     /** Each checked geode's children when planned, in order: consecutive runs, one per geode. */

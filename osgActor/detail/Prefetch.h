@@ -21,6 +21,16 @@ inline void prefetchForRead(const void* begin, std::size_t bytes)
 #endif
 }
 
+/** The one cache line that holds address, for reading, into L2. */
+inline void prefetchLineForRead(const void* address)
+{
+#if defined(__GNUC__)
+    __builtin_prefetch(address, 0, 2);
+#else
+    (void)address;
+#endif
+}
+
 } // namespace detail
 } // namespace osgActor
 
