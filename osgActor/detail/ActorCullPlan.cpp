@@ -418,8 +418,9 @@ void ActorCullPlan::prefetchCheckedNodes() const
 
 bool ActorCullPlan::isCurrent() const
 {
-    // Every node's flags fetched first, then compared: the fetches overlap rather than wait one after the other.
-    prefetchCheckedNodes();
+    // The joints compared without a branch, so that their loads overlap; the nodes were asked for ahead, by the
+    // cull of the actors before this one (ActorNode::prefetchCullAhead()) or with the joints' matrices
+    // (prefetchJoints()).
     if (!jointsUnchanged()) return false;
     for (const NodeCheck& check : _checks)
         if (!isUnchanged(check)) return false;
