@@ -1,4 +1,6 @@
 #include <osgActor/detail/ActorCull.h>
+
+#include <osgActor/ActorNode>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/Prefetch.h>
 
@@ -305,9 +307,16 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     if (state._prepared || !planKept || !state._replayable || state._callsTraverse || !(state._versions == versions) ||
         cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
         return false;
-    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it, the same call.
-    osg::Matrixd actorModelView = *cv.getModelViewMatrix();
-    actor.computeLocalToWorldMatrix(actorModelView, &cv);
+    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it: for an ActorNode (relative,
+    // the caller checked), MatrixTransform's preMult, the same bits inline; another class's own call.
+    osg::Matrixd actorModelView;
+    if (typeid(actor) == typeid(ActorNode))
+        composeModelView(actor.getMatrix().ptr(), cv.getModelViewMatrix()->ptr(), actorModelView.ptr());
+    else
+    {
+        actorModelView = *cv.getModelViewMatrix();
+        actor.computeLocalToWorldMatrix(actorModelView, &cv);
+    }
     if (!(ActorCullState::keyOf(ActorCullView(cv), actorModelView) == state._key)) return false;
     const ActorCullPlan* kept = state._plan.get();
     state.currentPlan(actor, versions.plan);
