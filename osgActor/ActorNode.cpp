@@ -740,6 +740,8 @@ void ActorNode::prefetchSiblingsAhead(osg::NodeVisitor& nv) const
     cursor = {parent, index};
     for (unsigned ahead = 1; ahead <= kCullLookahead && index + ahead < numChildren; ++ahead)
         prefetchCullAhead(*parent->getChild(index + ahead), ahead);
+    // The render leaf an idle actor two ahead will set, if each adds one (a batch), as a crowd of one kind does.
+    if (nv.asCullVisitor()) detail::ActorCull::prefetchReusedLeaf(*nv.asCullVisitor(), 2);
 }
 
 void ActorNode::accept(osg::NodeVisitor& nv)

@@ -84,7 +84,16 @@ void ActorCullState::prefetchAhead(AheadStage stage)
             prefetchForRead(plan, sizeof(ActorCullPlan));
             prefetchForRead(_calls.data(), _calls.size() * sizeof(Call));
             break;
-        case AHEAD_PLAN_ARRAYS: plan->prefetchChecks(); break;
+        case AHEAD_PLAN_ARRAYS:
+            plan->prefetchChecks();
+            // What the kept calls' leaves count references to: the batch or drawable and the matrix.
+            for (const Call& call : _calls)
+                if (call.kind == Call::ADD_LEAF)
+                {
+                    prefetchLineForWrite(call.object);
+                    prefetchLineForWrite(call.matrix);
+                }
+            break;
         case AHEAD_NODES: plan->prefetchCheckedNodes(); break;
         default: break;
         }
@@ -294,6 +303,31 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
         }
         default: break;
         }
+    }
+}
+
+namespace {
+
+/** The visitor's render leaves kept for reuse (protected in osgUtil::CullVisitor). Never instantiated. */
+struct ReusedLeaves : osgUtil::CullVisitor
+{
+    static const osgUtil::RenderLeaf* at(const osgUtil::CullVisitor& cv, unsigned ahead)
+    {
+        const RenderLeafList osgUtil::CullVisitor::*const leaves = &ReusedLeaves::_reuseRenderLeafList;
+        const unsigned int osgUtil::CullVisitor::*const next = &ReusedLeaves::_currentReuseRenderLeafIndex;
+        const std::size_t index = std::size_t(cv.*next) + ahead;
+        return index < (cv.*leaves).size() ? (cv.*leaves)[index].get() : nullptr;
+    }
+};
+
+} // namespace
+
+void ActorCull::prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahead)
+{
+    if (const osgUtil::RenderLeaf* leaf = ReusedLeaves::at(cv, ahead))
+    {
+        prefetchLineForWrite(leaf);
+        prefetchLineForWrite(reinterpret_cast<const char*>(leaf) + sizeof(osgUtil::RenderLeaf) - 1);
     }
 }
 

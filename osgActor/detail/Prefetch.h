@@ -31,6 +31,16 @@ inline void prefetchLineForRead(const void* address)
 #endif
 }
 
+/** The one cache line that holds address, to be written (a reference count, an object reused), into L2. */
+inline void prefetchLineForWrite(const void* address)
+{
+#if defined(__GNUC__)
+    __builtin_prefetch(address, 1, 2);
+#else
+    (void)address;
+#endif
+}
+
 } // namespace detail
 } // namespace osgActor
 
