@@ -9,7 +9,8 @@
 //    classes tell their actor (ActorNode::dirtyCullPlan()), so the plan never reads their children or hidden flags;
 //  - node masks, state sets, cull callbacks and culling flags, which OSG changes without telling anyone, and the
 //    children of geodes, which are the user's: isCurrent() compares them, every frame, with what the plan saw.
-//    On a skeleton node they share one cache line (osg::Node's and osg::Group's members next to each other).
+//    On a skeleton node they lie in 32 bytes of osg::Node, compared at once, and the reference frame just after
+//    them (osg::Transform's first member); the cull of the actors before this one asks for those lines ahead.
 // A subtree handed to the ordinary traversal is not looked into: the visitor finds what is below it every frame.
 #ifndef OSGACTOR_DETAIL_ACTORCULLPLAN_H
 #define OSGACTOR_DETAIL_ACTORCULLPLAN_H 1
