@@ -696,7 +696,7 @@ void ActorNode::prefetchCullAhead(const osg::Node& node, unsigned ahead) const
             const char* const begin = static_cast<const char*>(first);
             detail::prefetchForRead(other + (begin - self), static_cast<std::size_t>(static_cast<const char*>(end) - begin));
         };
-        detail::prefetchLineForRead(other); // its class
+        detail::prefetchLine(other); // its class
         span(&_boundingSphere, &_boundingSphereComputed + 1);
         span(&_cullCallback, &_matrix + 1); // the flags, the reference frame, actor_m
         span(&_cullMode, &_boundVersion + 1);

@@ -90,8 +90,8 @@ void ActorCullState::prefetchAhead(AheadStage stage)
             for (const Call& call : _calls)
                 if (call.kind == Call::ADD_LEAF)
                 {
-                    prefetchLineForWrite(call.object);
-                    prefetchLineForWrite(call.matrix);
+                    prefetchLine<true>(call.object);
+                    prefetchLine<true>(call.matrix);
                 }
             break;
         case AHEAD_NODES: plan->prefetchCheckedNodes(); break;
@@ -326,8 +326,8 @@ void ActorCull::prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahea
 {
     if (const osgUtil::RenderLeaf* leaf = ReusedLeaves::at(cv, ahead))
     {
-        prefetchLineForWrite(leaf);
-        prefetchLineForWrite(reinterpret_cast<const char*>(leaf) + sizeof(osgUtil::RenderLeaf) - 1);
+        prefetchLine<true>(leaf);
+        prefetchLine<true>(reinterpret_cast<const char*>(leaf) + sizeof(osgUtil::RenderLeaf) - 1);
     }
 }
 

@@ -410,10 +410,10 @@ void ActorCullPlan::prefetchCheckedNodes() const
     for (const SkeletonNode* node : _jointCheckNodes)
     {
         const unsigned char* const block = NodeFlags::flagBlock(*node);
-        prefetchLineForRead(block);
-        prefetchLineForRead(block + 2 * kNodeFlagBytes - 1);
+        prefetchLine(block);
+        prefetchLine(block + 2 * kNodeFlagBytes - 1);
     }
-    for (const NodeCheck& check : _checks) prefetchLineForRead(NodeFlags::maskAddress(*check.node));
+    for (const NodeCheck& check : _checks) prefetchLine(NodeFlags::maskAddress(*check.node));
 }
 
 bool ActorCullPlan::isCurrent() const

@@ -21,21 +21,13 @@ inline void prefetchForRead(const void* begin, std::size_t bytes)
 #endif
 }
 
-/** The one cache line that holds address, for reading, into L2. */
-inline void prefetchLineForRead(const void* address)
+/** The one cache line that holds address, into L2: for reading or, ForWrite, to be written (a reference count, an
+  * object reused). */
+template <bool ForWrite = false>
+inline void prefetchLine(const void* address)
 {
 #if defined(__GNUC__)
-    __builtin_prefetch(address, 0, 2);
-#else
-    (void)address;
-#endif
-}
-
-/** The one cache line that holds address, to be written (a reference count, an object reused), into L2. */
-inline void prefetchLineForWrite(const void* address)
-{
-#if defined(__GNUC__)
-    __builtin_prefetch(address, 1, 2);
+    __builtin_prefetch(address, ForWrite ? 1 : 0, 2);
 #else
     (void)address;
 #endif
