@@ -687,11 +687,73 @@ bool ActorNode::poseWorkDue(const osg::FrameStamp* stamp)
     return due;
 }
 
+void ActorNode::prefetchCullAhead(const osg::Node& node, unsigned ahead) const
+{
+    if (ahead >= kCullLookahead)
+    {
+        // What accept() reads of the node, at the offsets of this actor's members: an address, not a read, so any
+        // class of node may be asked for.
+        const char* const self = reinterpret_cast<const char*>(this);
+        const char* const other = reinterpret_cast<const char*>(&node);
+        const auto span = [&](const void* first, const void* end) {
+            const char* const begin = static_cast<const char*>(first);
+            detail::prefetchForRead(other + (begin - self), static_cast<std::size_t>(static_cast<const char*>(end) - begin));
+        };
+        detail::prefetchLine(other); // its class
+        span(&_boundingSphere, &_boundingSphereComputed + 1);
+        span(&_cullCallback, &_matrix + 1); // the flags, the reference frame, actor_m
+        span(&_cullMode, &_boundVersion + 1);
+        return;
+    }
+    if (typeid(node) != typeid(ActorNode)) return;
+    static const detail::ActorCullState::AheadStage kStages[] = {
+        detail::ActorCullState::AHEAD_NODES, detail::ActorCullState::AHEAD_PLAN_ARRAYS,
+        detail::ActorCullState::AHEAD_PLAN, detail::ActorCullState::AHEAD_STATE};
+    static_assert(sizeof(kStages) / sizeof(kStages[0]) + 1 == kCullLookahead, "a stage an actor");
+    static_cast<const ActorNode&>(node)._cullState->prefetchAhead(kStages[ahead - 1]);
+}
+
+void ActorNode::prefetchSiblingsAhead(osg::NodeVisitor& nv) const
+{
+    // This actor's index among the children of the parent traversing it, found from the last actor this thread
+    // culled (a crowd's actors are culled in child order), or else among the first few children: a bounded search.
+    struct Cursor
+    {
+        const osg::Group* parent;
+        unsigned index;
+    };
+    static thread_local Cursor cursor{nullptr, 0};
+    const osg::NodePath& path = nv.getNodePath();
+    const osg::Group* parent = path.size() >= 2 ? path[path.size() - 2]->asGroup() : nullptr;
+    if (!parent) return;
+    const unsigned numChildren = parent->getNumChildren();
+    const auto find = [&](unsigned from) {
+        const unsigned end = std::min(numChildren, from + kCullLookahead);
+        for (unsigned i = from; i < end; ++i)
+            if (parent->getChild(i) == this) return i;
+        return numChildren;
+    };
+    unsigned index = cursor.parent == parent ? find(cursor.index + 1) : numChildren;
+    if (index == numChildren) index = find(0);
+    if (index == numChildren)
+    {
+        cursor.parent = nullptr;
+        return;
+    }
+    cursor = {parent, index};
+    for (unsigned ahead = 1; ahead <= kCullLookahead && index + ahead < numChildren; ++ahead)
+        prefetchCullAhead(*parent->getChild(index + ahead), ahead);
+    // The render leaf an idle actor two ahead will set, if each adds one (a batch), as a crowd of one kind does.
+    if (nv.asCullVisitor()) detail::ActorCull::prefetchReusedLeaf(*nv.asCullVisitor(), 2);
+}
+
 void ActorNode::accept(osg::NodeVisitor& nv)
 {
     if (!nv.validNodeMask(*this)) return;
     nv.pushOntoNodePath(this);
     osgUtil::CullVisitor* cv = nv.getVisitorType() == osg::NodeVisitor::CULL_VISITOR ? nv.asCullVisitor() : nullptr;
+    // The actors after this one among its siblings, fetched ahead (a crowd's cull is bound by memory latency).
+    if (cv && _cullMode == CULL_AS_ONE) prefetchSiblingsAhead(nv);
     // Only where the visitor would do nothing but test the bound, push the actor's frame and cull it as one: no cull
     // callback or state set here, a relative frame, no update policy noting the view, no ActorGroup's preparation.
     const bool replayed = cv && _cullMode == CULL_AS_ONE && !_updatePolicy.onlyWhenSeen && !getCullCallback() &&

@@ -1,4 +1,6 @@
 #include <osgActor/detail/ActorCull.h>
+
+#include <osgActor/ActorNode>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/Prefetch.h>
 
@@ -61,6 +63,42 @@ const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned pla
         _replayable = false;
     }
     return *_plan;
+}
+
+void ActorCullState::prefetchAhead(AheadStage stage)
+{
+    if (stage == AHEAD_STATE)
+    {
+        // The members a replay reads, from the flag to the kept calls (the key between them).
+        const char* const first = reinterpret_cast<const char*>(this);
+        prefetchForRead(first, static_cast<std::size_t>(reinterpret_cast<const char*>(&_callsTraverse + 1) - first));
+        return;
+    }
+    // The plan may be replaced under a cull on another thread: read only while holding the state.
+    if (!tryAcquire()) return;
+    if (const ActorCullPlan* plan = _plan.get())
+    {
+        switch (stage)
+        {
+        case AHEAD_PLAN:
+            prefetchForRead(plan, sizeof(ActorCullPlan));
+            prefetchForRead(_calls.data(), _calls.size() * sizeof(Call));
+            break;
+        case AHEAD_PLAN_ARRAYS:
+            plan->prefetchChecks();
+            // What the kept calls' leaves count references to: the batch or drawable and the matrix.
+            for (const Call& call : _calls)
+                if (call.kind == Call::ADD_LEAF)
+                {
+                    prefetchLine<true>(call.object);
+                    prefetchLine<true>(call.matrix);
+                }
+            break;
+        case AHEAD_NODES: plan->prefetchCheckedNodes(); break;
+        default: break;
+        }
+    }
+    release();
 }
 
 ActorCullState::Key ActorCullState::keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView)
@@ -267,6 +305,31 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     }
 }
 
+namespace {
+
+/** The visitor's render leaves kept for reuse (protected in osgUtil::CullVisitor). Never instantiated. */
+struct ReusedLeaves : osgUtil::CullVisitor
+{
+    static const osgUtil::RenderLeaf* at(const osgUtil::CullVisitor& cv, unsigned ahead)
+    {
+        const RenderLeafList osgUtil::CullVisitor::*const leaves = &ReusedLeaves::_reuseRenderLeafList;
+        const unsigned int osgUtil::CullVisitor::*const next = &ReusedLeaves::_currentReuseRenderLeafIndex;
+        const std::size_t index = std::size_t(cv.*next) + ahead;
+        return index < (cv.*leaves).size() ? (cv.*leaves)[index].get() : nullptr;
+    }
+};
+
+} // namespace
+
+void ActorCull::prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahead)
+{
+    if (const osgUtil::RenderLeaf* leaf = ReusedLeaves::at(cv, ahead))
+    {
+        prefetchLine<true>(leaf);
+        prefetchLine<true>(reinterpret_cast<const char*>(leaf) + sizeof(osgUtil::RenderLeaf) - 1);
+    }
+}
+
 bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
                                      const ActorCullState::Versions& versions)
 {
@@ -277,9 +340,16 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     if (state._prepared || !planKept || !state._replayable || state._callsTraverse || !(state._versions == versions) ||
         cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
         return false;
-    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it, the same call.
-    osg::Matrixd actorModelView = *cv.getModelViewMatrix();
-    actor.computeLocalToWorldMatrix(actorModelView, &cv);
+    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it: for an ActorNode (relative,
+    // the caller checked), MatrixTransform's preMult, the same bits inline; another class's own call.
+    osg::Matrixd actorModelView;
+    if (typeid(actor) == typeid(ActorNode))
+        composeModelView(actor.getMatrix().ptr(), cv.getModelViewMatrix()->ptr(), actorModelView.ptr());
+    else
+    {
+        actorModelView = *cv.getModelViewMatrix();
+        actor.computeLocalToWorldMatrix(actorModelView, &cv);
+    }
     if (!(ActorCullState::keyOf(ActorCullView(cv), actorModelView) == state._key)) return false;
     const ActorCullPlan* kept = state._plan.get();
     state.currentPlan(actor, versions.plan);

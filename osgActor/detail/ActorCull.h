@@ -138,6 +138,18 @@ public:
       * fetches overlap those of the check. */
     const ActorCullPlan& currentPlan(osg::Group& actor, unsigned planVersion, bool prefetch = false);
 
+    /** For the look-ahead of a crowd's cull (ActorNode::prefetchCullAhead()): the stages of what a replay of this
+      * actor's cull reads, each fetched once the one before it is in the caches. */
+    enum AheadStage
+    {
+        AHEAD_STATE,      // this state's own members
+        AHEAD_PLAN,       // the plan and the kept calls
+        AHEAD_PLAN_ARRAYS,// the plan's arrays the check reads
+        AHEAD_NODES       // the nodes the check reads
+    };
+    /** A hint, from any thread: the stages past the first only where no other thread holds the state. */
+    void prefetchAhead(AheadStage stage);
+
 protected:
     ~ActorCullState() override = default;
 
@@ -264,6 +276,10 @@ public:
       * plan), none of them traverses a subtree (which would need the actor's frame on the visitor's stacks) and near
       * and far are not computed, tests the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is
       * seen, makes the calls again; true then. false, having made no call, where the visitor must enter the actor. */
+    /** For the look-ahead of a crowd's cull: asks for the render leaf the visitor will reuse `ahead` leaves from
+      * now (from those it kept from its previous cull), which the replay of an actor culled after this one sets. */
+    static void prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahead);
+
     static bool replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
                                      const ActorCullState::Versions& versions);
 

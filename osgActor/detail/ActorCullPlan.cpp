@@ -8,6 +8,8 @@
 #include <osg/ShapeDrawable>
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <typeinfo>
 
@@ -38,6 +40,32 @@ struct NodeFlags : osg::Node
         const osg::BoundingSphere osg::Node::*const bound = &NodeFlags::_boundingSphere;
         return &(node.*bound);
     }
+    /** Where the block of a node's flags the plan compares begins (ActorCullPlan::kNodeFlagBytes from its cull
+      * callback). */
+    static const unsigned char* flagBlock(const osg::Node& node)
+    {
+        const osg::ref_ptr<osg::Callback> osg::Node::*const callback = &NodeFlags::_cullCallback;
+        return reinterpret_cast<const unsigned char*>(&(node.*callback));
+    }
+    /** Whether the cull callback, culling flags, node mask and state set lie within the node's flag block, so that
+      * comparing the block compares them (other bytes in it only make the comparison stricter). */
+    static bool holdsFlags(const osg::Node& node, std::size_t blockBytes)
+    {
+        const unsigned char* const begin = flagBlock(node);
+        const auto within = [&](const void* member, std::size_t size) {
+            const unsigned char* const first = static_cast<const unsigned char*>(member);
+            return first >= begin && first + size <= begin + blockBytes;
+        };
+        const osg::ref_ptr<osg::Callback> osg::Node::*const callback = &NodeFlags::_cullCallback;
+        const bool osg::Node::*const active = &NodeFlags::_cullingActive;
+        const unsigned int osg::Node::*const disabled = &NodeFlags::_numChildrenWithCullingDisabled;
+        const osg::Node::NodeMask osg::Node::*const mask = &NodeFlags::_nodeMask;
+        const osg::ref_ptr<osg::StateSet> osg::Node::*const state = &NodeFlags::_stateset;
+        return within(&(node.*callback), sizeof(osg::ref_ptr<osg::Callback>)) &&
+               within(&(node.*active), sizeof(bool)) && within(&(node.*disabled), sizeof(unsigned int)) &&
+               within(&(node.*mask), sizeof(osg::Node::NodeMask)) &&
+               within(&(node.*state), sizeof(osg::ref_ptr<osg::StateSet>));
+    }
     /** Node::isCullingActive() but for its bound's validity, which reads the bound (two more cache lines of a
       * skeleton node); the cull tests validity where it uses the bound. */
     static bool cullingActive(const osg::Node& node)
@@ -47,6 +75,49 @@ struct NodeFlags : osg::Node
         return node.*active && node.*disabled == 0;
     }
 };
+
+/** The bytes in which blocks of ActorCullPlan::kNodeFlagBytes differ, gathered over many pairs with no branch,
+  * sixteen bytes at a time where the compiler has vectors (a byte order that never changes the answer). */
+class BlockDifference
+{
+public:
+    void add(const unsigned char* a, const unsigned char* b)
+    {
+        // Word by word into registers (an array would be stored on the stack first).
+        for (std::size_t offset = 0; offset < ActorCullPlan::kNodeFlagBytes; offset += sizeof(Words))
+        {
+            Words x, y;
+            std::memcpy(&x, a + offset, sizeof(Words));
+            std::memcpy(&y, b + offset, sizeof(Words));
+            _difference |= x ^ y;
+        }
+    }
+    bool any() const
+    {
+#if defined(__GNUC__)
+        return (_difference[0] | _difference[1]) != 0;
+#else
+        return _difference != 0;
+#endif
+    }
+
+private:
+#if defined(__GNUC__)
+    typedef std::uint64_t Words __attribute__((vector_size(16)));
+    Words _difference = {0, 0};
+#else
+    typedef std::uint64_t Words;
+    Words _difference = 0;
+#endif
+    static_assert(ActorCullPlan::kNodeFlagBytes % sizeof(Words) == 0, "whole words a block");
+};
+
+bool sameBlock(const unsigned char* a, const unsigned char* b)
+{
+    BlockDifference difference;
+    difference.add(a, b);
+    return !difference.any();
+}
 
 } // namespace
 
@@ -111,6 +182,11 @@ void ActorCullPlan::addCheck(Kind kind, osg::Node& node)
     // A skeleton node is met once per parent, nearly always once: its check is not looked up (one under two parents
     // is checked twice, to the same effect). Geodes and state sets are often shared, by every joint at times.
     if (kind != JOINT && !_checked.insert(&node).second) return;
+    if (kind == JOINT && addJointCheck(static_cast<const SkeletonNode&>(node)))
+    {
+        addStateCheck(node.getStateSet());
+        return;
+    }
     NodeCheck check;
     check.node = &node;
     check.stateSet = node.getStateSet();
@@ -132,6 +208,22 @@ void ActorCullPlan::addCheck(Kind kind, osg::Node& node)
     }
     _checks.push_back(check);
     addStateCheck(check.stateSet);
+}
+
+bool ActorCullPlan::addJointCheck(const SkeletonNode& node)
+{
+    if (!NodeFlags::holdsFlags(node, kNodeFlagBytes)) return false;
+    JointFlags flags;
+    std::memcpy(flags.nodeFlags, NodeFlags::flagBlock(node), kNodeFlagBytes);
+    flags.referenceFrame = node.getReferenceFrame();
+    const auto same = [&](const JointFlags& seen) {
+        return seen.referenceFrame == flags.referenceFrame && sameBlock(seen.nodeFlags, flags.nodeFlags);
+    };
+    const auto found = std::find_if(_jointFlags.begin(), _jointFlags.end(), same);
+    _jointCheckFlags.push_back(static_cast<unsigned>(found - _jointFlags.begin()));
+    if (found == _jointFlags.end()) _jointFlags.push_back(flags);
+    _jointCheckNodes.push_back(&node);
+    return true;
 }
 
 void ActorCullPlan::addStateCheck(const osg::StateSet* state)
@@ -278,21 +370,73 @@ void ActorCullPlan::prefetchJoints() const
     for (const Joint& joint : _joints)
     {
         const SkeletonNode& node = *joint.node;
-        prefetchForRead(NodeFlags::maskAddress(node), 1);
+        prefetchForRead(NodeFlags::flagBlock(node), 2 * kNodeFlagBytes);
         prefetchForRead(node.getMatrix().ptr(), sizeof(osg::Matrixd));
         prefetchForRead(NodeFlags::boundAddress(node), sizeof(osg::BoundingSphere) + sizeof(bool));
     }
 }
 
+namespace {
+
+template <class T>
+void prefetchArray(const std::vector<T>& array)
+{
+    prefetchForRead(array.data(), array.size() * sizeof(T));
+}
+
+} // namespace
+
+void ActorCullPlan::prefetchChecks() const
+{
+    prefetchArray(_jointCheckNodes);
+    prefetchArray(_jointCheckFlags);
+    prefetchArray(_jointFlags);
+    prefetchArray(_checks);
+    prefetchArray(_geodeChildren);
+}
+
+void ActorCullPlan::prefetchCheckedNodes() const
+{
+    // A joint's flag block and what follows it, where osg::Transform keeps its reference frame: its first and last
+    // line.
+    for (const SkeletonNode* node : _jointCheckNodes)
+    {
+        const unsigned char* const block = NodeFlags::flagBlock(*node);
+        prefetchLine(block);
+        prefetchLine(block + 2 * kNodeFlagBytes - 1);
+    }
+    for (const NodeCheck& check : _checks) prefetchLine(NodeFlags::maskAddress(*check.node));
+}
+
 bool ActorCullPlan::isCurrent() const
 {
-    // Every node's flags fetched first, then compared: the fetches overlap rather than wait one after the other.
-    for (const NodeCheck& check : _checks) prefetchForRead(NodeFlags::maskAddress(*check.node), 1);
+    // The joints compared without a branch, so that their loads overlap; the nodes were asked for ahead, by the
+    // cull of the actors before this one (ActorNode::prefetchCullAhead()) or with the joints' matrices
+    // (prefetchJoints()).
+    if (!jointsUnchanged()) return false;
     for (const NodeCheck& check : _checks)
         if (!isUnchanged(check)) return false;
     for (const StateCheck& check : _stateChecks)
         if (!isUnchanged(check)) return false;
     return true;
+}
+
+bool ActorCullPlan::jointsUnchanged() const
+{
+    // Every joint compared, the differences gathered with no branch: the loads of one node do not wait on the
+    // comparison of the one before.
+    const SkeletonNode* const* nodes = _jointCheckNodes.data();
+    const unsigned* seenIndex = _jointCheckFlags.data();
+    const JointFlags* seen = _jointFlags.data();
+    BlockDifference blocks;
+    int frames = 0;
+    for (std::size_t j = 0, n = _jointCheckNodes.size(); j < n; ++j)
+    {
+        const JointFlags& flags = seen[seenIndex[j]];
+        blocks.add(NodeFlags::flagBlock(*nodes[j]), flags.nodeFlags);
+        frames |= nodes[j]->getReferenceFrame() ^ flags.referenceFrame;
+    }
+    return !blocks.any() && frames == 0;
 }
 
 bool ActorCullPlan::isUnchanged(const NodeCheck& check) const

@@ -9,7 +9,8 @@
 //    classes tell their actor (ActorNode::dirtyCullPlan()), so the plan never reads their children or hidden flags;
 //  - node masks, state sets, cull callbacks and culling flags, which OSG changes without telling anyone, and the
 //    children of geodes, which are the user's: isCurrent() compares them, every frame, with what the plan saw.
-//    On a skeleton node they share one cache line (osg::Node's and osg::Group's members next to each other).
+//    On a skeleton node they lie in 32 bytes of osg::Node, compared at once, and the reference frame just after
+//    them (osg::Transform's first member); the cull of the actors before this one asks for those lines ahead.
 // A subtree handed to the ordinary traversal is not looked into: the visitor finds what is below it every frame.
 #ifndef OSGACTOR_DETAIL_ACTORCULLPLAN_H
 #define OSGACTOR_DETAIL_ACTORCULLPLAN_H 1
@@ -22,6 +23,7 @@
 #include <osg/Referenced>
 #include <osg/ref_ptr>
 
+#include <cstddef>
 #include <string>
 #include <unordered_set>
 #include <vector>
@@ -35,11 +37,19 @@ public:
     /** The plan of the actor's children as they are now. */
     explicit ActorCullPlan(osg::Group& actor);
 
+    /** osg::Node's bytes that hold what the plan compares at a node (its cull callback, culling flags, node mask
+      * and state set, next to each other in the class), compared as one block where the layout puts them within
+      * it (otherwise field by field, as geodes and drawables are). */
+    static constexpr std::size_t kNodeFlagBytes = 32;
     /** Whether nothing the plan decided from that OSG does not report has changed since it was made. */
     bool isCurrent() const;
     /** Asks the processor for what a cull of the planned joints reads (their flags, matrices and bounds), so that
       * the fetches overlap: with many actors the nodes have left the caches since the update. */
     void prefetchJoints() const;
+    /** Asks for the plan's own arrays that isCurrent() reads, ahead of it. */
+    void prefetchChecks() const;
+    /** Asks for the nodes' flags that isCurrent() compares (the arrays read, so best once prefetchChecks() is done). */
+    void prefetchCheckedNodes() const;
 
     /** What the cull does at one step, in the visitor's order. A JOINT or GEODE step opens a subtree that ends
       * at step end (exclusive, its closing step end - 1). */
@@ -152,6 +162,17 @@ private:
         osg::Object::DataVariance dataVariance;
     };
 
+    /** What a joint's check compares: its flag block and its reference frame, as the plan saw them. Few distinct
+      * ones per plan (most joints: no callback, no state set, the same mask), each kept once. */
+    struct JointFlags
+    {
+        alignas(16) unsigned char nodeFlags[kNodeFlagBytes];
+        int referenceFrame;
+    };
+    /** Adds a joint's check to the packed ones; false where its flags are not in one block. */
+    bool addJointCheck(const SkeletonNode& node);
+    bool jointsUnchanged() const;
+
     void addChild(osg::Node& child, int joint);
     void addJoint(SkeletonNode& node, int parent);
     void addGeode(osg::Geode& geode, int joint);
@@ -178,6 +199,11 @@ private:
     bool _topStepsAllJoints = true;
     std::vector<unsigned> _drawableSteps;
     std::vector<const osg::Node*> _geodesBelow; // runs of Joint::firstGeode, numGeodes
+    /** The joints' checks, packed apart from the geodes' and drawables': per joint its node and which of
+      * _jointFlags it had, so that the plan's side of the check is a few lines read in order. */
+    std::vector<const SkeletonNode*> _jointCheckNodes;
+    std::vector<unsigned> _jointCheckFlags;
+    std::vector<JointFlags> _jointFlags;
     std::vector<NodeCheck> _checks;
     std::vector<StateCheck> _stateChecks;
     /** Each checked geode's children when planned, in order: consecutive runs, one per geode. */

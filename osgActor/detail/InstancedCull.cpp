@@ -204,14 +204,49 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
     if (_state._verdicts.size() > 2 * std::size_t(group.getNumChildren()) + 64)
         for (auto it = _state._verdicts.begin(); it != _state._verdicts.end();)
             it = it->second.plan->referenceCount() == 1 ? _state._verdicts.erase(it) : std::next(it);
-    for (unsigned i = 0; i < group.getNumChildren(); ++i)
+    const unsigned numChildren = group.getNumChildren();
+    for (unsigned i = 0; i < numChildren; ++i)
     {
         osg::Node& child = *group.getChild(i);
-        if (typeid(child) == typeid(ActorNode)) cullChild(static_cast<ActorNode&>(child));
-        else child.accept(cv);
+        if (typeid(child) == typeid(ActorNode))
+        {
+            // The actors after this one fetched ahead, a link of each one's chain at a time (the crowd's cull is
+            // bound by memory latency), their kept instances too.
+            const ActorNode& actor = static_cast<const ActorNode&>(child);
+            for (unsigned ahead = 1; ahead <= ActorNode::kCullLookahead && i + ahead < numChildren; ++ahead)
+            {
+                const osg::Node& next = *group.getChild(i + ahead);
+                actor.prefetchCullAhead(next, ahead);
+                prefetchKeptAhead(next, ahead);
+            }
+            cullChild(static_cast<ActorNode&>(child));
+        }
+        else
+            child.accept(cv);
     }
     if (_overflowed) gatherOverflow(textureUnit);
     emitBatches();
+}
+
+void InstancedCull::prefetchKeptAhead(const osg::Node& node, unsigned ahead)
+{
+    // After the cull state's own members (ahead 4, ActorNode::prefetchCullAhead()): its kept instances' lines, then
+    // what they hold, read only while no other thread holds the state.
+    if ((ahead != 3 && ahead != 2) || typeid(node) != typeid(ActorNode)) return;
+    ActorCullState& state = *static_cast<const ActorNode&>(node)._cullState;
+    const ActorCullState::InstancedVerdict& kept = state._instancedVerdict;
+    if (ahead == 3)
+    {
+        prefetchForRead(&kept, sizeof(kept));
+        return;
+    }
+    if (!state.tryAcquire()) return;
+    if (kept.kept)
+    {
+        prefetchForRead(kept.batches.data(), kept.batches.size() * sizeof(unsigned));
+        prefetchForRead(kept.matrices.data(), kept.matrices.size() * sizeof(float));
+    }
+    state.release();
 }
 
 bool InstancedCull::isPlainActor(const ActorNode& actor)

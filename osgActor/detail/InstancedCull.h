@@ -287,6 +287,9 @@ private:
         return kept.kept && kept.serial == _state._serial && kept.view == _state._view && kept.versions == versions &&
                !_computeNearFar;
     }
+    /** The kept instances of the actor `ahead` actors after the one culled now, asked for (ActorNode's look-ahead
+      * stages). */
+    static void prefetchKeptAhead(const osg::Node& node, unsigned ahead);
     /** Adds the kept instances of an actor that did not change, if they hold for this cull. */
     bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
     bool isMasked(osg::Node::NodeMask mask) const { return isMaskedOut(_traversalMask, _maskOverride, mask); }

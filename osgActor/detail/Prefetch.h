@@ -21,6 +21,18 @@ inline void prefetchForRead(const void* begin, std::size_t bytes)
 #endif
 }
 
+/** The one cache line that holds address, into L2: for reading or, ForWrite, to be written (a reference count, an
+  * object reused). */
+template <bool ForWrite = false>
+inline void prefetchLine(const void* address)
+{
+#if defined(__GNUC__)
+    __builtin_prefetch(address, ForWrite ? 1 : 0, 2);
+#else
+    (void)address;
+#endif
+}
+
 } // namespace detail
 } // namespace osgActor
 

@@ -315,3 +315,41 @@ TEST(CullPlan, TwoCamerasCullingOneActorGetEachTheOrdinaryGraph)
         for (std::size_t i = 0; i < asOne.size(); ++i) EXPECT_TRUE(asOne[i] == ordinary[i]) << "leaf " << i;
     }
 }
+
+TEST(CullPlan, AReferenceFrameChangedInPlaceIsSeenWithItsCullingFlagSetBack)
+{
+    Scene scene;
+    ActorNode& actor = scene.first();
+    scene.cullExpectingTheOrdinaryGraph();
+    scene.cullExpectingTheOrdinaryGraph(); // kept, and replayed
+    // setReferenceFrame() turns culling off; turned on again, the joint's flags are those planned but its frame.
+    SkeletonNode& elbow = *actor.getSkeletonNode("l_elbow");
+    elbow.setReferenceFrame(osg::Transform::ABSOLUTE_RF);
+    elbow.setCullingActive(true);
+    scene.cullExpectingTheOrdinaryGraph();
+    elbow.setReferenceFrame(osg::Transform::RELATIVE_RF);
+    scene.cullExpectingTheOrdinaryGraph();
+}
+
+TEST(CullPlan, ActorsAmongOtherNodesEditedOneByOneGiveTheOrdinaryGraph)
+{
+    // The cull of each actor fetches the next ones among its siblings ahead: nodes of other classes between them,
+    // and edits of the actors after the one culled, change nothing of what is culled.
+    Scene scene;
+    for (unsigned i = 0; i < 3; ++i)
+    {
+        osg::ref_ptr<osg::Geode> other = new osg::Geode;
+        other->addDrawable(new osg::ShapeDrawable(new osg::Box(osg::Vec3(1.1f * i, 0.5f, 0.2f), 0.1f)));
+        scene.root->insertChild(2 * i + 1, other.get());
+    }
+    scene.cullExpectingTheOrdinaryGraph();
+    scene.cullExpectingTheOrdinaryGraph();
+    for (unsigned a = 0; a < scene.actors.size(); ++a)
+    {
+        SkeletonNode& shoulder = *scene.actors[a]->getSkeletonNode("r_shoulder");
+        shoulder.setNodeMask(0);
+        scene.cullExpectingTheOrdinaryGraph();
+        shoulder.setNodeMask(~0u);
+        scene.cullExpectingTheOrdinaryGraph();
+    }
+}
