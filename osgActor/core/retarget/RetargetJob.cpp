@@ -1,5 +1,5 @@
 // One frame of retargeting, in four passes over flat arrays (docs/retargeting.md, "How it works"):
-// 1. the source's forward kinematics (the core's LocalMatricesJob and LocalToModelJob, batched as for any actor);
+// 1. the source's forward kinematics, each joint's model matrix its parent's turned by its rotations (poseSource);
 // 2. per target joint, parents first, the model rotation its plan asks for (desired), as if every parent took its own
 //    exactly: a product or two from the rig's constants;
 // 3. the Euler fits of the joints with three rotations, four joints to a vector (EulerLanes.h), each from its local
@@ -13,12 +13,10 @@
 // baseline (HotPath.h).
 #include <osgActor/core/retarget/RetargetJob>
 #include <osgActor/core/retarget/JointRotationFit>
-#include <osgActor/core/LocalMatricesJob>
-#include <osgActor/core/LocalToModelJob>
 #include <osgActor/core/ik/IkKinematics>
 
 #include "../detail/HotPath.h"
-#include "../detail/SinCosColumn.h"
+#include "../detail/JointMatrixKernel.h"
 #include "AxisLanes.h"
 #include "EulerLanes.h"
 #include "RotationColumns.h"
@@ -35,23 +33,14 @@ using namespace retarget_detail;
 
 void RetargetWorkspace::resize(const RetargetRig& rig)
 {
-    const unsigned numSource = rig.getSourceDefinition()->getNumJoints();
     const unsigned numTarget = rig.getTargetDefinition()->getNumJoints();
     const RetargetJobTables& tables = rig.getJobTables();
     sourceModels.assign(tables.sourcePosed.size() + 1, glm::dmat4(1.0));
     sourceSlots = tables.sourceSlots;
-    sourceLocals.assign(numSource, glm::dmat4(1.0));
     targetModels.assign(numTarget, glm::dmat4(1.0));
     targetExact.assign(numTarget, 0);
-    scratch.sourceLocalPointers.assign(numSource, nullptr);
-    scratch.posedLocalPointers.assign(tables.sourcePosed.size(), nullptr);
-    scratch.sourceDirty.assign(numSource, 1);
-    scratch.sourceLocalChanged.assign(numSource, 0);
-    scratch.sourceModelStale.assign(numSource, 1);
-    scratch.posedRoots.clear();
-    for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
-        if (tables.sourcePosedParents[i] < 0) scratch.posedRoots.push_back(static_cast<std::uint32_t>(i));
-    scratch.alignedRootLocals.assign(scratch.posedRoots.size(), glm::dmat4(1.0));
+    scratch.sourceSines.assign(4 * tables.sourceAngleColumns.size(), 0.0);
+    scratch.sourceCosines.assign(4 * tables.sourceAngleColumns.size(), 1.0);
     scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
     scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
     scratch.laneFitted.assign(numTarget, 0);
@@ -65,11 +54,9 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
     const std::size_t numTarget = rig.getTargetDefinition()->getNumJoints();
     const Scratch& s = scratch;
     const RetargetJobTables& tables = rig.getJobTables();
+    const std::size_t numTrig = 4 * tables.sourceAngleColumns.size();
     return sourceModels.size() == tables.sourcePosed.size() + 1 && sourceSlots.size() == numSource &&
-           sourceLocals.size() == numSource && s.sourceLocalPointers.size() == numSource &&
-           s.posedLocalPointers.size() == tables.sourcePosed.size() && s.sourceDirty.size() == numSource &&
-           s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
-           s.alignedRootLocals.size() == s.posedRoots.size() &&
+           s.sourceSines.size() == numTrig && s.sourceCosines.size() == numTrig &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
            s.laneAngles.size() == numTarget * 3 &&
@@ -107,63 +94,101 @@ bool RetargetJob::validate() const
 
 namespace {
 
-/** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourcePosed): their local
-  * matrices (LocalMatricesJob, the others not built), composed as a skeleton of their own (LocalToModelJob). Where the
-  * rig's alignment A is not the identity, the roots' local matrices are turned by it first, so every model matrix
-  * comes out turned (A * M) with one product a root instead of one a followed joint (RetargetWorkspace::
-  * sourceModels). */
+/** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourcePosed), parents first.
+  * The sines and cosines of their angles first, four consecutive DOFs at a time; then each joint's model matrix from
+  * its parent's: for a joint that only turns (RetargetSourceJoint::turnsOnly), the parent's rotation columns turned by
+  * its rotations one after another (each mixes two columns) and its origin moved by the offset, with no local matrix
+  * built; for the others (a root that slides), the local matrix (JointMatrixKernel.h, as LocalMatricesJob builds it)
+  * times the parent's. A root's parent frame is the rig's alignment A, so every model matrix comes out turned (A * M,
+  * RetargetWorkspace::sourceModels) with no product for A but the roots'. Joint after joint down a chain, the parent's
+  * columns stay in registers (as in LocalToModelJob). */
 OSGACTOR_INLINE void poseSource(const RetargetRig& rig, const RetargetJobTables& tables, const double* dofs,
                                 RetargetWorkspace& w)
 {
+    using namespace joint_matrix_detail;
     const ActorDefinition& source = *rig.getSourceDefinition();
     RetargetWorkspace::Scratch& s = w.scratch;
-    const unsigned numJoints = source.getNumJoints();
-    const std::size_t numPosed = tables.sourcePosed.size();
-    w.sourceAlignment = nullptr;
-    if (numPosed == 0) return;
-    // Pointers into sourceLocals, set again whenever the workspace has moved (a copy, a vector of workspaces grown).
-    if (s.sourceLocalPointers[0] != &w.sourceLocals[0][0][0])
+    w.sourceAlignment = rig.isAlignmentIdentity() ? nullptr : &rig.getAlignment();
+    // In locals, as in placeJoints.
+    double* const sines = s.sourceSines.data();
+    double* const cosines = s.sourceCosines.data();
+    const std::uint32_t* const angleColumns = tables.sourceAngleColumns.data();
+    const std::size_t numColumns = tables.sourceAngleColumns.size();
+    double padded[4] = {0.0, 0.0, 0.0, 0.0};
+    const double* angles = dofs;
+    if (source.getNumDofs() < 4)
     {
-        for (unsigned j = 0; j < numJoints; ++j) s.sourceLocalPointers[j] = &w.sourceLocals[j][0][0];
-        for (std::size_t i = 0; i < numPosed; ++i) s.posedLocalPointers[i] = s.sourceLocalPointers[tables.sourcePosed[i]];
+        std::copy(dofs, dofs + source.getNumDofs(), padded);
+        angles = padded;
     }
-    std::memcpy(s.sourceDirty.data(), tables.sourceJointsRead.data(), numJoints);
-    LocalMatricesJob local;
-    local.definition = &source;
-    local.dofs = Span<const double>(dofs, source.getNumDofs());
-    local.jointDirty = s.sourceDirty;
-    local.local = s.sourceLocalPointers;
-    local.localChanged = s.sourceLocalChanged;
-    local.modelStale = s.sourceModelStale;
-    local.run();
-    const bool turned = !rig.isAlignmentIdentity();
-    for (std::size_t r = 0; r < s.posedRoots.size(); ++r)
+    // The angles' range is checked once after the sweep, not column by column (as LocalMatricesJob does); a pose with
+    // an angle beyond the fast range (it almost never comes) is swept again with sinCosColumn, which takes any.
+    FastSinCosRangeGuard guard;
+    for (std::size_t c = 0; c < numColumns; ++c)
     {
-        const std::uint32_t i = s.posedRoots[r];
-        const std::uint32_t joint = tables.sourcePosed[i];
-        if (turned)
+        const Column x = loadColumn(angles + angleColumns[c]);
+        guard.check(x);
+        Column sine, cosine;
+        sinCosColumnInFastRange(x, sine, cosine);
+        storeColumn(sines + 4 * c, sine);
+        storeColumn(cosines + 4 * c, cosine);
+    }
+    if (!guard.passed())
+        for (std::size_t c = 0; c < numColumns; ++c)
         {
-            // A * L: the rotation's columns and the translation turned; the bottom row stays (0, 0, 0, 1).
-            const RotationColumns alignment = loadRotation(tables.alignment);
-            const double* const rootLocal = s.sourceLocalPointers[joint];
-            double* const alignedLocal = &s.alignedRootLocals[r][0][0];
-            for (unsigned col = 0; col < 4; ++col)
-            {
-                Column c = combine(alignment, loadColumn(rootLocal + 4 * col));
-                c[3] = rootLocal[4 * col + 3];
-                storeColumn(alignedLocal + 4 * col, c);
-            }
-            s.posedLocalPointers[i] = alignedLocal;
+            Column sine, cosine;
+            sinCosColumn(loadColumn(angles + angleColumns[c]), sine, cosine);
+            storeColumn(sines + 4 * c, sine);
+            storeColumn(cosines + 4 * c, cosine);
+        }
+
+    const RetargetSourceJoint* const joints = tables.sourceJoints.data();
+    const std::uint32_t* const posed = tables.sourcePosed.data();
+    const JointKinematics* const kinematics = source.getAllKinematics().data();
+    glm::dmat4* const models = w.sourceModels.data();
+    const unsigned numPosed = static_cast<unsigned>(tables.sourcePosed.size());
+    const RotationColumns alignment = loadRotation(tables.alignment);
+    const AffineColumns rootFrame{{alignment.c[0], alignment.c[1], alignment.c[2], Column{0.0, 0.0, 0.0, 1.0}}};
+    AffineColumns previous = rootFrame;
+    for (unsigned i = 0; i < numPosed; ++i)
+    {
+        const RetargetSourceJoint& joint = joints[i];
+        const int parent = joint.parent;
+        const AffineColumns frame = parent < 0                             ? rootFrame
+                                    : parent + 1 == static_cast<int>(i) ? previous
+                                                                          : loadAffine(&models[parent][0][0]);
+        if (joint.turnsOnly)
+        {
+            RotationColumns turned{{frame.c[0], frame.c[1], frame.c[2]}};
+            withRotationSequence(joint.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
+                using Axes = SequenceAxes<decltype(sequence)::value>;
+                if constexpr (Axes::count >= 1)
+                    postRotate(turned, Axes::first, cosines[joint.trig[0]], sines[joint.trig[0]]);
+                if constexpr (Axes::count >= 2)
+                    postRotate(turned, Axes::second, cosines[joint.trig[1]], sines[joint.trig[1]]);
+                if constexpr (Axes::count >= 3)
+                    postRotate(turned, Axes::third, cosines[joint.trig[2]], sines[joint.trig[2]]);
+            });
+            const Column origin =
+                combineColumns(frame.c[0], frame.c[1], frame.c[2], joint.offset[0], joint.offset[1], joint.offset[2]) +
+                frame.c[3];
+            previous = AffineColumns{{turned.c[0], turned.c[1], turned.c[2], origin}};
         }
         else
-            s.posedLocalPointers[i] = s.sourceLocalPointers[joint];
+        {
+            const JointKinematics& k = kinematics[posed[i]];
+            TrigInOrder trig{};
+            for (unsigned r = 0; r < k.numRotations; ++r)
+            {
+                trig.sines[r] = sines[joint.trig[r]];
+                trig.cosines[r] = cosines[joint.trig[r]];
+            }
+            alignas(32) double local[16] = {};
+            buildJointMatrixDispatched(k, dofs, trig, local);
+            previous = multiplyAffineColumns(frame, local);
+        }
+        storeAffine(&models[i][0][0], previous);
     }
-    if (turned) w.sourceAlignment = &rig.getAlignment();
-    LocalToModelJob toModel;
-    toModel.parents = tables.sourcePosedParents;
-    toModel.local = s.posedLocalPointers;
-    toModel.model = Span<glm::dmat4>(w.sourceModels.data(), numPosed);
-    toModel.run();
 }
 
 /** The model-space rotation change of a source joint since the rest pose, as a quaternion; identity for -1. */

@@ -606,6 +606,7 @@ struct RetargetRigBuilder
             tables.sourcePosedParents.push_back(parent < 0 ? -1
                                                            : static_cast<int>(tables.sourceSlots[static_cast<unsigned>(parent)]));
         }
+        planSourcePose(tables);
         tables.desire.assign(numTarget, RetargetDesire::FromPlan);
         tables.desireSlot.assign(numTarget, 0);
         for (unsigned j = 0; j < numTarget; ++j)
@@ -677,6 +678,44 @@ struct RetargetRigBuilder
                                   : tables.inEulerBatch[j]          ? RetargetPlacement::Euler
                                   : tables.inAxisBatch[j]           ? RetargetPlacement::Axis
                                                                     : RetargetPlacement::Fit;
+        }
+    }
+
+    /** RetargetJobTables::sourceJoints and sourceAngleColumns, for the posed source joints (sourcePosed). Each angle a
+      * posed joint turns by lies in a column of four consecutive DOFs, the columns laid down from the lowest such DOF
+      * up (the last one moved down so it ends at the last DOF). */
+    void planSourcePose(RetargetJobTables& tables) const
+    {
+        const ActorDefinition& s = *source.definition;
+        const unsigned numDofs = s.getNumDofs();
+        std::vector<std::uint8_t> turns(numDofs, 0);
+        for (const std::uint32_t j : tables.sourcePosed)
+        {
+            const JointKinematics& k = s.getKinematics(j);
+            for (unsigned r = 0; r < k.numRotations; ++r) turns[k.rotationDof[r]] = 1;
+        }
+        // Per DOF, where its sine and cosine go: 4 c + its place in column c.
+        std::vector<std::uint32_t> trigOf(numDofs, 0);
+        tables.sourceAngleColumns.clear();
+        for (unsigned dof = 0; dof < numDofs; ++dof)
+        {
+            if (!turns[dof]) continue;
+            const std::uint32_t first = numDofs < 4 ? 0 : std::min(dof, numDofs - 4);
+            const std::uint32_t column = static_cast<std::uint32_t>(tables.sourceAngleColumns.size());
+            tables.sourceAngleColumns.push_back(first);
+            for (unsigned d = dof; d < std::min(first + 4, numDofs); ++d) trigOf[d] = 4 * column + (d - first);
+            dof = first + 3;
+        }
+        tables.sourceJoints.assign(tables.sourcePosed.size(), RetargetSourceJoint{});
+        for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
+        {
+            const JointKinematics& k = s.getKinematics(tables.sourcePosed[i]);
+            RetargetSourceJoint& joint = tables.sourceJoints[i];
+            joint.parent = tables.sourcePosedParents[i];
+            joint.rotationSequence = static_cast<std::uint8_t>(k.rotationSequence);
+            joint.turnsOnly = k.offsetIsTranslation && !k.hasTranslation ? 1 : 0;
+            for (unsigned c = 0; c < 4; ++c) joint.offset[c] = k.offset[3][c];
+            for (unsigned r = 0; r < k.numRotations; ++r) joint.trig[r] = trigOf[k.rotationDof[r]];
         }
     }
 
