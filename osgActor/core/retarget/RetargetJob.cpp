@@ -1,7 +1,7 @@
 // One frame of retargeting, in four passes over flat arrays (docs/retargeting.md, "How it works"):
 // 1. the source's forward kinematics, each joint's model matrix its parent's turned by its rotations (poseSource);
 // 2. per target joint, parents first, the model rotation its plan asks for (desired), as if every parent took its own
-//    exactly: a product or two from the rig's constants;
+//    exactly: a product or two from the rig's constants (a joint that follows a source joint takes it in pass 1);
 // 3. the Euler fits of the joints with three rotations, four joints to a vector (EulerLanes.h), each from its local
 //    rotation under its parent's desired rotation; a lane that needs more (a limit, gimbal lock, the second solution)
 //    is left to the scalar fit; and the Copy joints' angles, four joints to a vector, checked against the limits;
@@ -147,6 +147,8 @@ OSGACTOR_INLINE void poseSource(const RetargetRig& rig, const RetargetJobTables&
     const JointKinematics* const kinematics = source.getAllKinematics().data();
     glm::dmat4* const models = w.sourceModels.data();
     const unsigned numPosed = static_cast<unsigned>(tables.sourcePosed.size());
+    const double* const postRotations = tables.postRotations.data();
+    double* const desired = s.desired.data();
     const RotationColumns alignment = loadRotation(tables.alignment);
     const AffineColumns rootFrame{{alignment.c[0], alignment.c[1], alignment.c[2], Column{0.0, 0.0, 0.0, 1.0}}};
     AffineColumns previous = rootFrame;
@@ -188,6 +190,16 @@ OSGACTOR_INLINE void poseSource(const RetargetRig& rig, const RetargetJobTables&
             previous = multiplyAffineColumns(frame, local);
         }
         storeAffine(&models[i][0][0], previous);
+        // The desired rotation of the target joint that follows this one (see desireRotations), from the registers.
+        const std::uint32_t follower = joint.follower;
+        if (follower != RetargetSourceJoint::kNoFollower)
+        {
+            const RotationColumns rotation{{previous.c[0], previous.c[1], previous.c[2]}};
+            storeRotation(desired + follower * kRotationDoubles,
+                          joint.followerTurns
+                              ? multiply(rotation, loadRotation(postRotations + follower * kRotationDoubles))
+                              : rotation);
+        }
     }
 }
 
@@ -199,8 +211,8 @@ glm::dquat changeSinceRest(const RetargetRig& rig, const RetargetWorkspace& w, i
     return glm::quat_cast(w.sourceRotation(j) * glm::transpose(glm::dmat3(rig.getSourceRestModels()[j])));
 }
 
-/** Pass 2: every target joint's desired model rotation (see RetargetJointPlan), parents first; a joint at rest under
-  * its parent's desired rotation. */
+/** Pass 2: the other target joints' desired model rotations (see RetargetJointPlan), parents first; a joint at rest
+  * under its parent's desired rotation. */
 OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& w)
 {
     const ActorDefinition& target = *rig.getTargetDefinition();
@@ -214,8 +226,8 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
     const double* const restLocalRotations = tables.restLocalRotations.data();
     const int* const parents = target.getParents().data();
     double* const desired = w.scratch.desired.data();
-    const unsigned numJoints = target.getNumJoints();
-    for (unsigned t = 0; t < numJoints; ++t)
+    // The joints that follow a source joint the forward kinematics has stored already (RetargetSourceJoint::follower).
+    for (const std::uint32_t t : tables.desireJoints)
     {
         RotationColumns d;
         switch (desire[t])
@@ -502,8 +514,12 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a
     }
     else if (how == RetargetPlacement::Copy && parentExact && a.laneFitted[t])
     {
-        // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches).
-        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+        // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches). Three
+        // rotations (the usual case) in straight-line code, not a loop of a count read from memory.
+        if (k.numRotations == 3)
+            for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+        else
+            for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
         exact = true;
         rotation = desired;
     }

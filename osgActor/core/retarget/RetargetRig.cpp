@@ -620,6 +620,24 @@ struct RetargetRigBuilder
                 tables.desireSlot[j] = tables.sourceSlots[static_cast<unsigned>(plan.sourceB)];
             }
         }
+        // Each posed source joint's first Follow or FollowThenPost target joint takes its desired rotation from the
+        // forward kinematics; a second one following the same source joint is left to the desire pass.
+        tables.desireJoints.clear();
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const RetargetDesire desire = tables.desire[j];
+            if (desire == RetargetDesire::Follow || desire == RetargetDesire::FollowThenPost)
+            {
+                RetargetSourceJoint& followed = tables.sourceJoints[tables.desireSlot[j]];
+                if (followed.follower == RetargetSourceJoint::kNoFollower)
+                {
+                    followed.follower = j;
+                    followed.followerTurns = desire == RetargetDesire::FollowThenPost ? 1 : 0;
+                    continue;
+                }
+            }
+            tables.desireJoints.push_back(j);
+        }
         for (unsigned j = 0; j < numTarget; ++j)
         {
             storeRotation(&tables.postRotations[j * kRotationDoubles], rig->_plans[j].postRotation);
