@@ -261,3 +261,37 @@ TEST(RetargetFromGltf, CesiumMansWalkOntoCmusSkeletonKeepsBonesAndPutsFeetAndHan
     EXPECT_LE(plantedMeasures.largestSlip * 1.75 / plantedMeasures.targetHeight, 0.01);
     EXPECT_LE(plantedMeasures.largestLengthChange, 1e-9);
 }
+
+TEST(RetargetFromGltf, TheSourcesPoseIsItsForwardKinematicsWhereItsJointsSlideAndTheirOffsetsTurn)
+{
+    // Cesium Man's joints slide (translation DOFs on every joint) and their offsets turn, so the job's forward
+    // kinematics builds their local matrices instead of only turning the parent's columns (RetargetSourceJoint::
+    // turnsOnly): its model matrices are still the full forward kinematics' (1e-12, metres), on every tenth frame.
+    const MocapImport walk = readRiggedMotionFile(cesiumManFile(), MotionFileOptions());
+    ASSERT_TRUE(walk) << walk.error;
+    const MocapImport cmu = readBvhScaled(repositoryMocap("bvh/12_03.bvh"), 0.056444);
+    ASSERT_TRUE(cmu) << cmu.error;
+    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(cmu.definition));
+    ASSERT_TRUE(rig);
+    const ActorDefinition& source = *walk.definition;
+    const RetargetJobTables& tables = rig->getJobTables();
+    unsigned built = 0;
+    for (const RetargetSourceJoint& joint : tables.sourceJoints) built += joint.turnsOnly ? 0 : 1;
+    EXPECT_GT(built, 10u) << "joints whose local matrix is built";
+    std::vector<double> values = rig->getTargetRestDofs();
+    RetargetWorkspace workspace;
+    for (unsigned f = 0; f < walk.clip->getNumFrames(); f += 10)
+    {
+        RetargetJob job =
+            retargetJob(*rig, Span<const double>(walk.clip->getFrame(f), walk.clip->getNumChannels()), values, workspace);
+        ASSERT_TRUE(job.run());
+        const std::vector<glm::dmat4> full = modelsAt(walk.definition, *walk.clip, f);
+        for (unsigned j = 0; j < source.getNumJoints(); ++j)
+        {
+            if (!tables.sourceJointsRead[j]) continue;
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    EXPECT_NEAR(workspace.sourceModel(j)[c][r], full[j][c][r], 1e-12) << source.getJointName(j);
+        }
+    }
+}
