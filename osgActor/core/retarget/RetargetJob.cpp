@@ -42,6 +42,7 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     scratch.sourceSines.assign(4 * tables.sourceAngleColumns.size(), 0.0);
     scratch.sourceCosines.assign(4 * tables.sourceAngleColumns.size(), 1.0);
     scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
+    scratch.batchLanes.assign(16 * (tables.eulerBatches.size() + tables.copyBatches.size()), 0.0);
     scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
     scratch.laneFitted.assign(numTarget, 0);
     scratch.laneCosSin.assign(std::size_t(numTarget) * 4, 0.0);
@@ -59,6 +60,7 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
            s.sourceSines.size() == numTrig && s.sourceCosines.size() == numTrig &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
+           s.batchLanes.size() == 16 * (tables.eulerBatches.size() + tables.copyBatches.size()) &&
            s.laneAngles.size() == numTarget * 3 &&
            s.laneFitted.size() == numTarget && s.laneCosSin.size() == numTarget * 4 &&
            s.asDesired.size() == numTarget;
@@ -296,6 +298,15 @@ OSGACTOR_INLINE RotationColumns jointFrame(const RetargetJobTables& tables, unsi
 alignas(32) constexpr double kIdentityColumns[kRotationDoubles] = {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
                                                                    0.0, 0.0, 1.0, 0.0};
 
+/** A batch's results as whole columns (RetargetWorkspace::Scratch::batchLanes): its three angle columns, then 1.0
+  * where a lane's stand and 0.0 where not (the mask's bits kept where 1.0's are). */
+OSGACTOR_INLINE void storeLanes(double* lanes, const Column (&angles)[3], LaneMask stand)
+{
+    for (unsigned r = 0; r < 3; ++r) storeColumn(lanes + 4 * r, angles[r]);
+    const Column one = {1.0, 1.0, 1.0, 1.0};
+    storeColumn(lanes + 12, reinterpret_cast<Column>(stand & reinterpret_cast<LaneMask>(one)));
+}
+
 /** Pass 3: the Euler fits of the batches' joints, four at a time, each under its parent's desired rotation. Batches go
   * in groups: the group's arctangents (each a long chain of dependent operations: divisions, a polynomial) run one
   * after another, so the processor overlaps them, which it cannot do across one batch's whole fit. */
@@ -311,8 +322,7 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
     const std::uint8_t* const offsetIsIdentity = tables.offsetIsIdentity.data();
     const double* const offsetRotations = tables.offsetRotations.data();
     const double* const desiredRotations = w.scratch.desired.data();
-    double* const laneAngles = w.scratch.laneAngles.data();
-    std::uint8_t* const laneFitted = w.scratch.laneFitted.data();
+    double* const batchLanes = w.scratch.batchLanes.data();
     for (std::size_t first = 0; first < numBatches; first += kGroup)
     {
         const std::size_t numInGroup = std::min(kGroup, numBatches - first);
@@ -356,12 +366,7 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
         {
             const RetargetEulerBatch& batch = batches[first + b];
             const EulerLanesFit fit = fitEulerLanes(batch, angles[b], in[b].invalid, dofs);
-            for (unsigned lane = 0; lane < batch.numJoints; ++lane)
-            {
-                const unsigned t = batch.joints[lane];
-                laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-                for (unsigned r = 0; r < 3; ++r) laneAngles[3 * t + r] = fit.angles[r][lane];
-            }
+            storeLanes(batchLanes + 16 * (first + b), fit.angles, fit.fitted);
         }
     }
 }
@@ -370,9 +375,8 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
   * lie within its limits. */
 OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const double* sourceValues, RetargetWorkspace& w)
 {
-    // In locals, as in placeJoints.
-    double* const laneAngles = w.scratch.laneAngles.data();
-    std::uint8_t* const laneFitted = w.scratch.laneFitted.data();
+    // In locals, as in placeJoints. The copy batches' results come after the Euler batches' (RetargetJobTables::laneAt).
+    double* lanes = w.scratch.batchLanes.data() + 16 * tables.eulerBatches.size();
     for (const RetargetCopyBatch& batch : tables.copyBatches)
     {
         Column angles[3];
@@ -382,12 +386,8 @@ OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const doub
             angles[r] = gatherLanes(sourceValues, batch.sourceDof[r]);
             within &= angles[r] >= loadColumn(batch.min[r]) && angles[r] <= loadColumn(batch.max[r]);
         }
-        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
-        {
-            const unsigned t = batch.joints[lane];
-            laneFitted[t] = within[lane] != 0 ? 1 : 0;
-            for (unsigned r = 0; r < 3; ++r) laneAngles[3 * t + r] = angles[r][lane];
-        }
+        storeLanes(lanes, angles, within);
+        lanes += 16;
     }
 }
 
@@ -474,6 +474,8 @@ struct PlacementArrays
     const int* parents;
     const RetargetPlacement* placement;
     const double* desired;
+    const double* batchLanes;
+    const std::uint32_t* laneAt;
     const double* laneAngles;
     const std::uint8_t* laneFitted;
     const double* laneCosSin;
@@ -492,7 +494,8 @@ OSGACTOR_INLINE PlacementArrays placementArrays(const RetargetRig& rig, Retarget
     const RetargetJobTables& tables = rig.getJobTables();
     RetargetWorkspace::Scratch& s = w.scratch;
     return {target.getAllKinematics().data(), target.getParents().data(), tables.placement.data(),
-            s.desired.data(), s.laneAngles.data(), s.laneFitted.data(), s.laneCosSin.data(),
+            s.desired.data(), s.batchLanes.data(), tables.laneAt.data(), s.laneAngles.data(), s.laneFitted.data(),
+            s.laneCosSin.data(),
             rig.getTargetRestDofs().data(), tables.origins.data(), tables.originMoves.data(),
             tables.restLocalRotations.data(), s.asDesired.data(), w.targetExact.data(), w.targetModels.data()};
 }
@@ -517,9 +520,11 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a
     const RetargetPlacement how = a.placement[t];
     RotationColumns rotation;
     bool exact = false;
-    if (how == RetargetPlacement::Euler && a.laneFitted[t] && parentAsDesired)
+    // An Euler or copy batch's lane: its angles at lane[0], lane[4], lane[8], whether they stand at lane[12].
+    const double* const lane = a.batchLanes + a.laneAt[t];
+    if (how == RetargetPlacement::Euler && lane[12] != 0.0 && parentAsDesired)
     {
-        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = lane[4 * r];
         exact = true;
         rotation = desired;
     }
@@ -531,14 +536,14 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a
                        ? desired
                        : multiply(parentRotation, loadRotation(a.restLocalRotations + t * kRotationDoubles));
     }
-    else if (how == RetargetPlacement::Copy && parentExact && a.laneFitted[t])
+    else if (how == RetargetPlacement::Copy && parentExact && lane[12] != 0.0)
     {
         // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches). Three
         // rotations (the usual case) in straight-line code, not a loop of a count read from memory.
         if (k.numRotations == 3)
-            for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+            for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = lane[4 * r];
         else
-            for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+            for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = lane[4 * r];
         exact = true;
         rotation = desired;
     }

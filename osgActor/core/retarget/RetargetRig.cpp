@@ -687,6 +687,18 @@ struct RetargetRigBuilder
             for (unsigned lane = batch.numJoints; lane < RetargetCopyBatch::kWidth; ++lane) setCopyLane(batch, lane, j);
             ++batch.numJoints;
         }
+        tables.laneAt.assign(numTarget, 0);
+        std::uint32_t batchIndex = 0;
+        for (const RetargetEulerBatch& batch : tables.eulerBatches)
+        {
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane) tables.laneAt[batch.joints[lane]] = 16 * batchIndex + lane;
+            ++batchIndex;
+        }
+        for (const RetargetCopyBatch& batch : tables.copyBatches)
+        {
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane) tables.laneAt[batch.joints[lane]] = 16 * batchIndex + lane;
+            ++batchIndex;
+        }
         tables.placement.resize(numTarget);
         for (unsigned j = 0; j < numTarget; ++j)
         {
