@@ -43,9 +43,7 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     scratch.sourceCosines.assign(4 * tables.sourceAngleColumns.size(), 1.0);
     scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
     scratch.batchLanes.assign(16 * (tables.eulerBatches.size() + tables.copyBatches.size()), 0.0);
-    scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
-    scratch.laneFitted.assign(numTarget, 0);
-    scratch.laneCosSin.assign(std::size_t(numTarget) * 4, 0.0);
+    scratch.axisLanes.assign(32 * tables.axisBatches.size(), 0.0);
     scratch.asDesired.assign(numTarget, 0);
 }
 
@@ -61,8 +59,7 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
            s.batchLanes.size() == 16 * (tables.eulerBatches.size() + tables.copyBatches.size()) &&
-           s.laneAngles.size() == numTarget * 3 &&
-           s.laneFitted.size() == numTarget && s.laneCosSin.size() == numTarget * 4 &&
+           s.axisLanes.size() == 32 * tables.axisBatches.size() &&
            s.asDesired.size() == numTarget;
 }
 
@@ -405,9 +402,10 @@ OSGACTOR_INLINE RotationColumns rotateByDofs(RotationColumns frame, const JointK
 
 /** The fits of an axis batch's joints (one or two rotations), four at a time, each under its parent's actual model
   * rotation: the parents, a depth up, are placed. */
-OSGACTOR_INLINE void fitAxisBatch(const RetargetAxisBatch& batch, const ActorDefinition& target,
-                                  const RetargetJobTables& tables, const double* dofs, RetargetWorkspace& w)
+OSGACTOR_INLINE void fitAxisBatch(std::uint32_t index, const ActorDefinition& target, const RetargetJobTables& tables,
+                                  const double* dofs, RetargetWorkspace& w)
 {
+    const RetargetAxisBatch& batch = tables.axisBatches[index];
     RetargetWorkspace::Scratch& s = w.scratch;
     double local[RetargetAxisBatch::kWidth][kRotationDoubles];
     const double* lanes[RetargetAxisBatch::kWidth];
@@ -423,22 +421,17 @@ OSGACTOR_INLINE void fitAxisBatch(const RetargetAxisBatch& batch, const ActorDef
         storeRotation(local[lane], multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
     }
     const AxisLanesFit fit = fitAxisLanes(batch, lanes, dofs);
-    // In locals, as in placeJoints.
-    double* const laneAngles = s.laneAngles.data();
-    double* const laneCosSin = s.laneCosSin.data();
-    std::uint8_t* const laneFitted = s.laneFitted.data();
-    const unsigned numRotations = batch.numRotations;
-    for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+    // As whole columns (RetargetWorkspace::Scratch::axisLanes); a batch of one rotation leaves its second columns
+    // unwritten.
+    double* const out = s.axisLanes.data() + 32 * index;
+    for (unsigned r = 0; r < batch.numRotations; ++r)
     {
-        const unsigned t = batch.joints[lane];
-        laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-        for (unsigned r = 0; r < numRotations; ++r)
-        {
-            laneAngles[3 * t + r] = fit.angles[r][lane];
-            laneCosSin[4 * t + 2 * r] = fit.cosines[r][lane];
-            laneCosSin[4 * t + 2 * r + 1] = fit.sines[r][lane];
-        }
+        storeColumn(out + 4 * r, fit.angles[r]);
+        storeColumn(out + 8 + 4 * r, fit.cosines[r]);
+        storeColumn(out + 16 + 4 * r, fit.sines[r]);
     }
+    const Column one = {1.0, 1.0, 1.0, 1.0};
+    storeColumn(out + 24, reinterpret_cast<Column>(fit.fitted & reinterpret_cast<LaneMask>(one)));
 }
 
 /** The root's translation DOFs, from where the source's root goes (RetargetRig::mapPosition) less its offset, turned
@@ -476,9 +469,7 @@ struct PlacementArrays
     const double* desired;
     const double* batchLanes;
     const std::uint32_t* laneAt;
-    const double* laneAngles;
-    const std::uint8_t* laneFitted;
-    const double* laneCosSin;
+    const double* axisLanes;
     const double* rest;
     const double* origins;
     const std::uint8_t* originMoves;
@@ -494,8 +485,7 @@ OSGACTOR_INLINE PlacementArrays placementArrays(const RetargetRig& rig, Retarget
     const RetargetJobTables& tables = rig.getJobTables();
     RetargetWorkspace::Scratch& s = w.scratch;
     return {target.getAllKinematics().data(), target.getParents().data(), tables.placement.data(),
-            s.desired.data(), s.batchLanes.data(), tables.laneAt.data(), s.laneAngles.data(), s.laneFitted.data(),
-            s.laneCosSin.data(),
+            s.desired.data(), s.batchLanes.data(), tables.laneAt.data(), s.axisLanes.data(),
             rig.getTargetRestDofs().data(), tables.origins.data(), tables.originMoves.data(),
             tables.restLocalRotations.data(), s.asDesired.data(), w.targetExact.data(), w.targetModels.data()};
 }
@@ -569,14 +559,16 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a
         rotation =
             exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
     }
-    else if (how == RetargetPlacement::Axis && a.laneFitted[t])
+    else if (how == RetargetPlacement::Axis && a.axisLanes[a.laneAt[t] + 24] != 0.0)
     {
+        // An axis batch's lane: its angles at [0] and [4], their cosines at [8] and [12], sines at [16] and [20].
+        const double* const axisLane = a.axisLanes + a.laneAt[t];
         // Fewer than three rotations: the nearest the joint can come, never exact (as fitJointRotationDofs).
         rotation = jointFrame(tables, t, hasParent, parentRotation);
         for (unsigned r = 0; r < k.numRotations; ++r)
         {
-            targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
-            postRotate(rotation, k.rotationAxis[r], a.laneCosSin[4 * t + 2 * r], a.laneCosSin[4 * t + 2 * r + 1]);
+            targetValues[k.rotationDof[r]] = axisLane[4 * r];
+            postRotate(rotation, k.rotationAxis[r], axisLane[8 + 4 * r], axisLane[16 + 4 * r]);
         }
     }
     else
@@ -629,12 +621,11 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
     const std::uint32_t* const levelJoints = tables.levelJoints.data();
     const std::uint32_t* const levelBatches = tables.levelBatches.data();
     const std::uint32_t* const placeOrder = tables.placeOrder.data();
-    const RetargetAxisBatch* const axisBatches = tables.axisBatches.data();
     for (std::size_t level = 0; level < numLevels; ++level)
     {
         const std::uint32_t lastBatch = levelBatches[level + 1], lastJoint = levelJoints[level + 1];
         for (std::uint32_t b = levelBatches[level]; b < lastBatch; ++b)
-            fitAxisBatch(axisBatches[b], target, tables, targetValues, w);
+            fitAxisBatch(b, target, tables, targetValues, w);
         for (std::uint32_t i = levelJoints[level]; i < lastJoint; ++i)
             numInexact += placeJoint(rig, arrays, placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
     }

@@ -699,6 +699,11 @@ struct RetargetRigBuilder
             for (unsigned lane = 0; lane < batch.numJoints; ++lane) tables.laneAt[batch.joints[lane]] = 16 * batchIndex + lane;
             ++batchIndex;
         }
+        for (std::uint32_t b = 0; b < tables.axisBatches.size(); ++b)
+        {
+            const RetargetAxisBatch& batch = tables.axisBatches[b];
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane) tables.laneAt[batch.joints[lane]] = 32 * b + lane;
+        }
         tables.placement.resize(numTarget);
         for (unsigned j = 0; j < numTarget; ++j)
         {
