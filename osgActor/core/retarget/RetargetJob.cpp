@@ -164,51 +164,22 @@ OSGACTOR_INLINE void poseSource(const RetargetRig& rig, const RetargetJobTables&
     const std::uint32_t* const posed = tables.sourcePosed.data();
     const JointKinematics* const kinematics = source.getAllKinematics().data();
     glm::dmat4* const models = w.sourceModels.data();
-    const unsigned numPosed = static_cast<unsigned>(tables.sourcePosed.size());
     const double* const postRotations = tables.postRotations.data();
     double* const desired = s.desired.data();
     const RotationColumns alignment = loadRotation(tables.alignment);
     const AffineColumns rootFrame{{alignment.c[0], alignment.c[1], alignment.c[2], Column{0.0, 0.0, 0.0, 1.0}}};
     AffineColumns previous = rootFrame;
-    for (unsigned i = 0; i < numPosed; ++i)
-    {
-        const RetargetSourceJoint& joint = joints[i];
-        const int parent = joint.parent;
-        // The parent frame: the joint just composed (still in registers) where the parent is the joint before.
+    // The parent frame of joint i, in previous: the joint just composed (still in registers) where the parent is the
+    // joint before.
+    const auto loadParentFrame = [&](unsigned i) OSGACTOR_INLINE_LAMBDA {
+        const int parent = joints[i].parent;
         if (parent + 1 != static_cast<int>(i)) previous = parent < 0 ? rootFrame : loadAffine(&models[parent][0][0]);
-        const AffineColumns& frame = previous;
-        if (joint.turnsOnly)
-        {
-            RotationColumns turned{{frame.c[0], frame.c[1], frame.c[2]}};
-            withRotationSequence(joint.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
-                using Axes = SequenceAxes<decltype(sequence)::value>;
-                if constexpr (Axes::count >= 1)
-                    postRotate(turned, Axes::first, cosines[joint.trig[0]], sines[joint.trig[0]]);
-                if constexpr (Axes::count >= 2)
-                    postRotate(turned, Axes::second, cosines[joint.trig[1]], sines[joint.trig[1]]);
-                if constexpr (Axes::count >= 3)
-                    postRotate(turned, Axes::third, cosines[joint.trig[2]], sines[joint.trig[2]]);
-            });
-            const Column origin =
-                combineColumns(frame.c[0], frame.c[1], frame.c[2], joint.offset[0], joint.offset[1], joint.offset[2]) +
-                frame.c[3];
-            previous = AffineColumns{{turned.c[0], turned.c[1], turned.c[2], origin}};
-        }
-        else
-        {
-            const JointKinematics& k = kinematics[posed[i]];
-            TrigInOrder trig{};
-            for (unsigned r = 0; r < k.numRotations; ++r)
-            {
-                trig.sines[r] = sines[joint.trig[r]];
-                trig.cosines[r] = cosines[joint.trig[r]];
-            }
-            alignas(32) double local[16] = {};
-            buildJointMatrixDispatched(k, dofs, trig, local);
-            previous = multiplyAffineColumns(frame, local);
-        }
+    };
+    // Joint i's model matrix, in previous, stored; and the desired rotation of the target joint that follows it (see
+    // desireRotations), from the registers.
+    const auto storeModel = [&](unsigned i) OSGACTOR_INLINE_LAMBDA {
         storeAffine(&models[i][0][0], previous);
-        // The desired rotation of the target joint that follows this one (see desireRotations), from the registers.
+        const RetargetSourceJoint& joint = joints[i];
         const std::uint32_t follower = joint.follower;
         if (follower != RetargetSourceJoint::kNoFollower)
         {
@@ -218,6 +189,48 @@ OSGACTOR_INLINE void poseSource(const RetargetRig& rig, const RetargetJobTables&
                               ? multiply(rotation, loadRotation(postRotations + follower * kRotationDoubles))
                               : rotation);
         }
+    };
+    // Run by run (RetargetSourceRun): one jump to the code for a run's rotation sequence, not one a joint.
+    for (const RetargetSourceRun& run : tables.sourceRuns)
+    {
+        if (run.turnsOnly)
+            withRotationSequence(run.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
+                using Axes = SequenceAxes<decltype(sequence)::value>;
+                for (unsigned i = run.first; i < run.end; ++i)
+                {
+                    loadParentFrame(i);
+                    const RetargetSourceJoint& joint = joints[i];
+                    const Column origin = combineColumns(previous.c[0], previous.c[1], previous.c[2], joint.offset[0],
+                                                         joint.offset[1], joint.offset[2]) +
+                                          previous.c[3];
+                    RotationColumns turned{{previous.c[0], previous.c[1], previous.c[2]}};
+                    if constexpr (Axes::count >= 1)
+                        postRotate(turned, Axes::first, cosines[joint.trig[0]], sines[joint.trig[0]]);
+                    if constexpr (Axes::count >= 2)
+                        postRotate(turned, Axes::second, cosines[joint.trig[1]], sines[joint.trig[1]]);
+                    if constexpr (Axes::count >= 3)
+                        postRotate(turned, Axes::third, cosines[joint.trig[2]], sines[joint.trig[2]]);
+                    previous = AffineColumns{{turned.c[0], turned.c[1], turned.c[2], origin}};
+                    storeModel(i);
+                }
+            });
+        else
+            for (unsigned i = run.first; i < run.end; ++i)
+            {
+                loadParentFrame(i);
+                const RetargetSourceJoint& joint = joints[i];
+                const JointKinematics& k = kinematics[posed[i]];
+                TrigInOrder trig{};
+                for (unsigned r = 0; r < k.numRotations; ++r)
+                {
+                    trig.sines[r] = sines[joint.trig[r]];
+                    trig.cosines[r] = cosines[joint.trig[r]];
+                }
+                alignas(32) double local[16] = {};
+                buildJointMatrixDispatched(k, dofs, trig, local);
+                previous = multiplyAffineColumns(previous, local);
+                storeModel(i);
+            }
     }
 }
 

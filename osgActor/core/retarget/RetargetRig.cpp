@@ -742,15 +742,26 @@ struct RetargetRigBuilder
             dof = first + 3;
         }
         tables.sourceJoints.assign(tables.sourcePosed.size(), RetargetSourceJoint{});
+        tables.sourceRuns.clear();
         for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
         {
             const JointKinematics& k = s.getKinematics(tables.sourcePosed[i]);
             RetargetSourceJoint& joint = tables.sourceJoints[i];
             joint.parent = tables.sourcePosedParents[i];
-            joint.rotationSequence = static_cast<std::uint8_t>(k.rotationSequence);
             joint.turnsOnly = k.offsetIsTranslation && !k.hasTranslation ? 1 : 0;
             for (unsigned c = 0; c < 4; ++c) joint.offset[c] = k.offset[3][c];
             for (unsigned r = 0; r < k.numRotations; ++r) joint.trig[r] = trigOf[k.rotationDof[r]];
+            const std::uint8_t sequence = joint.turnsOnly ? static_cast<std::uint8_t>(k.rotationSequence) : 0;
+            if (tables.sourceRuns.empty() || tables.sourceRuns.back().turnsOnly != joint.turnsOnly ||
+                tables.sourceRuns.back().rotationSequence != sequence)
+            {
+                RetargetSourceRun run;
+                run.first = static_cast<std::uint32_t>(i);
+                run.turnsOnly = joint.turnsOnly;
+                run.rotationSequence = sequence;
+                tables.sourceRuns.push_back(run);
+            }
+            tables.sourceRuns.back().end = static_cast<std::uint32_t>(i + 1);
         }
     }
 
