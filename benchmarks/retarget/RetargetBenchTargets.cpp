@@ -68,4 +68,13 @@ RetargetRigPtr rigOnto(const MocapImport& source, const ActorDefinitionPtr& onto
     return built.rig;
 }
 
+RetargetJobOnto::RetargetJobOnto(int which) : clip(walk().clip.get()), rig(rigOnto(walk(), target(which)))
+{
+    workspace.resize(*rig);
+    dofs = rig->getTargetRestDofs();
+    job.rig = rig.get();
+    job.targetDofs = dofs;
+    job.workspace = &workspace;
+}
+
 } // namespace bench

@@ -3,10 +3,12 @@
 #ifndef OSGACTOR_BENCH_RETARGET_BENCHTARGETS_H
 #define OSGACTOR_BENCH_RETARGET_BENCHTARGETS_H 1
 
+#include <osgActor/core/retarget/RetargetJob>
 #include <osgActor/core/retarget/RetargetRig>
 #include <osgActor/mocap/MocapImport>
 
 #include <string>
+#include <vector>
 
 namespace bench {
 
@@ -21,6 +23,30 @@ constexpr int kNumTargets = 4;
 extern const char* const kTargetNames[kNumTargets];
 /** The rig from source's skeleton onto onto, its joints mapped automatically; throws if it cannot be built. */
 osgActor::RetargetRigPtr rigOnto(const osgActor::MocapImport& source, const osgActor::ActorDefinitionPtr& onto);
+
+/** A RetargetJob from walk() onto target(which): its rig, workspace (sized) and target DOFs (at rest to begin with).
+  * Not copied or moved: the job points at the others. */
+struct RetargetJobOnto
+{
+    explicit RetargetJobOnto(int which);
+    RetargetJobOnto(const RetargetJobOnto&) = delete;
+    RetargetJobOnto& operator=(const RetargetJobOnto&) = delete;
+
+    /** Retargets frame f of walk()'s clip into dofs; false if the job refused it. Inline, so a loop of it counts the
+      * job and the loop only. */
+    bool runFrame(unsigned f)
+    {
+        job.sourceDofs = osgActor::Span<const double>(clip->getFrame(f), clip->getNumChannels());
+        return job.run();
+    }
+
+    /** walk()'s clip. */
+    const osgActor::Clip* clip;
+    osgActor::RetargetRigPtr rig;
+    osgActor::RetargetWorkspace workspace;
+    std::vector<double> dofs;
+    osgActor::RetargetJob job;
+};
 
 } // namespace bench
 

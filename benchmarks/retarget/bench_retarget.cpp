@@ -59,25 +59,19 @@ void BM_SourceForwardKinematics(benchmark::State& state)
 void BM_RetargetJob(benchmark::State& state)
 {
     const MocapImport& source = walk();
-    const RetargetRigPtr rig = rigOnto(source, target(static_cast<int>(state.range(0))));
-    RetargetWorkspace workspace;
-    workspace.resize(*rig);
-    std::vector<double> dofs = rig->getTargetRestDofs();
-    RetargetJob job;
-    job.rig = rig.get();
-    job.targetDofs = dofs;
-    job.workspace = &workspace;
+    bench::RetargetJobOnto onto(static_cast<int>(state.range(0)));
+    RetargetJob& job = onto.job;
     unsigned frame = 0;
     for (auto _ : state)
     {
         job.sourceDofs = Span<const double>(source.clip->getFrame(frame), source.clip->getNumChannels());
         job.run();
-        benchmark::DoNotOptimize(dofs.data());
+        benchmark::DoNotOptimize(onto.dofs.data());
         frame = frame + 1 < source.clip->getNumFrames() ? frame + 1 : 0;
     }
     state.SetLabel(kTargetNames[state.range(0)]);
     state.counters["source_joints"] = source.definition->getNumJoints();
-    state.counters["target_joints"] = rig->getTargetDefinition()->getNumJoints();
+    state.counters["target_joints"] = onto.rig->getTargetDefinition()->getNumJoints();
 }
 
 void BM_RetargetJobWithIk(benchmark::State& state)

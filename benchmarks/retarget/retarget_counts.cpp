@@ -4,15 +4,12 @@
 // the clip `passes` times (2 unless given) between callgrind's client requests, so
 //     valgrind --tool=callgrind --instr-atstart=no build/bin/osgactor_retarget_counts 1
 // counts the measured passes only (outside valgrind the requests do nothing). Divide the count by the frames printed.
-#include <osgActor/core/retarget/RetargetJob>
-
 #include "RetargetBenchTargets.h"
 
 #include <valgrind/callgrind.h>
 
 #include <cstdio>
 #include <cstdlib>
-#include <vector>
 
 using namespace osgActor;
 
@@ -25,23 +22,11 @@ int main(int argc, char** argv)
         std::fprintf(stderr, "usage: %s [target 0-%d] [passes > 0]\n", argv[0], bench::kNumTargets - 1);
         return 1;
     }
-    const MocapImport& source = bench::walk();
-    const RetargetRigPtr rig = bench::rigOnto(source, bench::target(which));
-    RetargetWorkspace workspace;
-    workspace.resize(*rig);
-    std::vector<double> dofs = rig->getTargetRestDofs();
-    RetargetJob job;
-    job.rig = rig.get();
-    job.targetDofs = dofs;
-    job.workspace = &workspace;
-    const unsigned numFrames = source.clip->getNumFrames();
+    bench::RetargetJobOnto onto(which);
+    const unsigned numFrames = onto.clip->getNumFrames();
     const auto pass = [&] {
         unsigned failed = 0;
-        for (unsigned frame = 0; frame < numFrames; ++frame)
-        {
-            job.sourceDofs = Span<const double>(source.clip->getFrame(frame), source.clip->getNumChannels());
-            failed += job.run() ? 0 : 1;
-        }
+        for (unsigned frame = 0; frame < numFrames; ++frame) failed += onto.runFrame(frame) ? 0 : 1;
         return failed;
     };
     unsigned failed = pass();

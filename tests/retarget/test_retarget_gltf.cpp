@@ -55,6 +55,26 @@ WalkOntoCesiumMan walkOntoCesiumMan()
     return onto;
 }
 
+/** Cesium Man's walk read as motion and a rig retargeting it onto CMU's 12_03.bvh skeleton (in metres); rig is null
+  * (and the test failed) where either could not be read or the rig not built. */
+struct CesiumMansWalkOntoCmu
+{
+    MocapImport walk, cmu;
+    RetargetRigPtr rig;
+};
+
+CesiumMansWalkOntoCmu cesiumMansWalkOntoCmu()
+{
+    CesiumMansWalkOntoCmu onto;
+    onto.walk = readRiggedMotionFile(cesiumManFile(), MotionFileOptions());
+    EXPECT_TRUE(onto.walk) << onto.walk.error;
+    onto.cmu = readBvhScaled(repositoryMocap("bvh/12_03.bvh"), 0.056444);
+    if (!onto.walk || !onto.cmu) return onto;
+    onto.rig = buildRig(skeleton(onto.walk.definition), skeleton(onto.cmu.definition));
+    EXPECT_TRUE(onto.rig);
+    return onto;
+}
+
 } // namespace
 
 TEST(RetargetOntoGltf, TheGuessFindsCesiumMansBodyByItsShape)
@@ -234,12 +254,10 @@ TEST(RetargetFromGltf, CesiumMansWalkReadAsMotionIsTheImportedActorsFirstClipNam
 
 TEST(RetargetFromGltf, CesiumMansWalkOntoCmusSkeletonKeepsBonesAndPutsFeetAndHandsWhereHisAre)
 {
-    const MocapImport walk = readRiggedMotionFile(cesiumManFile(), MotionFileOptions());
-    ASSERT_TRUE(walk) << walk.error;
-    const MocapImport cmu = readBvhScaled(repositoryMocap("bvh/12_03.bvh"), 0.056444);
-    ASSERT_TRUE(cmu) << cmu.error;
-    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(cmu.definition));
-    ASSERT_TRUE(rig);
+    const CesiumMansWalkOntoCmu onto = cesiumMansWalkOntoCmu();
+    ASSERT_TRUE(onto.rig);
+    const MocapImport& walk = onto.walk;
+    const RetargetRigPtr& rig = onto.rig;
     RetargetClipOptions options;
     options.ik = true;
     const RetargetClipResult followed = retargetClip(*rig, *walk.clip, options);
@@ -267,12 +285,10 @@ TEST(RetargetFromGltf, TheSourcesPoseIsItsForwardKinematicsWhereItsJointsSlideAn
     // Cesium Man's joints slide (translation DOFs on every joint) and their offsets turn, so the job's forward
     // kinematics builds their local matrices instead of only turning the parent's columns (RetargetSourceJoint::
     // turnsOnly): its model matrices are still the full forward kinematics' (1e-12, metres), on every tenth frame.
-    const MocapImport walk = readRiggedMotionFile(cesiumManFile(), MotionFileOptions());
-    ASSERT_TRUE(walk) << walk.error;
-    const MocapImport cmu = readBvhScaled(repositoryMocap("bvh/12_03.bvh"), 0.056444);
-    ASSERT_TRUE(cmu) << cmu.error;
-    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(cmu.definition));
-    ASSERT_TRUE(rig);
+    const CesiumMansWalkOntoCmu onto = cesiumMansWalkOntoCmu();
+    ASSERT_TRUE(onto.rig);
+    const MocapImport& walk = onto.walk;
+    const RetargetRigPtr& rig = onto.rig;
     const ActorDefinition& source = *walk.definition;
     const RetargetJobTables& tables = rig->getJobTables();
     unsigned built = 0;
