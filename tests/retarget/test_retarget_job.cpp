@@ -320,6 +320,32 @@ TEST(RetargetJob, ASourceOfFewerThanFourDofsIsPosedAndReproduced)
     }
 }
 
+TEST(RetargetJob, ASkeletonWithoutRotationsOntoItselfTakesItsTravel)
+{
+    // No joint turns, so the job has no batch of angles at all (no Euler, copy or axis lane): its joints are placed
+    // from the rest of their plans, and the root's slides carry the source's travel.
+    ActorDefinitionBuilder b("slider");
+    b.addJoint("root").offset(0, 0, 1).dofs(Dof::TX | Dof::TY | Dof::TZ);
+    b.addJoint("arm", "root").offset(0, 0.1, 0.5);
+    b.addJoint("hand", "arm").offset(0, 0, 0.3);
+    const ActorDefinitionPtr slider = b.build().definition;
+    ASSERT_TRUE(slider);
+    const std::vector<std::pair<std::string, std::string>> names = {
+        {"root", "HumanoidRoot"}, {"arm", "l_shoulder"}, {"hand", "l_elbow"}};
+    const RetargetRigPtr rig = buildRig(mappedSkeleton(slider, names), mappedSkeleton(slider, names));
+    ASSERT_TRUE(rig);
+    EXPECT_TRUE(rig->getJobTables().eulerBatches.empty());
+    EXPECT_TRUE(rig->getJobTables().copyBatches.empty());
+    EXPECT_EQ(rig->getJobTables().placement[static_cast<unsigned>(slider->findJoint("arm"))], RetargetPlacement::Copy);
+    RetargetWorkspace workspace;
+    std::vector<double> result = slider->getDefaultDofs();
+    const std::vector<double> moved = {0.3, -0.2, 0.1};
+    RetargetJob job = retargetJob(*rig, moved, result, workspace);
+    ASSERT_TRUE(job.run());
+    for (unsigned d = 0; d < 3; ++d) EXPECT_NEAR(result[d], moved[d], 1e-12) << d;
+    EXPECT_EQ(job.numInexact, 0u);
+}
+
 TEST(RetargetJob, SlidesOfEveryLayoutComeBackToRestInOneFrame)
 {
     // A joint's three slides as consecutive DOFs are reset together, one slide or two apart (x and z) one by one

@@ -42,7 +42,7 @@ void RetargetWorkspace::resize(const RetargetRig& rig)
     scratch.sourceSines.assign(4 * tables.sourceAngleColumns.size(), 0.0);
     scratch.sourceCosines.assign(4 * tables.sourceAngleColumns.size(), 1.0);
     scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
-    scratch.batchLanes.assign(16 * (tables.eulerBatches.size() + tables.copyBatches.size()), 0.0);
+    scratch.batchLanes.assign(16 * (tables.eulerBatches.size() + tables.copyBatches.size() + 1), 0.0);
     scratch.axisLanes.assign(32 * tables.axisBatches.size(), 0.0);
     scratch.asDesired.assign(numTarget, 0);
 }
@@ -58,7 +58,7 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
            s.sourceSines.size() == numTrig && s.sourceCosines.size() == numTrig &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
-           s.batchLanes.size() == 16 * (tables.eulerBatches.size() + tables.copyBatches.size()) &&
+           s.batchLanes.size() == 16 * (tables.eulerBatches.size() + tables.copyBatches.size() + 1) &&
            s.axisLanes.size() == 32 * tables.axisBatches.size() &&
            s.asDesired.size() == numTarget;
 }

@@ -687,7 +687,9 @@ struct RetargetRigBuilder
             for (unsigned lane = batch.numJoints; lane < RetargetCopyBatch::kWidth; ++lane) setCopyLane(batch, lane, j);
             ++batch.numJoints;
         }
-        tables.laneAt.assign(numTarget, 0);
+        // A joint in no Euler or copy batch reads the slot after the last batch's, which stays 0 (its lanes never stand).
+        tables.laneAt.assign(numTarget,
+                             static_cast<std::uint32_t>(16 * (tables.eulerBatches.size() + tables.copyBatches.size())));
         std::uint32_t batchIndex = 0;
         for (const RetargetEulerBatch& batch : tables.eulerBatches)
         {
