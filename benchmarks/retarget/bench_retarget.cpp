@@ -16,75 +16,24 @@
 #include <osgActor/core/retarget/RetargetJob>
 #include <osgActor/core/retarget/RetargetLimbs>
 #include <osgActor/core/retarget/RetargetMeasures>
-#include <osgActor/import/RiggedActorBuilder>
-#include <osgActor/import/RiggedModelFile>
-#include <osgActor/io/ActorReader>
 #include <osgActor/mocap/AmcReader>
 #include <osgActor/mocap/AsfReader>
-#include <osgActor/mocap/BvhReader>
+
+#include "RetargetBenchTargets.h"
 
 #include <benchmark/benchmark.h>
 
-#include <fstream>
 #include <string>
 #include <vector>
 
 using namespace osgActor;
+using bench::kTargetNames;
+using bench::readBvh;
+using bench::rigOnto;
+using bench::target;
+using bench::walk;
 
 namespace {
-
-MocapImport readBvh(const std::string& path, double scale, bool endSites)
-{
-    BvhImportOptions options;
-    options.scale = scale;
-    options.endSitesAsJoints = endSites;
-    return readBvhFile(path, options);
-}
-
-const MocapImport& walk()
-{
-    static const MocapImport imported = readBvh(std::string(OSGACTOR_BENCH_MOCAP_DIR) + "/bvh/12_03.bvh", 1.0, false);
-    return imported;
-}
-
-ActorDefinitionPtr humanoid()
-{
-    std::ifstream in(std::string(OSGACTOR_BENCH_DATA_DIR) + "/humanoid.actor");
-    return readActor(in, "humanoid.actor").definition;
-}
-
-/** Cesium Man (data/models/CesiumMan, glTF), standing Z up in metres. */
-ActorDefinitionPtr cesiumMan()
-{
-    const RiggedModelRead read =
-        readRiggedModelFile(std::string(OSGACTOR_BENCH_DATA_DIR) + "/models/CesiumMan/CesiumMan.gltf");
-    if (!read) throw std::runtime_error(read.error);
-    RiggedActorOptions options;
-    options.rootScale = RootScale::InLengths;
-    options.zUp = true;
-    return buildRiggedActor(read.model, options).definition;
-}
-
-/** 0: the source's own skeleton, 1: the humanoid, 2: Boxing_Toes.bvh's skeleton, 3: Cesium Man. */
-ActorDefinitionPtr target(int which)
-{
-    static const ActorDefinitionPtr targets[4] = {
-        walk().definition, humanoid(),
-        readBvh("/usr/share/assimp/models/BVH/Boxing_Toes.bvh", 0.01, false).definition, cesiumMan()};
-    return targets[which];
-}
-
-const char* const kTargetNames[4] = {"same_skeleton", "humanoid", "boxing_toes", "cesium_man"};
-
-RetargetRigPtr rigOnto(const MocapImport& source, const ActorDefinitionPtr& onto)
-{
-    RetargetSkeleton from, to;
-    from.definition = source.definition;
-    to.definition = onto;
-    const RetargetRigBuildResult built = buildRetargetRig(from, to);
-    if (!built) throw std::runtime_error(built.error);
-    return built.rig;
-}
 
 void perFrame(benchmark::State& state, double frames)
 {
@@ -110,25 +59,19 @@ void BM_SourceForwardKinematics(benchmark::State& state)
 void BM_RetargetJob(benchmark::State& state)
 {
     const MocapImport& source = walk();
-    const RetargetRigPtr rig = rigOnto(source, target(static_cast<int>(state.range(0))));
-    RetargetWorkspace workspace;
-    workspace.resize(*rig);
-    std::vector<double> dofs = rig->getTargetRestDofs();
-    RetargetJob job;
-    job.rig = rig.get();
-    job.targetDofs = dofs;
-    job.workspace = &workspace;
+    bench::RetargetJobOnto onto(static_cast<int>(state.range(0)));
+    RetargetJob& job = onto.job;
     unsigned frame = 0;
     for (auto _ : state)
     {
         job.sourceDofs = Span<const double>(source.clip->getFrame(frame), source.clip->getNumChannels());
         job.run();
-        benchmark::DoNotOptimize(dofs.data());
+        benchmark::DoNotOptimize(onto.dofs.data());
         frame = frame + 1 < source.clip->getNumFrames() ? frame + 1 : 0;
     }
     state.SetLabel(kTargetNames[state.range(0)]);
     state.counters["source_joints"] = source.definition->getNumJoints();
-    state.counters["target_joints"] = rig->getTargetDefinition()->getNumJoints();
+    state.counters["target_joints"] = onto.rig->getTargetDefinition()->getNumJoints();
 }
 
 void BM_RetargetJobWithIk(benchmark::State& state)

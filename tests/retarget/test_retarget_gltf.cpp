@@ -55,6 +55,26 @@ WalkOntoCesiumMan walkOntoCesiumMan()
     return onto;
 }
 
+/** Cesium Man's walk read as motion and a rig retargeting it onto CMU's 12_03.bvh skeleton (in metres); rig is null
+  * (and the test failed) where either could not be read or the rig not built. */
+struct CesiumMansWalkOntoCmu
+{
+    MocapImport walk, cmu;
+    RetargetRigPtr rig;
+};
+
+CesiumMansWalkOntoCmu cesiumMansWalkOntoCmu()
+{
+    CesiumMansWalkOntoCmu onto;
+    onto.walk = readRiggedMotionFile(cesiumManFile(), MotionFileOptions());
+    EXPECT_TRUE(onto.walk) << onto.walk.error;
+    onto.cmu = readBvhScaled(repositoryMocap("bvh/12_03.bvh"), 0.056444);
+    if (!onto.walk || !onto.cmu) return onto;
+    onto.rig = buildRig(skeleton(onto.walk.definition), skeleton(onto.cmu.definition));
+    EXPECT_TRUE(onto.rig);
+    return onto;
+}
+
 } // namespace
 
 TEST(RetargetOntoGltf, TheGuessFindsCesiumMansBodyByItsShape)
@@ -234,12 +254,10 @@ TEST(RetargetFromGltf, CesiumMansWalkReadAsMotionIsTheImportedActorsFirstClipNam
 
 TEST(RetargetFromGltf, CesiumMansWalkOntoCmusSkeletonKeepsBonesAndPutsFeetAndHandsWhereHisAre)
 {
-    const MocapImport walk = readRiggedMotionFile(cesiumManFile(), MotionFileOptions());
-    ASSERT_TRUE(walk) << walk.error;
-    const MocapImport cmu = readBvhScaled(repositoryMocap("bvh/12_03.bvh"), 0.056444);
-    ASSERT_TRUE(cmu) << cmu.error;
-    const RetargetRigPtr rig = buildRig(skeleton(walk.definition), skeleton(cmu.definition));
-    ASSERT_TRUE(rig);
+    const CesiumMansWalkOntoCmu onto = cesiumMansWalkOntoCmu();
+    ASSERT_TRUE(onto.rig);
+    const MocapImport& walk = onto.walk;
+    const RetargetRigPtr& rig = onto.rig;
     RetargetClipOptions options;
     options.ik = true;
     const RetargetClipResult followed = retargetClip(*rig, *walk.clip, options);
@@ -260,4 +278,36 @@ TEST(RetargetFromGltf, CesiumMansWalkOntoCmusSkeletonKeepsBonesAndPutsFeetAndHan
     ASSERT_GE(plantedMeasures.contacts.size(), 2u);
     EXPECT_LE(plantedMeasures.largestSlip * 1.75 / plantedMeasures.targetHeight, 0.01);
     EXPECT_LE(plantedMeasures.largestLengthChange, 1e-9);
+}
+
+TEST(RetargetFromGltf, TheSourcesPoseIsItsForwardKinematicsWhereItsJointsSlideAndTheirOffsetsTurn)
+{
+    // Cesium Man's joints slide (translation DOFs on every joint) and their offsets turn, so the job's forward
+    // kinematics builds their local matrices instead of only turning the parent's columns (RetargetSourceJoint::
+    // turnsOnly): its model matrices are still the full forward kinematics' (1e-12, metres), on every tenth frame.
+    const CesiumMansWalkOntoCmu onto = cesiumMansWalkOntoCmu();
+    ASSERT_TRUE(onto.rig);
+    const MocapImport& walk = onto.walk;
+    const RetargetRigPtr& rig = onto.rig;
+    const ActorDefinition& source = *walk.definition;
+    const RetargetJobTables& tables = rig->getJobTables();
+    unsigned built = 0;
+    for (const RetargetSourceJoint& joint : tables.sourceJoints) built += joint.turnsOnly ? 0 : 1;
+    EXPECT_GT(built, 10u) << "joints whose local matrix is built";
+    std::vector<double> values = rig->getTargetRestDofs();
+    RetargetWorkspace workspace;
+    for (unsigned f = 0; f < walk.clip->getNumFrames(); f += 10)
+    {
+        RetargetJob job =
+            retargetJob(*rig, Span<const double>(walk.clip->getFrame(f), walk.clip->getNumChannels()), values, workspace);
+        ASSERT_TRUE(job.run());
+        const std::vector<glm::dmat4> full = modelsAt(walk.definition, *walk.clip, f);
+        for (unsigned j = 0; j < source.getNumJoints(); ++j)
+        {
+            if (!tables.sourceJointsRead[j]) continue;
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    EXPECT_NEAR(workspace.sourceModel(j)[c][r], full[j][c][r], 1e-12) << source.getJointName(j);
+        }
+    }
 }

@@ -122,9 +122,18 @@ TEST(RetargetJob, RefusesWrongSizesAndValuesThatAreNotFinite)
     source[3] = 2e150;
     EXPECT_FALSE(job.run());
     source[3] = 0.0;
-    target[0] = std::numeric_limits<double>::infinity();
-    EXPECT_FALSE(job.run());
-    target[0] = 0.0;
+    // A value that is not finite anywhere in the target's DOFs: first, in the vectors the check reads eight at a time,
+    // and last (the DOFs past the last whole vector).
+    for (const std::size_t dof : {std::size_t(0), std::size_t(5), std::size_t(9), target.size() - 1})
+        for (const double bad : {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                                 std::numeric_limits<double>::quiet_NaN()})
+        {
+            const double kept = target[dof];
+            target[dof] = bad;
+            EXPECT_FALSE(job.run()) << "target DOF " << dof << " = " << bad;
+            target[dof] = kept;
+        }
+    EXPECT_TRUE(job.run());
     job.rig = nullptr;
     EXPECT_FALSE(job.run());
 }
@@ -273,6 +282,68 @@ TEST(RetargetJob, ASpineOfThreeOntoASpineOfFiveSharesTheBendOut)
     const unsigned sourceHead = static_cast<unsigned>(three->findJoint("head"));
     const unsigned targetHead = static_cast<unsigned>(five->findJoint("head"));
     EXPECT_LE(angleBetween(workspace.sourceRotation(sourceHead), workspace.targetRotation(targetHead)), 1e-12);
+}
+
+TEST(RetargetJob, ASourceOfFewerThanFourDofsIsPosedAndReproduced)
+{
+    // The job takes the source's sines and cosines four consecutive DOFs at a time; a source of two DOFs (an arm
+    // turning about X and Y under a root without DOFs) has fewer than a column of them. Onto itself, its DOFs come back
+    // (1e-9) and its pose is its forward kinematics (1e-12).
+    ActorDefinitionBuilder b("arm");
+    b.addJoint("root").offset(0, 0, 1);
+    b.addJoint("arm", "root").offset(0, 0.1, 0.5).dofs(Dof::RX | Dof::RY);
+    b.addJoint("hand", "arm").offset(0, 0, 0.3);
+    const ActorDefinitionPtr arm = b.build().definition;
+    ASSERT_TRUE(arm);
+    ASSERT_EQ(arm->getNumDofs(), 2u);
+    const std::vector<std::pair<std::string, std::string>> names = {
+        {"root", "HumanoidRoot"}, {"arm", "l_shoulder"}, {"hand", "l_elbow"}};
+    const RetargetRigPtr rig = buildRig(mappedSkeleton(arm, names), mappedSkeleton(arm, names));
+    ASSERT_TRUE(rig);
+    RetargetWorkspace workspace;
+    std::vector<double> result = arm->getDefaultDofs();
+    for (const std::vector<double>& pose : {std::vector<double>{degrees(30), degrees(-50)},
+                                            std::vector<double>{degrees(-120), degrees(10)}})
+    {
+        RetargetJob job = retargetJob(*rig, pose, result, workspace);
+        ASSERT_TRUE(job.run());
+        EXPECT_NEAR(result[0], pose[0], 1e-9);
+        EXPECT_NEAR(result[1], pose[1], 1e-9);
+        ActorPose posed(arm);
+        posed.setDofs(pose.data(), pose.size());
+        posed.updateMatrices();
+        for (unsigned j = 0; j < arm->getNumJoints(); ++j)
+            for (int c = 0; c < 4; ++c)
+                for (int r = 0; r < 4; ++r)
+                    EXPECT_NEAR(workspace.sourceModel(j)[c][r], posed.getModelMatrix(j)[c][r], 1e-12)
+                        << arm->getJointName(j);
+    }
+}
+
+TEST(RetargetJob, ASkeletonWithoutRotationsOntoItselfTakesItsTravel)
+{
+    // No joint turns, so the job has no batch of angles at all (no Euler, copy or axis lane): its joints are placed
+    // from the rest of their plans, and the root's slides carry the source's travel.
+    ActorDefinitionBuilder b("slider");
+    b.addJoint("root").offset(0, 0, 1).dofs(Dof::TX | Dof::TY | Dof::TZ);
+    b.addJoint("arm", "root").offset(0, 0.1, 0.5);
+    b.addJoint("hand", "arm").offset(0, 0, 0.3);
+    const ActorDefinitionPtr slider = b.build().definition;
+    ASSERT_TRUE(slider);
+    const std::vector<std::pair<std::string, std::string>> names = {
+        {"root", "HumanoidRoot"}, {"arm", "l_shoulder"}, {"hand", "l_elbow"}};
+    const RetargetRigPtr rig = buildRig(mappedSkeleton(slider, names), mappedSkeleton(slider, names));
+    ASSERT_TRUE(rig);
+    EXPECT_TRUE(rig->getJobTables().eulerBatches.empty());
+    EXPECT_TRUE(rig->getJobTables().copyBatches.empty());
+    EXPECT_EQ(rig->getJobTables().placement[static_cast<unsigned>(slider->findJoint("arm"))], RetargetPlacement::Copy);
+    RetargetWorkspace workspace;
+    std::vector<double> result = slider->getDefaultDofs();
+    const std::vector<double> moved = {0.3, -0.2, 0.1};
+    RetargetJob job = retargetJob(*rig, moved, result, workspace);
+    ASSERT_TRUE(job.run());
+    for (unsigned d = 0; d < 3; ++d) EXPECT_NEAR(result[d], moved[d], 1e-12) << d;
+    EXPECT_EQ(job.numInexact, 0u);
 }
 
 TEST(RetargetJob, SlidesOfEveryLayoutComeBackToRestInOneFrame)

@@ -1,7 +1,7 @@
 // One frame of retargeting, in four passes over flat arrays (docs/retargeting.md, "How it works"):
-// 1. the source's forward kinematics (the core's LocalMatricesJob and LocalToModelJob, batched as for any actor);
+// 1. the source's forward kinematics, each joint's model matrix its parent's turned by its rotations (poseSource);
 // 2. per target joint, parents first, the model rotation its plan asks for (desired), as if every parent took its own
-//    exactly: a product or two from the rig's constants;
+//    exactly: a product or two from the rig's constants (a joint that follows a source joint takes it in pass 1);
 // 3. the Euler fits of the joints with three rotations, four joints to a vector (EulerLanes.h), each from its local
 //    rotation under its parent's desired rotation; a lane that needs more (a limit, gimbal lock, the second solution)
 //    is left to the scalar fit; and the Copy joints' angles, four joints to a vector, checked against the limits;
@@ -13,12 +13,10 @@
 // baseline (HotPath.h).
 #include <osgActor/core/retarget/RetargetJob>
 #include <osgActor/core/retarget/JointRotationFit>
-#include <osgActor/core/LocalMatricesJob>
-#include <osgActor/core/LocalToModelJob>
 #include <osgActor/core/ik/IkKinematics>
 
 #include "../detail/HotPath.h"
-#include "../detail/SinCosColumn.h"
+#include "../detail/JointMatrixKernel.h"
 #include "AxisLanes.h"
 #include "EulerLanes.h"
 #include "RotationColumns.h"
@@ -35,27 +33,17 @@ using namespace retarget_detail;
 
 void RetargetWorkspace::resize(const RetargetRig& rig)
 {
-    const unsigned numSource = rig.getSourceDefinition()->getNumJoints();
     const unsigned numTarget = rig.getTargetDefinition()->getNumJoints();
     const RetargetJobTables& tables = rig.getJobTables();
     sourceModels.assign(tables.sourcePosed.size() + 1, glm::dmat4(1.0));
     sourceSlots = tables.sourceSlots;
-    sourceLocals.assign(numSource, glm::dmat4(1.0));
     targetModels.assign(numTarget, glm::dmat4(1.0));
     targetExact.assign(numTarget, 0);
-    scratch.sourceLocalPointers.assign(numSource, nullptr);
-    scratch.posedLocalPointers.assign(tables.sourcePosed.size(), nullptr);
-    scratch.sourceDirty.assign(numSource, 1);
-    scratch.sourceLocalChanged.assign(numSource, 0);
-    scratch.sourceModelStale.assign(numSource, 1);
-    scratch.posedRoots.clear();
-    for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
-        if (tables.sourcePosedParents[i] < 0) scratch.posedRoots.push_back(static_cast<std::uint32_t>(i));
-    scratch.alignedRootLocals.assign(scratch.posedRoots.size(), glm::dmat4(1.0));
+    scratch.sourceSines.assign(4 * tables.sourceAngleColumns.size(), 0.0);
+    scratch.sourceCosines.assign(4 * tables.sourceAngleColumns.size(), 1.0);
     scratch.desired.assign(std::size_t(numTarget) * kRotationDoubles, 0.0);
-    scratch.laneAngles.assign(std::size_t(numTarget) * 3, 0.0);
-    scratch.laneFitted.assign(numTarget, 0);
-    scratch.laneCosSin.assign(std::size_t(numTarget) * 4, 0.0);
+    scratch.batchLanes.assign(16 * (tables.eulerBatches.size() + tables.copyBatches.size() + 1), 0.0);
+    scratch.axisLanes.assign(32 * tables.axisBatches.size(), 0.0);
     scratch.asDesired.assign(numTarget, 0);
 }
 
@@ -65,15 +53,13 @@ bool RetargetWorkspace::fits(const RetargetRig& rig) const
     const std::size_t numTarget = rig.getTargetDefinition()->getNumJoints();
     const Scratch& s = scratch;
     const RetargetJobTables& tables = rig.getJobTables();
+    const std::size_t numTrig = 4 * tables.sourceAngleColumns.size();
     return sourceModels.size() == tables.sourcePosed.size() + 1 && sourceSlots.size() == numSource &&
-           sourceLocals.size() == numSource && s.sourceLocalPointers.size() == numSource &&
-           s.posedLocalPointers.size() == tables.sourcePosed.size() && s.sourceDirty.size() == numSource &&
-           s.sourceLocalChanged.size() == numSource && s.sourceModelStale.size() == numSource &&
-           s.alignedRootLocals.size() == s.posedRoots.size() &&
+           s.sourceSines.size() == numTrig && s.sourceCosines.size() == numTrig &&
            targetModels.size() == numTarget &&
            targetExact.size() == numTarget && s.desired.size() == numTarget * kRotationDoubles &&
-           s.laneAngles.size() == numTarget * 3 &&
-           s.laneFitted.size() == numTarget && s.laneCosSin.size() == numTarget * 4 &&
+           s.batchLanes.size() == 16 * (tables.eulerBatches.size() + tables.copyBatches.size() + 1) &&
+           s.axisLanes.size() == 32 * tables.axisBatches.size() &&
            s.asDesired.size() == numTarget;
 }
 
@@ -94,6 +80,25 @@ OSGACTOR_HOT_PATH bool allWithin(const double* values, std::size_t count, double
     return valid;
 }
 
+/** Whether every value is finite: x * 0 is 0 for a finite x and NaN for an infinite or NaN one, so the sum of those
+  * is 0 exactly when all are finite, one multiply-add per four values (two sums, so they overlap). The file is built
+  * without -ffinite-math-only, which keeps x * 0 from being folded to 0. */
+OSGACTOR_HOT_PATH bool allFinite(const double* values, std::size_t count)
+{
+    Column sum0 = {0.0, 0.0, 0.0, 0.0}, sum1 = sum0;
+    std::size_t i = 0;
+    for (; i + 8 <= count; i += 8)
+    {
+        sum0 += loadColumn(values + i) * 0.0;
+        sum1 += loadColumn(values + i + 4) * 0.0;
+    }
+    for (; i + 4 <= count; i += 4) sum0 += loadColumn(values + i) * 0.0;
+    const Column sum = sum0 + sum1;
+    double total = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    for (; i < count; ++i) total += values[i] * 0.0;
+    return total == 0.0;
+}
+
 } // namespace
 
 bool RetargetJob::validate() const
@@ -102,68 +107,131 @@ bool RetargetJob::validate() const
     if (sourceDofs.size() != rig->getSourceDefinition()->getNumDofs()) return false;
     if (targetDofs.size() != rig->getTargetDefinition()->getNumDofs()) return false;
     return allWithin(sourceDofs.data(), sourceDofs.size(), kMaxDofMagnitude) &&
-           allWithin(targetDofs.data(), targetDofs.size(), std::numeric_limits<double>::max());
+           allFinite(targetDofs.data(), targetDofs.size());
 }
 
 namespace {
 
-/** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourcePosed): their local
-  * matrices (LocalMatricesJob, the others not built), composed as a skeleton of their own (LocalToModelJob). Where the
-  * rig's alignment A is not the identity, the roots' local matrices are turned by it first, so every model matrix
-  * comes out turned (A * M) with one product a root instead of one a followed joint (RetargetWorkspace::
-  * sourceModels). */
+/** Pass 1: the source's model matrices, of the joints the rig reads (RetargetJobTables::sourcePosed), parents first.
+  * The sines and cosines of their angles first, four consecutive DOFs at a time; then each joint's model matrix from
+  * its parent's: for a joint that only turns (RetargetSourceJoint::turnsOnly), the parent's rotation columns turned by
+  * its rotations one after another (each mixes two columns) and its origin moved by the offset, with no local matrix
+  * built; for the others (a root that slides), the local matrix (JointMatrixKernel.h, as LocalMatricesJob builds it)
+  * times the parent's. A root's parent frame is the rig's alignment A, so every model matrix comes out turned (A * M,
+  * RetargetWorkspace::sourceModels) with no product for A but the roots'. Joint after joint down a chain, the parent's
+  * columns stay in registers (as in LocalToModelJob). */
 OSGACTOR_INLINE void poseSource(const RetargetRig& rig, const RetargetJobTables& tables, const double* dofs,
                                 RetargetWorkspace& w)
 {
+    using namespace joint_matrix_detail;
     const ActorDefinition& source = *rig.getSourceDefinition();
     RetargetWorkspace::Scratch& s = w.scratch;
-    const unsigned numJoints = source.getNumJoints();
-    const std::size_t numPosed = tables.sourcePosed.size();
-    w.sourceAlignment = nullptr;
-    if (numPosed == 0) return;
-    // Pointers into sourceLocals, set again whenever the workspace has moved (a copy, a vector of workspaces grown).
-    if (s.sourceLocalPointers[0] != &w.sourceLocals[0][0][0])
+    w.sourceAlignment = rig.isAlignmentIdentity() ? nullptr : &rig.getAlignment();
+    // In locals, as in placeJoints.
+    double* const sines = s.sourceSines.data();
+    double* const cosines = s.sourceCosines.data();
+    const std::uint32_t* const angleColumns = tables.sourceAngleColumns.data();
+    const std::size_t numColumns = tables.sourceAngleColumns.size();
+    double padded[4] = {0.0, 0.0, 0.0, 0.0};
+    const double* angles = dofs;
+    if (source.getNumDofs() < 4)
     {
-        for (unsigned j = 0; j < numJoints; ++j) s.sourceLocalPointers[j] = &w.sourceLocals[j][0][0];
-        for (std::size_t i = 0; i < numPosed; ++i) s.posedLocalPointers[i] = s.sourceLocalPointers[tables.sourcePosed[i]];
+        std::copy(dofs, dofs + source.getNumDofs(), padded);
+        angles = padded;
     }
-    std::memcpy(s.sourceDirty.data(), tables.sourceJointsRead.data(), numJoints);
-    LocalMatricesJob local;
-    local.definition = &source;
-    local.dofs = Span<const double>(dofs, source.getNumDofs());
-    local.jointDirty = s.sourceDirty;
-    local.local = s.sourceLocalPointers;
-    local.localChanged = s.sourceLocalChanged;
-    local.modelStale = s.sourceModelStale;
-    local.run();
-    const bool turned = !rig.isAlignmentIdentity();
-    for (std::size_t r = 0; r < s.posedRoots.size(); ++r)
+    // The angles' range is checked once after the sweep, not column by column (as LocalMatricesJob does); a pose with
+    // an angle beyond the fast range (it almost never comes) is swept again with sinCosColumn, which takes any.
+    FastSinCosRangeGuard guard;
+    for (std::size_t c = 0; c < numColumns; ++c)
     {
-        const std::uint32_t i = s.posedRoots[r];
-        const std::uint32_t joint = tables.sourcePosed[i];
-        if (turned)
+        const Column x = loadColumn(angles + angleColumns[c]);
+        guard.check(x);
+        Column sine, cosine;
+        sinCosColumnInFastRange(x, sine, cosine);
+        storeColumn(sines + 4 * c, sine);
+        storeColumn(cosines + 4 * c, cosine);
+    }
+    if (!guard.passed())
+        for (std::size_t c = 0; c < numColumns; ++c)
         {
-            // A * L: the rotation's columns and the translation turned; the bottom row stays (0, 0, 0, 1).
-            const RotationColumns alignment = loadRotation(tables.alignment);
-            const double* const rootLocal = s.sourceLocalPointers[joint];
-            double* const alignedLocal = &s.alignedRootLocals[r][0][0];
-            for (unsigned col = 0; col < 4; ++col)
-            {
-                Column c = combine(alignment, loadColumn(rootLocal + 4 * col));
-                c[3] = rootLocal[4 * col + 3];
-                storeColumn(alignedLocal + 4 * col, c);
-            }
-            s.posedLocalPointers[i] = alignedLocal;
+            Column sine, cosine;
+            sinCosColumn(loadColumn(angles + angleColumns[c]), sine, cosine);
+            storeColumn(sines + 4 * c, sine);
+            storeColumn(cosines + 4 * c, cosine);
         }
+
+    const RetargetSourceJoint* const joints = tables.sourceJoints.data();
+    const std::uint32_t* const posed = tables.sourcePosed.data();
+    const JointKinematics* const kinematics = source.getAllKinematics().data();
+    glm::dmat4* const models = w.sourceModels.data();
+    const double* const postRotations = tables.postRotations.data();
+    double* const desired = s.desired.data();
+    const RotationColumns alignment = loadRotation(tables.alignment);
+    const AffineColumns rootFrame{{alignment.c[0], alignment.c[1], alignment.c[2], Column{0.0, 0.0, 0.0, 1.0}}};
+    AffineColumns previous = rootFrame;
+    // The parent frame of joint i, in previous: the joint just composed (still in registers) where the parent is the
+    // joint before.
+    const auto loadParentFrame = [&](unsigned i) OSGACTOR_INLINE_LAMBDA {
+        const int parent = joints[i].parent;
+        if (parent + 1 != static_cast<int>(i)) previous = parent < 0 ? rootFrame : loadAffine(&models[parent][0][0]);
+    };
+    // Joint i's model matrix, in previous, stored; and the desired rotation of the target joint that follows it (see
+    // desireRotations), from the registers.
+    const auto storeModel = [&](unsigned i) OSGACTOR_INLINE_LAMBDA {
+        storeAffine(&models[i][0][0], previous);
+        const RetargetSourceJoint& joint = joints[i];
+        const std::uint32_t follower = joint.follower;
+        if (follower != RetargetSourceJoint::kNoFollower)
+        {
+            const RotationColumns rotation{{previous.c[0], previous.c[1], previous.c[2]}};
+            storeRotation(desired + follower * kRotationDoubles,
+                          joint.followerTurns
+                              ? multiply(rotation, loadRotation(postRotations + follower * kRotationDoubles))
+                              : rotation);
+        }
+    };
+    // Run by run (RetargetSourceRun): one jump to the code for a run's rotation sequence, not one a joint.
+    for (const RetargetSourceRun& run : tables.sourceRuns)
+    {
+        if (run.turnsOnly)
+            withRotationSequence(run.rotationSequence, [&](auto sequence) OSGACTOR_INLINE_LAMBDA {
+                using Axes = SequenceAxes<decltype(sequence)::value>;
+                for (unsigned i = run.first; i < run.end; ++i)
+                {
+                    loadParentFrame(i);
+                    const RetargetSourceJoint& joint = joints[i];
+                    const Column origin = combineColumns(previous.c[0], previous.c[1], previous.c[2], joint.offset[0],
+                                                         joint.offset[1], joint.offset[2]) +
+                                          previous.c[3];
+                    RotationColumns turned{{previous.c[0], previous.c[1], previous.c[2]}};
+                    if constexpr (Axes::count >= 1)
+                        postRotate(turned, Axes::first, cosines[joint.trig[0]], sines[joint.trig[0]]);
+                    if constexpr (Axes::count >= 2)
+                        postRotate(turned, Axes::second, cosines[joint.trig[1]], sines[joint.trig[1]]);
+                    if constexpr (Axes::count >= 3)
+                        postRotate(turned, Axes::third, cosines[joint.trig[2]], sines[joint.trig[2]]);
+                    previous = AffineColumns{{turned.c[0], turned.c[1], turned.c[2], origin}};
+                    storeModel(i);
+                }
+            });
         else
-            s.posedLocalPointers[i] = s.sourceLocalPointers[joint];
+            for (unsigned i = run.first; i < run.end; ++i)
+            {
+                loadParentFrame(i);
+                const RetargetSourceJoint& joint = joints[i];
+                const JointKinematics& k = kinematics[posed[i]];
+                TrigInOrder trig{};
+                for (unsigned r = 0; r < k.numRotations; ++r)
+                {
+                    trig.sines[r] = sines[joint.trig[r]];
+                    trig.cosines[r] = cosines[joint.trig[r]];
+                }
+                alignas(32) double local[16] = {};
+                buildJointMatrixDispatched(k, dofs, trig, local);
+                previous = multiplyAffineColumns(previous, local);
+                storeModel(i);
+            }
     }
-    if (turned) w.sourceAlignment = &rig.getAlignment();
-    LocalToModelJob toModel;
-    toModel.parents = tables.sourcePosedParents;
-    toModel.local = s.posedLocalPointers;
-    toModel.model = Span<glm::dmat4>(w.sourceModels.data(), numPosed);
-    toModel.run();
 }
 
 /** The model-space rotation change of a source joint since the rest pose, as a quaternion; identity for -1. */
@@ -174,8 +242,8 @@ glm::dquat changeSinceRest(const RetargetRig& rig, const RetargetWorkspace& w, i
     return glm::quat_cast(w.sourceRotation(j) * glm::transpose(glm::dmat3(rig.getSourceRestModels()[j])));
 }
 
-/** Pass 2: every target joint's desired model rotation (see RetargetJointPlan), parents first; a joint at rest under
-  * its parent's desired rotation. */
+/** Pass 2: the other target joints' desired model rotations (see RetargetJointPlan), parents first; a joint at rest
+  * under its parent's desired rotation. */
 OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& w)
 {
     const ActorDefinition& target = *rig.getTargetDefinition();
@@ -189,8 +257,8 @@ OSGACTOR_INLINE void desireRotations(const RetargetRig& rig, RetargetWorkspace& 
     const double* const restLocalRotations = tables.restLocalRotations.data();
     const int* const parents = target.getParents().data();
     double* const desired = w.scratch.desired.data();
-    const unsigned numJoints = target.getNumJoints();
-    for (unsigned t = 0; t < numJoints; ++t)
+    // The joints that follow a source joint the forward kinematics has stored already (RetargetSourceJoint::follower).
+    for (const std::uint32_t t : tables.desireJoints)
     {
         RotationColumns d;
         switch (desire[t])
@@ -240,6 +308,15 @@ OSGACTOR_INLINE RotationColumns jointFrame(const RetargetJobTables& tables, unsi
 alignas(32) constexpr double kIdentityColumns[kRotationDoubles] = {1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0,
                                                                    0.0, 0.0, 1.0, 0.0};
 
+/** A batch's results as whole columns (RetargetWorkspace::Scratch::batchLanes): its three angle columns, then 1.0
+  * where a lane's stand and 0.0 where not (the mask's bits kept where 1.0's are). */
+OSGACTOR_INLINE void storeLanes(double* lanes, const Column (&angles)[3], LaneMask stand)
+{
+    for (unsigned r = 0; r < 3; ++r) storeColumn(lanes + 4 * r, angles[r]);
+    const Column one = {1.0, 1.0, 1.0, 1.0};
+    storeColumn(lanes + 12, reinterpret_cast<Column>(stand & reinterpret_cast<LaneMask>(one)));
+}
+
 /** Pass 3: the Euler fits of the batches' joints, four at a time, each under its parent's desired rotation. Batches go
   * in groups: the group's arctangents (each a long chain of dependent operations: divisions, a polynomial) run one
   * after another, so the processor overlaps them, which it cannot do across one batch's whole fit. */
@@ -255,8 +332,7 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
     const std::uint8_t* const offsetIsIdentity = tables.offsetIsIdentity.data();
     const double* const offsetRotations = tables.offsetRotations.data();
     const double* const desiredRotations = w.scratch.desired.data();
-    double* const laneAngles = w.scratch.laneAngles.data();
-    std::uint8_t* const laneFitted = w.scratch.laneFitted.data();
+    double* const batchLanes = w.scratch.batchLanes.data();
     for (std::size_t first = 0; first < numBatches; first += kGroup)
     {
         const std::size_t numInGroup = std::min(kGroup, numBatches - first);
@@ -300,12 +376,7 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
         {
             const RetargetEulerBatch& batch = batches[first + b];
             const EulerLanesFit fit = fitEulerLanes(batch, angles[b], in[b].invalid, dofs);
-            for (unsigned lane = 0; lane < batch.numJoints; ++lane)
-            {
-                const unsigned t = batch.joints[lane];
-                laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-                for (unsigned r = 0; r < 3; ++r) laneAngles[3 * t + r] = fit.angles[r][lane];
-            }
+            storeLanes(batchLanes + 16 * (first + b), fit.angles, fit.fitted);
         }
     }
 }
@@ -314,9 +385,8 @@ OSGACTOR_INLINE void fitEulerBatches(const RetargetRig& rig, const double* dofs,
   * lie within its limits. */
 OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const double* sourceValues, RetargetWorkspace& w)
 {
-    // In locals, as in placeJoints.
-    double* const laneAngles = w.scratch.laneAngles.data();
-    std::uint8_t* const laneFitted = w.scratch.laneFitted.data();
+    // In locals, as in placeJoints. The copy batches' results come after the Euler batches' (RetargetJobTables::laneAt).
+    double* lanes = w.scratch.batchLanes.data() + 16 * tables.eulerBatches.size();
     for (const RetargetCopyBatch& batch : tables.copyBatches)
     {
         Column angles[3];
@@ -326,12 +396,8 @@ OSGACTOR_INLINE void takeCopyBatches(const RetargetJobTables& tables, const doub
             angles[r] = gatherLanes(sourceValues, batch.sourceDof[r]);
             within &= angles[r] >= loadColumn(batch.min[r]) && angles[r] <= loadColumn(batch.max[r]);
         }
-        for (unsigned lane = 0; lane < batch.numJoints; ++lane)
-        {
-            const unsigned t = batch.joints[lane];
-            laneFitted[t] = within[lane] != 0 ? 1 : 0;
-            for (unsigned r = 0; r < 3; ++r) laneAngles[3 * t + r] = angles[r][lane];
-        }
+        storeLanes(lanes, angles, within);
+        lanes += 16;
     }
 }
 
@@ -349,9 +415,10 @@ OSGACTOR_INLINE RotationColumns rotateByDofs(RotationColumns frame, const JointK
 
 /** The fits of an axis batch's joints (one or two rotations), four at a time, each under its parent's actual model
   * rotation: the parents, a depth up, are placed. */
-OSGACTOR_INLINE void fitAxisBatch(const RetargetAxisBatch& batch, const ActorDefinition& target,
-                                  const RetargetJobTables& tables, const double* dofs, RetargetWorkspace& w)
+OSGACTOR_INLINE void fitAxisBatch(std::uint32_t index, const ActorDefinition& target, const RetargetJobTables& tables,
+                                  const double* dofs, RetargetWorkspace& w)
 {
+    const RetargetAxisBatch& batch = tables.axisBatches[index];
     RetargetWorkspace::Scratch& s = w.scratch;
     double local[RetargetAxisBatch::kWidth][kRotationDoubles];
     const double* lanes[RetargetAxisBatch::kWidth];
@@ -367,22 +434,17 @@ OSGACTOR_INLINE void fitAxisBatch(const RetargetAxisBatch& batch, const ActorDef
         storeRotation(local[lane], multiply(transpose(frame), loadRotation(&s.desired[t * kRotationDoubles])));
     }
     const AxisLanesFit fit = fitAxisLanes(batch, lanes, dofs);
-    // In locals, as in placeJoints.
-    double* const laneAngles = s.laneAngles.data();
-    double* const laneCosSin = s.laneCosSin.data();
-    std::uint8_t* const laneFitted = s.laneFitted.data();
-    const unsigned numRotations = batch.numRotations;
-    for (unsigned lane = 0; lane < batch.numJoints; ++lane)
+    // As whole columns (RetargetWorkspace::Scratch::axisLanes); a batch of one rotation leaves its second columns
+    // unwritten.
+    double* const out = s.axisLanes.data() + 32 * index;
+    for (unsigned r = 0; r < batch.numRotations; ++r)
     {
-        const unsigned t = batch.joints[lane];
-        laneFitted[t] = fit.fitted[lane] != 0 ? 1 : 0;
-        for (unsigned r = 0; r < numRotations; ++r)
-        {
-            laneAngles[3 * t + r] = fit.angles[r][lane];
-            laneCosSin[4 * t + 2 * r] = fit.cosines[r][lane];
-            laneCosSin[4 * t + 2 * r + 1] = fit.sines[r][lane];
-        }
+        storeColumn(out + 4 * r, fit.angles[r]);
+        storeColumn(out + 8 + 4 * r, fit.cosines[r]);
+        storeColumn(out + 16 + 4 * r, fit.sines[r]);
     }
+    const Column one = {1.0, 1.0, 1.0, 1.0};
+    storeColumn(out + 24, reinterpret_cast<Column>(fit.fitted & reinterpret_cast<LaneMask>(one)));
 }
 
 /** The root's translation DOFs, from where the source's root goes (RetargetRig::mapPosition) less its offset, turned
@@ -418,9 +480,9 @@ struct PlacementArrays
     const int* parents;
     const RetargetPlacement* placement;
     const double* desired;
-    const double* laneAngles;
-    const std::uint8_t* laneFitted;
-    const double* laneCosSin;
+    const double* batchLanes;
+    const std::uint32_t* laneAt;
+    const double* axisLanes;
     const double* rest;
     const double* origins;
     const std::uint8_t* originMoves;
@@ -436,7 +498,7 @@ OSGACTOR_INLINE PlacementArrays placementArrays(const RetargetRig& rig, Retarget
     const RetargetJobTables& tables = rig.getJobTables();
     RetargetWorkspace::Scratch& s = w.scratch;
     return {target.getAllKinematics().data(), target.getParents().data(), tables.placement.data(),
-            s.desired.data(), s.laneAngles.data(), s.laneFitted.data(), s.laneCosSin.data(),
+            s.desired.data(), s.batchLanes.data(), tables.laneAt.data(), s.axisLanes.data(),
             rig.getTargetRestDofs().data(), tables.origins.data(), tables.originMoves.data(),
             tables.restLocalRotations.data(), s.asDesired.data(), w.targetExact.data(), w.targetModels.data()};
 }
@@ -461,9 +523,11 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a
     const RetargetPlacement how = a.placement[t];
     RotationColumns rotation;
     bool exact = false;
-    if (how == RetargetPlacement::Euler && a.laneFitted[t] && parentAsDesired)
+    // An Euler or copy batch's lane: its angles at lane[0], lane[4], lane[8], whether they stand at lane[12].
+    const double* const lane = a.batchLanes + a.laneAt[t];
+    if (how == RetargetPlacement::Euler && lane[12] != 0.0 && parentAsDesired)
     {
-        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+        for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = lane[4 * r];
         exact = true;
         rotation = desired;
     }
@@ -475,10 +539,14 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a
                        ? desired
                        : multiply(parentRotation, loadRotation(a.restLocalRotations + t * kRotationDoubles));
     }
-    else if (how == RetargetPlacement::Copy && parentExact && a.laneFitted[t])
+    else if (how == RetargetPlacement::Copy && parentExact && lane[12] != 0.0)
     {
-        // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches).
-        for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
+        // The same local frames as the source joint's, and its angles within the limits (takeCopyBatches). Three
+        // rotations (the usual case) in straight-line code, not a loop of a count read from memory.
+        if (k.numRotations == 3)
+            for (unsigned r = 0; r < 3; ++r) targetValues[k.rotationDof[r]] = lane[4 * r];
+        else
+            for (unsigned r = 0; r < k.numRotations; ++r) targetValues[k.rotationDof[r]] = lane[4 * r];
         exact = true;
         rotation = desired;
     }
@@ -504,14 +572,16 @@ OSGACTOR_INLINE bool placeJoint(const RetargetRig& rig, const PlacementArrays& a
         rotation =
             exact ? desired : rotateByDofs(jointFrame(tables, t, hasParent, parentRotation), k, targetValues);
     }
-    else if (how == RetargetPlacement::Axis && a.laneFitted[t])
+    else if (how == RetargetPlacement::Axis && a.axisLanes[a.laneAt[t] + 24] != 0.0)
     {
+        // An axis batch's lane: its angles at [0] and [4], their cosines at [8] and [12], sines at [16] and [20].
+        const double* const axisLane = a.axisLanes + a.laneAt[t];
         // Fewer than three rotations: the nearest the joint can come, never exact (as fitJointRotationDofs).
         rotation = jointFrame(tables, t, hasParent, parentRotation);
         for (unsigned r = 0; r < k.numRotations; ++r)
         {
-            targetValues[k.rotationDof[r]] = a.laneAngles[3 * t + r];
-            postRotate(rotation, k.rotationAxis[r], a.laneCosSin[4 * t + 2 * r], a.laneCosSin[4 * t + 2 * r + 1]);
+            targetValues[k.rotationDof[r]] = axisLane[4 * r];
+            postRotate(rotation, k.rotationAxis[r], axisLane[8 + 4 * r], axisLane[16 + 4 * r]);
         }
     }
     else
@@ -564,12 +634,11 @@ OSGACTOR_INLINE unsigned placeJoints(const RetargetRig& rig, const double* sourc
     const std::uint32_t* const levelJoints = tables.levelJoints.data();
     const std::uint32_t* const levelBatches = tables.levelBatches.data();
     const std::uint32_t* const placeOrder = tables.placeOrder.data();
-    const RetargetAxisBatch* const axisBatches = tables.axisBatches.data();
     for (std::size_t level = 0; level < numLevels; ++level)
     {
         const std::uint32_t lastBatch = levelBatches[level + 1], lastJoint = levelJoints[level + 1];
         for (std::uint32_t b = levelBatches[level]; b < lastBatch; ++b)
-            fitAxisBatch(axisBatches[b], target, tables, targetValues, w);
+            fitAxisBatch(b, target, tables, targetValues, w);
         for (std::uint32_t i = levelJoints[level]; i < lastJoint; ++i)
             numInexact += placeJoint(rig, arrays, placeOrder[i], sourceValues, targetValues, w) ? 1 : 0;
     }

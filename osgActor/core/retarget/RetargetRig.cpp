@@ -606,6 +606,7 @@ struct RetargetRigBuilder
             tables.sourcePosedParents.push_back(parent < 0 ? -1
                                                            : static_cast<int>(tables.sourceSlots[static_cast<unsigned>(parent)]));
         }
+        planSourcePose(tables);
         tables.desire.assign(numTarget, RetargetDesire::FromPlan);
         tables.desireSlot.assign(numTarget, 0);
         for (unsigned j = 0; j < numTarget; ++j)
@@ -618,6 +619,24 @@ struct RetargetRigBuilder
                 tables.desire[j] = plan.postIsIdentity ? RetargetDesire::Follow : RetargetDesire::FollowThenPost;
                 tables.desireSlot[j] = tables.sourceSlots[static_cast<unsigned>(plan.sourceB)];
             }
+        }
+        // Each posed source joint's first Follow or FollowThenPost target joint takes its desired rotation from the
+        // forward kinematics; a second one following the same source joint is left to the desire pass.
+        tables.desireJoints.clear();
+        for (unsigned j = 0; j < numTarget; ++j)
+        {
+            const RetargetDesire desire = tables.desire[j];
+            if (desire == RetargetDesire::Follow || desire == RetargetDesire::FollowThenPost)
+            {
+                RetargetSourceJoint& followed = tables.sourceJoints[tables.desireSlot[j]];
+                if (followed.follower == RetargetSourceJoint::kNoFollower)
+                {
+                    followed.follower = j;
+                    followed.followerTurns = desire == RetargetDesire::FollowThenPost ? 1 : 0;
+                    continue;
+                }
+            }
+            tables.desireJoints.push_back(j);
         }
         for (unsigned j = 0; j < numTarget; ++j)
         {
@@ -668,6 +687,25 @@ struct RetargetRigBuilder
             for (unsigned lane = batch.numJoints; lane < RetargetCopyBatch::kWidth; ++lane) setCopyLane(batch, lane, j);
             ++batch.numJoints;
         }
+        // A joint in no Euler or copy batch reads the slot after the last batch's, which stays 0 (its lanes never stand).
+        tables.laneAt.assign(numTarget,
+                             static_cast<std::uint32_t>(16 * (tables.eulerBatches.size() + tables.copyBatches.size())));
+        std::uint32_t batchIndex = 0;
+        for (const RetargetEulerBatch& batch : tables.eulerBatches)
+        {
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane) tables.laneAt[batch.joints[lane]] = 16 * batchIndex + lane;
+            ++batchIndex;
+        }
+        for (const RetargetCopyBatch& batch : tables.copyBatches)
+        {
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane) tables.laneAt[batch.joints[lane]] = 16 * batchIndex + lane;
+            ++batchIndex;
+        }
+        for (std::uint32_t b = 0; b < tables.axisBatches.size(); ++b)
+        {
+            const RetargetAxisBatch& batch = tables.axisBatches[b];
+            for (unsigned lane = 0; lane < batch.numJoints; ++lane) tables.laneAt[batch.joints[lane]] = 32 * b + lane;
+        }
         tables.placement.resize(numTarget);
         for (unsigned j = 0; j < numTarget; ++j)
         {
@@ -677,6 +715,55 @@ struct RetargetRigBuilder
                                   : tables.inEulerBatch[j]          ? RetargetPlacement::Euler
                                   : tables.inAxisBatch[j]           ? RetargetPlacement::Axis
                                                                     : RetargetPlacement::Fit;
+        }
+    }
+
+    /** RetargetJobTables::sourceJoints and sourceAngleColumns, for the posed source joints (sourcePosed). Each angle a
+      * posed joint turns by lies in a column of four consecutive DOFs, the columns laid down from the lowest such DOF
+      * up (the last one moved down so it ends at the last DOF). */
+    void planSourcePose(RetargetJobTables& tables) const
+    {
+        const ActorDefinition& s = *source.definition;
+        const unsigned numDofs = s.getNumDofs();
+        std::vector<std::uint8_t> turns(numDofs, 0);
+        for (const std::uint32_t j : tables.sourcePosed)
+        {
+            const JointKinematics& k = s.getKinematics(j);
+            for (unsigned r = 0; r < k.numRotations; ++r) turns[k.rotationDof[r]] = 1;
+        }
+        // Per DOF, where its sine and cosine go: 4 c + its place in column c.
+        std::vector<std::uint32_t> trigOf(numDofs, 0);
+        tables.sourceAngleColumns.clear();
+        for (unsigned dof = 0; dof < numDofs; ++dof)
+        {
+            if (!turns[dof]) continue;
+            const std::uint32_t first = numDofs < 4 ? 0 : std::min(dof, numDofs - 4);
+            const std::uint32_t column = static_cast<std::uint32_t>(tables.sourceAngleColumns.size());
+            tables.sourceAngleColumns.push_back(first);
+            for (unsigned d = dof; d < std::min(first + 4, numDofs); ++d) trigOf[d] = 4 * column + (d - first);
+            dof = first + 3;
+        }
+        tables.sourceJoints.assign(tables.sourcePosed.size(), RetargetSourceJoint{});
+        tables.sourceRuns.clear();
+        for (std::size_t i = 0; i < tables.sourcePosed.size(); ++i)
+        {
+            const JointKinematics& k = s.getKinematics(tables.sourcePosed[i]);
+            RetargetSourceJoint& joint = tables.sourceJoints[i];
+            joint.parent = tables.sourcePosedParents[i];
+            joint.turnsOnly = k.offsetIsTranslation && !k.hasTranslation ? 1 : 0;
+            for (unsigned c = 0; c < 4; ++c) joint.offset[c] = k.offset[3][c];
+            for (unsigned r = 0; r < k.numRotations; ++r) joint.trig[r] = trigOf[k.rotationDof[r]];
+            const std::uint8_t sequence = joint.turnsOnly ? static_cast<std::uint8_t>(k.rotationSequence) : 0;
+            if (tables.sourceRuns.empty() || tables.sourceRuns.back().turnsOnly != joint.turnsOnly ||
+                tables.sourceRuns.back().rotationSequence != sequence)
+            {
+                RetargetSourceRun run;
+                run.first = static_cast<std::uint32_t>(i);
+                run.turnsOnly = joint.turnsOnly;
+                run.rotationSequence = sequence;
+                tables.sourceRuns.push_back(run);
+            }
+            tables.sourceRuns.back().end = static_cast<std::uint32_t>(i + 1);
         }
     }
 
