@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <typeinfo>
+#include <vector>
 
 namespace osgActor {
 namespace detail {
@@ -66,6 +67,32 @@ struct NodeFlags : osg::Node
                within(&(node.*mask), sizeof(osg::Node::NodeMask)) &&
                within(&(node.*state), sizeof(osg::ref_ptr<osg::StateSet>));
     }
+    /** The bytes of a node's flag block that belong to the fields holdsFlags() names (0xff), not to the padding
+      * between them (0): padding holds whatever the heap held before the node, so two nodes with the same flags
+      * may differ there. The layout is osg::Node's, the same for every node: taken from the first one asked. */
+    static const unsigned char* flagMask(const osg::Node& node, std::size_t blockBytes)
+    {
+        static const std::vector<unsigned char> mask = [&] {
+            std::vector<unsigned char> bytes(blockBytes, 0);
+            const unsigned char* const begin = flagBlock(node);
+            const auto mark = [&](const void* member, std::size_t size) {
+                const std::ptrdiff_t first = static_cast<const unsigned char*>(member) - begin;
+                std::fill_n(bytes.begin() + first, size, static_cast<unsigned char>(0xff));
+            };
+            const osg::ref_ptr<osg::Callback> osg::Node::*const callback = &NodeFlags::_cullCallback;
+            const bool osg::Node::*const active = &NodeFlags::_cullingActive;
+            const unsigned int osg::Node::*const disabled = &NodeFlags::_numChildrenWithCullingDisabled;
+            const osg::Node::NodeMask osg::Node::*const nodeMask = &NodeFlags::_nodeMask;
+            const osg::ref_ptr<osg::StateSet> osg::Node::*const state = &NodeFlags::_stateset;
+            mark(&(node.*callback), sizeof(osg::ref_ptr<osg::Callback>));
+            mark(&(node.*active), sizeof(bool));
+            mark(&(node.*disabled), sizeof(unsigned int));
+            mark(&(node.*nodeMask), sizeof(osg::Node::NodeMask));
+            mark(&(node.*state), sizeof(osg::ref_ptr<osg::StateSet>));
+            return bytes;
+        }();
+        return mask.data();
+    }
     /** Node::isCullingActive() but for its bound's validity, which reads the bound (two more cache lines of a
       * skeleton node); the cull tests validity where it uses the bound. */
     static bool cullingActive(const osg::Node& node)
@@ -81,15 +108,17 @@ struct NodeFlags : osg::Node
 class BlockDifference
 {
 public:
-    void add(const unsigned char* a, const unsigned char* b)
+    /** The bytes of a and b that differ where mask is set. */
+    void add(const unsigned char* a, const unsigned char* b, const unsigned char* mask)
     {
         // Word by word into registers (an array would be stored on the stack first).
         for (std::size_t offset = 0; offset < ActorCullPlan::kNodeFlagBytes; offset += sizeof(Words))
         {
-            Words x, y;
+            Words x, y, m;
             std::memcpy(&x, a + offset, sizeof(Words));
             std::memcpy(&y, b + offset, sizeof(Words));
-            _difference |= x ^ y;
+            std::memcpy(&m, mask + offset, sizeof(Words));
+            _difference |= (x ^ y) & m;
         }
     }
     bool any() const
@@ -112,12 +141,6 @@ private:
     static_assert(ActorCullPlan::kNodeFlagBytes % sizeof(Words) == 0, "whole words a block");
 };
 
-bool sameBlock(const unsigned char* a, const unsigned char* b)
-{
-    BlockDifference difference;
-    difference.add(a, b);
-    return !difference.any();
-}
 
 } // namespace
 
@@ -125,6 +148,7 @@ ActorCullPlan::ActorCullPlan(osg::Group& actor)
 {
     for (unsigned i = 0; i < actor.getNumChildren(); ++i) addChild(*actor.getChild(i), -1);
     std::unordered_set<const osg::Referenced*>().swap(_checked);
+    JointFlagsIndex().swap(_distinctJointFlags);
     noteShape();
 }
 
@@ -213,17 +237,32 @@ void ActorCullPlan::addCheck(Kind kind, osg::Node& node)
 bool ActorCullPlan::addJointCheck(const SkeletonNode& node)
 {
     if (!NodeFlags::holdsFlags(node, kNodeFlagBytes)) return false;
+    if (!_flagMask) _flagMask = NodeFlags::flagMask(node, kNodeFlagBytes);
     JointFlags flags;
-    std::memcpy(flags.nodeFlags, NodeFlags::flagBlock(node), kNodeFlagBytes);
+    const unsigned char* const block = NodeFlags::flagBlock(node);
+    for (std::size_t i = 0; i < kNodeFlagBytes; ++i) flags.nodeFlags[i] = block[i] & _flagMask[i];
     flags.referenceFrame = node.getReferenceFrame();
-    const auto same = [&](const JointFlags& seen) {
-        return seen.referenceFrame == flags.referenceFrame && sameBlock(seen.nodeFlags, flags.nodeFlags);
-    };
-    const auto found = std::find_if(_jointFlags.begin(), _jointFlags.end(), same);
-    _jointCheckFlags.push_back(static_cast<unsigned>(found - _jointFlags.begin()));
-    if (found == _jointFlags.end()) _jointFlags.push_back(flags);
+    // Found in a hash map while planning: an actor may have as many distinct ones as joints (a state set each).
+    const auto found = _distinctJointFlags.emplace(flags, static_cast<unsigned>(_jointFlags.size()));
+    if (found.second) _jointFlags.push_back(flags);
+    _jointCheckFlags.push_back(found.first->second);
     _jointCheckNodes.push_back(&node);
     return true;
+}
+
+bool ActorCullPlan::JointFlags::operator==(const JointFlags& other) const
+{
+    return referenceFrame == other.referenceFrame && std::memcmp(nodeFlags, other.nodeFlags, kNodeFlagBytes) == 0;
+}
+
+std::size_t ActorCullPlan::JointFlagsHash::operator()(const JointFlags& flags) const
+{
+    // FNV-1a over the block's bytes, then the frame.
+    std::uint64_t hash = 14695981039346656037ull;
+    const auto mix = [&hash](unsigned byte) { hash = (hash ^ (byte & 0xffu)) * 1099511628211ull; };
+    for (unsigned char byte : flags.nodeFlags) mix(byte);
+    for (unsigned shift = 0; shift < 32; shift += 8) mix(static_cast<unsigned>(flags.referenceFrame) >> shift);
+    return static_cast<std::size_t>(hash);
 }
 
 void ActorCullPlan::addStateCheck(const osg::StateSet* state)
@@ -433,7 +472,7 @@ bool ActorCullPlan::jointsUnchanged() const
     for (std::size_t j = 0, n = _jointCheckNodes.size(); j < n; ++j)
     {
         const JointFlags& flags = seen[seenIndex[j]];
-        blocks.add(NodeFlags::flagBlock(*nodes[j]), flags.nodeFlags);
+        blocks.add(NodeFlags::flagBlock(*nodes[j]), flags.nodeFlags, _flagMask);
         frames |= nodes[j]->getReferenceFrame() ^ flags.referenceFrame;
     }
     return !blocks.any() && frames == 0;

@@ -25,6 +25,7 @@
 
 #include <cstddef>
 #include <string>
+#include <unordered_map>
 #include <unordered_set>
 #include <vector>
 
@@ -166,9 +167,16 @@ private:
       * ones per plan (most joints: no callback, no state set, the same mask), each kept once. */
     struct JointFlags
     {
+        /** The node's flag block, its padding bytes zero (NodeFlags::flagMask()). */
         alignas(16) unsigned char nodeFlags[kNodeFlagBytes];
         int referenceFrame;
+        bool operator==(const JointFlags& other) const;
     };
+    struct JointFlagsHash
+    {
+        std::size_t operator()(const JointFlags& flags) const;
+    };
+    typedef std::unordered_map<JointFlags, unsigned, JointFlagsHash> JointFlagsIndex;
     /** Adds a joint's check to the packed ones; false where its flags are not in one block. */
     bool addJointCheck(const SkeletonNode& node);
     bool jointsUnchanged() const;
@@ -204,6 +212,10 @@ private:
     std::vector<const SkeletonNode*> _jointCheckNodes;
     std::vector<unsigned> _jointCheckFlags;
     std::vector<JointFlags> _jointFlags;
+    /** Which bytes of a flag block are fields (osg::Node's layout); null until a joint is checked as a block. */
+    const unsigned char* _flagMask = nullptr;
+    /** Where each distinct one of _jointFlags is, kept only while planning. */
+    JointFlagsIndex _distinctJointFlags;
     std::vector<NodeCheck> _checks;
     std::vector<StateCheck> _stateChecks;
     /** Each checked geode's children when planned, in order: consecutive runs, one per geode. */

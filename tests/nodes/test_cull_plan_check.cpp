@@ -14,6 +14,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 using namespace osgActor;
 using namespace osgActor::test;
@@ -102,4 +103,25 @@ TEST(CullPlanCheck, AReferenceFrameChangedOnAJointIsSeenEvenWithItsCullingFlagSe
             node.setCullingActive(true);
         },
         [](SkeletonNode& node) { node.setReferenceFrame(osg::Transform::RELATIVE_RF); });
+}
+
+TEST(CullPlanCheck, JointsWithAStateSetEachAreEachComparedWithTheirOwn)
+{
+    // As many distinct blocks as joints: each joint's check must still be against its own state set.
+    PlanCheck check;
+    std::vector<osg::ref_ptr<osg::StateSet>> states;
+    for (unsigned i = 0; i < check.actor->getNumSkeletonNodes(); ++i)
+    {
+        states.push_back(new osg::StateSet);
+        check.actor->getSkeletonNode(i)->setStateSet(states.back().get());
+    }
+    check.plan = new ActorCullPlan(*check.actor);
+    ASSERT_TRUE(check.plan->isCurrent());
+    SkeletonNode& first = *check.actor->getSkeletonNode(1u);
+    SkeletonNode& last = *check.actor->getSkeletonNode(check.actor->getNumSkeletonNodes() - 1);
+    osg::ref_ptr<osg::StateSet> firstState = first.getStateSet();
+    first.setStateSet(last.getStateSet());
+    EXPECT_FALSE(check.plan->isCurrent());
+    first.setStateSet(firstState.get());
+    EXPECT_TRUE(check.plan->isCurrent());
 }
