@@ -2,6 +2,7 @@
 #include "LightNumberShadowMap.h"
 #include "LoopTrajectory.h"
 #include "PathWalker.h"
+#include "RetargetedDance.h"
 #include "TripodGait.h"
 
 #include <osg/Geode>
@@ -23,6 +24,9 @@ namespace {
 
 // The stage, metres, Z up; the default camera looks from -Y.
 const osg::Vec3d kDancerSpot(0.0, 1.3, 0.0);
+// Cesium Man dancing the dancer's motion retargeted onto him stands beside it, a little closer to the camera, so the
+// two are seen side by side.
+const osg::Vec3d kRetargetedDancerSpot = kDancerSpot + osg::Vec3d(-1.0, -0.2, 0.0);
 const osg::Vec3d kInsectArea(4.4, 1.3, 0.0);
 const double kInsectScale = 0.8;
 const int kSunLightNumber = 1; // the viewer's headlight is 0
@@ -193,6 +197,21 @@ osg::ref_ptr<osg::Node> makeDancer(const ShowcaseSources& sources)
     return transform;
 }
 
+/** The walker's model dancing the dancer's motion, retargeted onto him at load (RetargetedDance), beside the dancer. */
+osg::ref_ptr<osg::Group> makeRetargetedDancer(const ShowcaseSources& sources)
+{
+    osg::ref_ptr<osg::Group> group = new osg::Group;
+    group->setName("retargeted dancer");
+    osg::ref_ptr<RetargetedDance> dance = new RetargetedDance;
+    dance->setSkeletonFile(sources.danceSkeleton);
+    dance->setMotionFile(sources.danceMotion);
+    group->setUpdateCallback(dance.get());
+    osg::ref_ptr<osg::MatrixTransform> place = new osg::MatrixTransform(osg::Matrixd::translate(kRetargetedDancerSpot));
+    place->addChild(makeProxy(sources.walker, "retargeted dancer").get());
+    group->addChild(place.get());
+    return group;
+}
+
 } // namespace
 
 osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources)
@@ -214,6 +233,8 @@ osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources)
     root->addChild(makeWalker(sources).get());
     root->addChild(makeWanderingInsect(sources.insect).get());
     if (!sources.dancer.empty()) root->addChild(makeDancer(sources).get());
+    // Source and target side by side: no dancer, no retargeted copy of its dance.
+    if (!sources.dancer.empty() && !sources.danceMotion.empty()) root->addChild(makeRetargetedDancer(sources).get());
     return root;
 }
 

@@ -29,6 +29,11 @@ struct ShowcaseSources
     double dancerScale = 0.0254 / 0.45;
     /** Turn the dancer from Y up to Z up here (for a loader that does not). */
     bool dancerYUp = false;
+    /** The motion a second walker model (Cesium Man) dances beside the dancer, retargeted onto him at load
+      * (RetargetedDance): an ASF skeleton and its AMC motion, the dancer's own; an empty motion (or no dancer): no
+      * second dancer. */
+    std::string danceSkeleton = "mocap/asfamc/charleston.asf";
+    std::string danceMotion = "mocap/asfamc/charleston1.amc";
 };
 
 /** The node masks of the showcase's shadows (osgShadow::ShadowedScene's traversal masks): the floor has the
@@ -38,7 +43,8 @@ const unsigned kCastsShadowMask = 0x2;
 
 /** The showcase: a checkered floor with obstacles under a sun that casts shadows (an osgShadow::ShadowedScene with
   * a ShadowMap, the root); Cesium Man walking a stored ellipse round the dancer (PathWalker), the motion-capture
-  * dancer, and the six-legged insect wandering a stored figure of eight between rocks with a tripod gait planted by
+  * dancer, a second Cesium Man beside it dancing its motion retargeted onto him at load (RetargetedDance), and the
+  * six-legged insect wandering a stored figure of eight between rocks with a tripod gait planted by
   * leg IK (TripodGait). The actors are ProxyNodes, so the file stays small and always shows the current actor and
   * model files of data/; the rigs give them their controllers once loaded. */
 osg::ref_ptr<osg::Group> makeShowcaseScene(const ShowcaseSources& sources);

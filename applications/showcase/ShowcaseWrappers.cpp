@@ -3,6 +3,7 @@
 // osgActorShowcase:: class names.
 #include "LightNumberShadowMap.h"
 #include "PathWalker.h"
+#include "RetargetedDance.h"
 #include "TripodGait.h"
 
 // Callbacks derive virtually from osg::Object: the serializers must cast down with dynamic_cast (as OSG's own
@@ -105,6 +106,20 @@ bool writePath(osgDB::OutputStream& os, const Rig& rig)
 OSGACTORSHOWCASE_EXACT_DOUBLE(CycleDuration)
 OSGACTORSHOWCASE_EXACT_DOUBLE(StepHeight)
 
+/** Gives a RetargetedDance read from a file the folder it was read from (the first of the reading options' database
+  * paths, as osgDB's reader of .osgt/.osgb puts it there), where it looks for its motion first, as the scene's
+  * ProxyNodes do. */
+struct TakeDatabasePath : public osgDB::FinishedObjectReadCallback
+{
+    void objectRead(osgDB::InputStream& is, osg::Object& object) override
+    {
+        auto* dance = dynamic_cast<osgActorShowcase::RetargetedDance*>(&object);
+        const osgDB::Options* options = is.getOptions();
+        if (dance && options && !options->getDatabasePathList().empty())
+            dance->setDatabasePath(options->getDatabasePathList().front());
+    }
+};
+
 } // namespace
 
 namespace PathWalkerWrapper {
@@ -115,6 +130,18 @@ REGISTER_OBJECT_WRAPPER(osgActorShowcase_PathWalker, new osgActorShowcase::PathW
     ADD_USER_SERIALIZER(CycleDuration);
 }
 } // namespace PathWalkerWrapper
+
+namespace RetargetedDanceWrapper {
+// The files by the names the scene gives them (found on osgDB's data path when the actor is rigged).
+REGISTER_OBJECT_WRAPPER(osgActorShowcase_RetargetedDance, new osgActorShowcase::RetargetedDance,
+                        osgActorShowcase::RetargetedDance,
+                        "osg::Object osg::Callback osg::NodeCallback osgActorShowcase::RetargetedDance")
+{
+    ADD_STRING_SERIALIZER(SkeletonFile, "");
+    ADD_STRING_SERIALIZER(MotionFile, "");
+    wrapper->addFinishedObjectReadCallback(new TakeDatabasePath);
+}
+} // namespace RetargetedDanceWrapper
 
 namespace TripodGaitWrapper {
 REGISTER_OBJECT_WRAPPER(osgActorShowcase_TripodGait, new osgActorShowcase::TripodGait, osgActorShowcase::TripodGait,

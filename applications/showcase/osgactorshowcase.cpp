@@ -22,7 +22,7 @@ int main(int argc, char** argv)
     usage->addCommandLineOption("--walker-speed <m/s>", "Its speed along its path (default: Cesium Man's).");
     usage->addCommandLineOption("--dancer <file>", "The motion-capture dancer, as osgDB reads it, relative to the "
                                                    "output's folder (default: the CMU Charleston in data/mocap).");
-    usage->addCommandLineOption("--no-dancer", "Leave the dancer out.");
+    usage->addCommandLineOption("--no-dancer", "Leave the dancer (and Cesium Man dancing its motion) out.");
     usage->addCommandLineOption("--dancer-scale <s>", "Scale from the dancer file's units to metres (default CMU's).");
     usage->addCommandLineOption("--dancer-y-up", "The dancer file is Y up (turned to Z up).");
     if (arguments.read("-h") || arguments.read("--help"))

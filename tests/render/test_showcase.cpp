@@ -1,21 +1,25 @@
 // The showcase's rigs: the insect's feet planted by the library's leg IK on a stored path (TripodGait), the
-// walker's stored path and walk (PathWalker: the procedural cycle, or Cesium Man's own clip), their paths and their
-// osgDB wrappers; the scene's shadows and the camera that frames its actors.
+// walker's stored path and walk (PathWalker: the procedural cycle, or Cesium Man's own clip), the Charleston
+// retargeted onto a second Cesium Man at load (RetargetedDance), their paths and their osgDB wrappers; the scene's shadows and the camera that frames its actors.
 #include "LightNumberShadowMap.h"
 #include "LoopTrajectory.h"
 #include "PathWalker.h"
+#include "RetargetedDance.h"
 #include "ShowcaseScene.h"
 #include "TripodGait.h"
 #include "TripodGaitController.h"
 #include "WalkCycle.h"
 
 #include <osgActor/ActorNode>
+#include <osgActor/ActorRetarget>
 #include <osgActor/ActorSceneIO>
 #include <osgActor/SkinnedMesh>
 #include <osgActor/GlmOsg>
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/io/ActorReader>
 #include <osgActor/io/ActorWriter>
+#include <osgActor/core/SamplingJob>
+#include <osgActor/mocap/MotionFile>
 
 #include <osg/FrameStamp>
 #include <osg/Group>
@@ -512,7 +516,8 @@ TEST(ShowcaseFile, LoadsAndItsInsectKeepsItsFeetPlantedAllRoundItsPath)
     scene->accept(counter);
     EXPECT_EQ(counter.walkers, 1u);
     EXPECT_EQ(counter.gaits, 1u);
-    ASSERT_EQ(counter.actors.size(), 3u) << "Cesium Man, the insect and the motion-capture dancer";
+    ASSERT_EQ(counter.actors.size(), 4u)
+        << "Cesium Man, the insect, the motion-capture dancer and Cesium Man dancing its motion";
     ActorNode& humanoid = *counter.actors[0];
     ActorNode& insect = *counter.actors[1];
     EXPECT_GE(humanoid.getJointIndex("leg_joint_L_5"), 0) << "the walker is Cesium Man";
@@ -543,7 +548,7 @@ TEST(ShowcaseFile, LoadsAndItsInsectKeepsItsFeetPlantedAllRoundItsPath)
 
 namespace {
 
-/** The showcase file's actors, in the scene's order: Cesium Man, the insect, the dancer. */
+/** The showcase file's actors, in the scene's order: Cesium Man, the insect, the dancer, Cesium Man dancing. */
 std::vector<ActorNode*> showcaseActors(osg::Node& scene)
 {
     struct Finder : public osg::NodeVisitor
@@ -567,7 +572,7 @@ TEST(ShowcaseFile, CesiumManIsSkinnedOnTheGpuAndPlaysHisWalkAlongHisPathUnderThe
     const osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(dataFile("showcase.osgt"));
     ASSERT_TRUE(scene.valid());
     const std::vector<ActorNode*> actors = showcaseActors(*scene);
-    ASSERT_EQ(actors.size(), 3u);
+    ASSERT_EQ(actors.size(), 4u);
     ActorNode& man = *actors[0];
     struct MeshFinder : public osg::NodeVisitor
     {
@@ -664,7 +669,7 @@ TEST(ShowcaseFile, CesiumMansPlantedFootSlidesLeastAtHisPathsSpeed)
     const osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(dataFile("showcase.osgt"));
     ASSERT_TRUE(scene.valid());
     const std::vector<ActorNode*> actors = showcaseActors(*scene);
-    ASSERT_EQ(actors.size(), 3u);
+    ASSERT_EQ(actors.size(), 4u);
     ActorNode& walker = *actors[0];
     FootSlide slide;
     osg::Vec3d before[2];
@@ -706,4 +711,176 @@ TEST(ShowcaseFile, CameraFramingTheActorsSeesThemWhereverTheyWalk)
     EXPECT_GT(box.yMax(), 2.5);
     EXPECT_LT(box.yMax(), 3.5);
     EXPECT_LT(box.zMax(), 2.5) << "no taller than the dancer's reach";
+}
+
+namespace {
+
+const char* const kCharlestonSkeleton = "mocap/asfamc/charleston.asf";
+const char* const kCharlestonMotion = "mocap/asfamc/charleston1.amc";
+
+/** Collects the messages OSG_WARN sends while it lives (and puts the previous handler back). */
+class CapturedWarnings : public osg::NotifyHandler
+{
+public:
+    void notify(osg::NotifySeverity severity, const char* message) override
+    {
+        if (severity <= osg::WARN) text += message;
+    }
+    std::string text;
+};
+
+struct WarningCapture
+{
+    WarningCapture() : previous(osg::getNotifyHandler()), captured(new CapturedWarnings)
+    {
+        osg::setNotifyHandler(captured.get());
+    }
+    ~WarningCapture() { osg::setNotifyHandler(previous.get()); }
+    unsigned count(const std::string& what) const
+    {
+        unsigned n = 0;
+        for (std::size_t at = captured->text.find(what); at != std::string::npos;
+             at = captured->text.find(what, at + what.size()))
+            ++n;
+        return n;
+    }
+    osg::ref_ptr<osg::NotifyHandler> previous;
+    osg::ref_ptr<CapturedWarnings> captured;
+};
+
+/** The Charleston retargeted onto a Cesium Man of his own, by the library's call, independently of the rig. */
+ClipPtr charlestonOnFreshCesiumMan()
+{
+    const osg::ref_ptr<ActorNode> man = readActor("models/CesiumMan/CesiumMan.gltf.actor");
+    if (!man) return nullptr;
+    MotionFileOptions options;
+    options.skeletonFile = dataFile(kCharlestonSkeleton);
+    const MocapImport imported = readMotionFile(dataFile(kCharlestonMotion), options);
+    EXPECT_TRUE(imported && imported.clip) << imported.error;
+    if (!imported || !imported.clip) return nullptr;
+    RetargetSkeleton source;
+    source.definition = imported.definition;
+    const RetargetClipResult result =
+        retargetClipOntoActor(*man, source, *imported.clip, RetargetedDance::retargetOptions());
+    EXPECT_TRUE(result) << result.error;
+    return result.clip;
+}
+
+} // namespace
+
+TEST(RetargetedDance, RefusesAMissingMotionFileOnceWithAWarningAndLeavesTheActorAsItWas)
+{
+    const osg::ref_ptr<ActorNode> man = readActor("models/CesiumMan/CesiumMan.gltf.actor");
+    ASSERT_TRUE(man);
+    const std::vector<ControllerPtr> controllers = man->getControllers();
+    const ClipLibraryPtr library = man->getClipLibrary();
+    const std::vector<std::string> clipNames = library ? library->getClipNames() : std::vector<std::string>();
+    osg::ref_ptr<RetargetedDance> dance = new RetargetedDance;
+    dance->setDatabasePath(OSGACTOR_TEST_DATA_DIR);
+    dance->setSkeletonFile(kCharlestonSkeleton);
+    dance->setMotionFile("mocap/asfamc/no such dance.amc");
+    const osg::ref_ptr<osg::Group> group = groupWithRig(man.get(), dance.get());
+
+    WarningCapture warnings;
+    for (unsigned frame = 0; frame < 3; ++frame) runUpdate(*group, frame / 30.0, frame + 1);
+    EXPECT_EQ(warnings.count("no such dance.amc"), 1u) << "once, naming the file: " << warnings.captured->text;
+    EXPECT_EQ(man->getControllers(), controllers) << "his own players, untouched";
+    EXPECT_FALSE(man->findController(RetargetedDance::kControllerName));
+    ASSERT_EQ(man->getClipLibrary(), library);
+    if (library)
+    {
+        EXPECT_EQ(library->getClipNames(), clipNames) << "no clip added";
+    }
+}
+
+TEST(RetargetedDance, RefusesAnActorWithNoJointsInCommonWithTheMotionAndLeavesItAsItWas)
+{
+    // A crane: one turning joint that no humanoid map knows.
+    ActorDefinitionBuilder builder("crane");
+    builder.addJoint("base").dofs(kRotationDofs);
+    const BuildResult built = builder.build();
+    ASSERT_TRUE(built) << built.error;
+    const osg::ref_ptr<ActorNode> crane = new ActorNode(built.definition);
+    const std::vector<double> dofs = crane->getDofs();
+    osg::ref_ptr<RetargetedDance> dance = new RetargetedDance;
+    dance->setDatabasePath(OSGACTOR_TEST_DATA_DIR);
+    dance->setSkeletonFile(kCharlestonSkeleton);
+    dance->setMotionFile(kCharlestonMotion);
+    const osg::ref_ptr<osg::Group> group = groupWithRig(crane.get(), dance.get());
+
+    WarningCapture warnings;
+    for (unsigned frame = 0; frame < 3; ++frame) runUpdate(*group, frame / 30.0, frame + 1);
+    EXPECT_EQ(warnings.count("charleston1.amc"), 1u) << warnings.captured->text;
+    EXPECT_TRUE(crane->getControllers().empty());
+    EXPECT_FALSE(crane->getClipLibrary() && crane->getClipLibrary()->getNumClips()) << "no clip added";
+    EXPECT_EQ(crane->getDofs(), dofs);
+}
+
+TEST(ShowcaseWrappers, RetargetedDanceGoesThroughOsgtWithItsFiles)
+{
+    osgDB::ReaderWriter* osgt = osgDB::Registry::instance()->getReaderWriterForExtension("osgt");
+    ASSERT_NE(osgt, nullptr);
+    osg::ref_ptr<RetargetedDance> dance = new RetargetedDance;
+    dance->setSkeletonFile("mocap/asfamc/charleston.asf");
+    dance->setMotionFile("mocap/asfamc/charleston1.amc");
+    dance->setDatabasePath("/not/written");
+    osg::ref_ptr<osgDB::Options> ascii = new osgDB::Options;
+    ascii->setPluginStringData("fileType", "Ascii");
+    std::stringstream text;
+    ASSERT_TRUE(osgt->writeObject(*dance, text, ascii.get()).success());
+    EXPECT_EQ(text.str().find("/not/written"), std::string::npos) << "the folder comes from the reader, not the file";
+
+    ascii->getDatabasePathList().push_back("/where/it/was/read");
+    osgDB::ReaderWriter::ReadResult read = osgt->readObject(text, ascii.get());
+    const RetargetedDance* back = dynamic_cast<const RetargetedDance*>(read.getObject());
+    ASSERT_NE(back, nullptr) << "libosgActorShowcase on OSG_LIBRARY_PATH?";
+    EXPECT_EQ(back->getSkeletonFile(), "mocap/asfamc/charleston.asf");
+    EXPECT_EQ(back->getMotionFile(), "mocap/asfamc/charleston1.amc");
+    EXPECT_EQ(back->getDatabasePath(), "/where/it/was/read");
+}
+
+TEST(ShowcaseFile, SecondCesiumManDancesTheCharlestonAsRetargetOntoAFreshCesiumManGivesIt)
+{
+    const osg::ref_ptr<osg::Node> scene = osgDB::readRefNodeFile(dataFile("showcase.osgt"));
+    ASSERT_TRUE(scene.valid());
+    const std::vector<ActorNode*> actors = showcaseActors(*scene);
+    ASSERT_EQ(actors.size(), 4u);
+    ActorNode& walker = *actors[0];
+    ActorNode& dancer = *actors[3];
+    ASSERT_NE(&walker, &dancer) << "two Cesium Men, not one loaded twice";
+    EXPECT_GE(dancer.getJointIndex("leg_joint_L_5"), 0) << "the second dancer is Cesium Man";
+    // Beside the stick-figure dancer, within two metres of it.
+    const osg::Vec3d stickFigure = actors[2]->getBound().center();
+    const osg::Vec3d man = dancer.getBound().center();
+    EXPECT_LT((osg::Vec2d(man.x(), man.y()) - osg::Vec2d(stickFigure.x(), stickFigure.y())).length(), 2.0);
+
+    const ClipPtr expected = charlestonOnFreshCesiumMan();
+    ASSERT_TRUE(expected);
+    const double fps = 30.0;
+    std::vector<double> firstDance;
+    for (unsigned frame = 0; frame <= unsigned(3.0 * fps); ++frame)
+    {
+        runUpdate(*scene, frame / fps, frame + 1);
+        if (frame == 1) firstDance = dancer.getDofs();
+    }
+    const auto player = std::dynamic_pointer_cast<ClipPlayer>(dancer.findController(RetargetedDance::kControllerName));
+    ASSERT_TRUE(player);
+    EXPECT_FALSE(dancer.findController("clip")) << "his own walk gave way";
+    EXPECT_TRUE(walker.findController("clip")) << "the walker still walks";
+    EXPECT_FALSE(walker.findController(RetargetedDance::kControllerName));
+    EXPECT_NEAR(player->getClipTime(), 3.0, 1.0 / fps + 1e-9) << "it played since the scene loaded";
+
+    ClipCursor cursor;
+    expected->initCursor(cursor);
+    std::vector<double> values(expected->getNumChannels());
+    ASSERT_TRUE(sampleEveryChannel(*expected, player->getClipTime(), cursor, values));
+    const std::vector<double>& dofs = dancer.getDofs();
+    ASSERT_EQ(dofs.size(), values.size()) << "one channel per DOF";
+    double moved = 0.0;
+    for (std::size_t d = 0; d < dofs.size(); ++d)
+    {
+        EXPECT_NEAR(dofs[d], values[d], 1e-9) << dancer.getDefinition()->getDofName(unsigned(d));
+        moved = std::max(moved, std::abs(dofs[d] - firstDance[d]));
+    }
+    EXPECT_GT(moved, 0.1) << "he dances (radians or metres changed)";
 }
