@@ -276,12 +276,11 @@ public:
       * plan), none of them traverses a subtree (which would need the actor's frame on the visitor's stacks) and near
       * and far are not computed, tests the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is
       * seen, makes the calls again; true then. false, having made no call, where the visitor must enter the actor. */
+    static bool replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
+                                     const ActorCullState::Versions& versions);
     /** For the look-ahead of a crowd's cull: asks for the render leaf the visitor will reuse `ahead` leaves from
       * now (from those it kept from its previous cull), which the replay of an actor culled after this one sets. */
     static void prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahead);
-
-    static bool replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
-                                     const ActorCullState::Versions& versions);
 
 private:
     using Step = ActorCullPlan::Step;

@@ -48,47 +48,46 @@ struct NodeFlags : osg::Node
         const osg::ref_ptr<osg::Callback> osg::Node::*const callback = &NodeFlags::_cullCallback;
         return reinterpret_cast<const unsigned char*>(&(node.*callback));
     }
-    /** Whether the cull callback, culling flags, node mask and state set lie within the node's flag block, so that
-      * comparing the block compares them (other bytes in it only make the comparison stricter). */
-    static bool holdsFlags(const osg::Node& node, std::size_t blockBytes)
+    /** Calls field(address, size) for each of the node's fields the plan compares in its flag block: its cull
+      * callback, culling flags, node mask and state set. */
+    template <class Field>
+    static void forEachFlagField(const osg::Node& node, Field&& field)
     {
-        const unsigned char* const begin = flagBlock(node);
-        const auto within = [&](const void* member, std::size_t size) {
-            const unsigned char* const first = static_cast<const unsigned char*>(member);
-            return first >= begin && first + size <= begin + blockBytes;
-        };
         const osg::ref_ptr<osg::Callback> osg::Node::*const callback = &NodeFlags::_cullCallback;
         const bool osg::Node::*const active = &NodeFlags::_cullingActive;
         const unsigned int osg::Node::*const disabled = &NodeFlags::_numChildrenWithCullingDisabled;
         const osg::Node::NodeMask osg::Node::*const mask = &NodeFlags::_nodeMask;
         const osg::ref_ptr<osg::StateSet> osg::Node::*const state = &NodeFlags::_stateset;
-        return within(&(node.*callback), sizeof(osg::ref_ptr<osg::Callback>)) &&
-               within(&(node.*active), sizeof(bool)) && within(&(node.*disabled), sizeof(unsigned int)) &&
-               within(&(node.*mask), sizeof(osg::Node::NodeMask)) &&
-               within(&(node.*state), sizeof(osg::ref_ptr<osg::StateSet>));
+        field(&(node.*callback), sizeof(osg::ref_ptr<osg::Callback>));
+        field(&(node.*active), sizeof(bool));
+        field(&(node.*disabled), sizeof(unsigned int));
+        field(&(node.*mask), sizeof(osg::Node::NodeMask));
+        field(&(node.*state), sizeof(osg::ref_ptr<osg::StateSet>));
     }
-    /** The bytes of a node's flag block that belong to the fields holdsFlags() names (0xff), not to the padding
-      * between them (0): padding holds whatever the heap held before the node, so two nodes with the same flags
-      * may differ there. The layout is osg::Node's, the same for every node: taken from the first one asked. */
+    /** Whether those fields lie within the node's flag block, so that comparing the block (its other bytes masked
+      * out: flagMask()) compares them. */
+    static bool holdsFlags(const osg::Node& node, std::size_t blockBytes)
+    {
+        const unsigned char* const begin = flagBlock(node);
+        bool within = true;
+        forEachFlagField(node, [&](const void* member, std::size_t size) {
+            const unsigned char* const first = static_cast<const unsigned char*>(member);
+            within = within && first >= begin && first + size <= begin + blockBytes;
+        });
+        return within;
+    }
+    /** The bytes of a node's flag block that belong to those fields (0xff), not to the padding between them (0):
+      * padding holds whatever the heap held before the node, so two nodes with the same flags may differ there. The
+      * layout is osg::Node's, the same for every node: taken from the first one asked, which holdsFlags(). */
     static const unsigned char* flagMask(const osg::Node& node, std::size_t blockBytes)
     {
         static const std::vector<unsigned char> mask = [&] {
             std::vector<unsigned char> bytes(blockBytes, 0);
             const unsigned char* const begin = flagBlock(node);
-            const auto mark = [&](const void* member, std::size_t size) {
+            forEachFlagField(node, [&](const void* member, std::size_t size) {
                 const std::ptrdiff_t first = static_cast<const unsigned char*>(member) - begin;
                 std::fill_n(bytes.begin() + first, size, static_cast<unsigned char>(0xff));
-            };
-            const osg::ref_ptr<osg::Callback> osg::Node::*const callback = &NodeFlags::_cullCallback;
-            const bool osg::Node::*const active = &NodeFlags::_cullingActive;
-            const unsigned int osg::Node::*const disabled = &NodeFlags::_numChildrenWithCullingDisabled;
-            const osg::Node::NodeMask osg::Node::*const nodeMask = &NodeFlags::_nodeMask;
-            const osg::ref_ptr<osg::StateSet> osg::Node::*const state = &NodeFlags::_stateset;
-            mark(&(node.*callback), sizeof(osg::ref_ptr<osg::Callback>));
-            mark(&(node.*active), sizeof(bool));
-            mark(&(node.*disabled), sizeof(unsigned int));
-            mark(&(node.*nodeMask), sizeof(osg::Node::NodeMask));
-            mark(&(node.*state), sizeof(osg::ref_ptr<osg::StateSet>));
+            });
             return bytes;
         }();
         return mask.data();
