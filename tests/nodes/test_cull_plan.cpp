@@ -186,6 +186,82 @@ TEST(CullPlan, AJointMatrixSetByHandIsSeen)
     EXPECT_FALSE(leaves.empty());
 }
 
+namespace {
+
+/** A bound computed by a callback, not by the node: ActorNode::computeBound() is then not called. */
+class FixedBound : public osg::Node::ComputeBoundingSphereCallback
+{
+public:
+    osg::BoundingSphere computeBound(const osg::Node&) const override
+    {
+        return osg::BoundingSphere(osg::Vec3(1.0f, 0.0f, 1.0f), 5.0f);
+    }
+};
+
+} // namespace
+
+TEST(CullPlan, AnActorsOwnMatrixSetByHandIsSeenWhateverComputesItsBound)
+{
+    // An unchanged actor's replay takes its matrix to be the one of its kept calls while its bound has not been
+    // recomputed (every setter of a MatrixTransform's matrix dirties it); a bound callback recomputes it without the
+    // actor knowing, so there the matrix itself is compared. Near and far not computed: the visitor does not enter
+    // such an actor (ActorNode::accept()); computed: it does, and the actor's cull finds its kept calls.
+    for (const bool callback : {false, true})
+        for (const bool computeNearFar : {false, true})
+        {
+            SCOPED_TRACE(std::string(callback ? "a bound callback" : "no bound callback") +
+                         (computeNearFar ? ", near and far computed" : ", near and far not computed"));
+            Scene scene;
+            if (!computeNearFar)
+                scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+            ActorNode& actor = scene.first();
+            if (callback) actor.setComputeBoundingSphereCallback(new FixedBound);
+            const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
+            scene.cullExpectingTheOrdinaryGraph();
+            scene.probe.cull(++scene.frame);
+            const std::vector<CulledLeaf> kept = scene.probe.cull(++scene.frame); // replayed
+            // Not through the pre-translation: osg::MatrixTransform::setMatrix() on the actor, as a user may.
+            actor.setMatrix(actor.getMatrix() * osg::Matrix::translate(0.4, 0.0, 0.0));
+            const std::vector<CulledLeaf> moved = scene.cullExpectingTheOrdinaryGraph();
+            const CulledLeaf* keptHead = find(kept, head);
+            const CulledLeaf* movedHead = find(moved, head);
+            ASSERT_TRUE(keptHead && movedHead);
+            EXPECT_NEAR(movedHead->modelView[12] - keptHead->modelView[12], 0.4, 1e-6);
+            scene.probe.cull(++scene.frame);
+            const std::vector<CulledLeaf> replayed = scene.probe.cull(++scene.frame);
+            ASSERT_EQ(replayed.size(), moved.size());
+            for (std::size_t i = 0; i < moved.size(); ++i) EXPECT_TRUE(replayed[i] == moved[i]) << "leaf " << i;
+        }
+}
+
+TEST(CullPlan, AnActorWhoseParentTransformMovesIsCulledAfresh)
+{
+    // The replay compares where the visitor enters the actor (the parent's model-view matrix) with where it entered
+    // for the kept calls.
+    for (const bool computeNearFar : {false, true})
+    {
+        SCOPED_TRACE(computeNearFar ? "near and far computed" : "near and far not computed");
+        Scene scene;
+        if (!computeNearFar)
+            scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+        osg::ref_ptr<osg::MatrixTransform> parent = new osg::MatrixTransform;
+        scene.root->replaceChild(scene.actors[1].get(), parent.get());
+        parent->addChild(scene.actors[1].get());
+        const osg::Drawable* head = scene.actors[1]->getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
+        scene.cullExpectingTheOrdinaryGraph();
+        scene.probe.cull(++scene.frame);
+        const std::vector<CulledLeaf> kept = scene.probe.cull(++scene.frame);
+        parent->setMatrix(osg::Matrix::translate(0.0, 0.0, 0.3));
+        const std::vector<CulledLeaf> moved = scene.cullExpectingTheOrdinaryGraph();
+        const CulledLeaf* keptHead = find(kept, head);
+        const CulledLeaf* movedHead = find(moved, head);
+        ASSERT_TRUE(keptHead && movedHead);
+        // Up the world's z, the camera looking down a little: up the eye's y by a little less.
+        EXPECT_GT(movedHead->modelView[13] - keptHead->modelView[13], 0.29);
+        EXPECT_LT(movedHead->modelView[13] - keptHead->modelView[13], 0.3 + 1e-9);
+    }
+}
+
 TEST(CullPlan, ChildrenAddedRemovedOrReplacedBelowJointsAndGeodesAreSeen)
 {
     Scene scene;
