@@ -186,18 +186,24 @@ void ActorCullPlan::PackedChecks::pack(const std::vector<const SkeletonNode*>& j
                   "copied as bytes");
     _numJoints = static_cast<unsigned>(jointNodes.size());
     _numChecks = static_cast<unsigned>(checks.size());
+    _allAlike = jointFlags.size() == 1;
     _byteIndices = jointFlags.size() <= 256;
+    const std::size_t numIndices = _allAlike ? 0 : jointNodes.size();
     std::size_t size = 0;
     placeAfter<const SkeletonNode*>(size, jointNodes.size());
-    _flagIndicesAt = static_cast<unsigned>(_byteIndices ? placeAfter<unsigned char>(size, jointNodes.size())
-                                                        : placeAfter<unsigned>(size, jointNodes.size()));
+    _flagIndicesAt = static_cast<unsigned>(_byteIndices ? placeAfter<unsigned char>(size, numIndices)
+                                                        : placeAfter<unsigned>(size, numIndices));
     _jointFlagsAt = static_cast<unsigned>(placeAfter<JointFlags>(size, jointFlags.size()));
     _checksAt = static_cast<unsigned>(placeAfter<NodeCheck>(size, checks.size()));
     _geodeChildrenAt = static_cast<unsigned>(placeAfter<const osg::Node*>(size, geodeChildren.size()));
     _lines.assign((size + sizeof(CacheLine) - 1) / sizeof(CacheLine), CacheLine());
     unsigned char* const block = reinterpret_cast<unsigned char*>(_lines.data());
     copyTo(block, 0, jointNodes);
-    if (_byteIndices)
+    if (_allAlike)
+    {
+        // No index: every joint had the first flags.
+    }
+    else if (_byteIndices)
         for (std::size_t j = 0; j < jointFlagIndices.size(); ++j)
             block[_flagIndicesAt + j] = static_cast<unsigned char>(jointFlagIndices[j]);
     else
@@ -506,8 +512,13 @@ bool ActorCullPlan::isCurrent() const
     // The joints compared without a branch, so that their loads overlap; the nodes were asked for ahead, by the
     // cull of the actors before this one (ActorNode::prefetchCullAhead()) or with the joints' matrices
     // (prefetchJoints()).
-    if (!(_packed.byteIndices() ? jointsUnchanged(_packed.byteFlagIndices())
-                                : jointsUnchanged(_packed.wordFlagIndices())))
+    // Most actors' joints all have the same flags: then the one block is compared with every node's, held in
+    // registers, and no index is read.
+    const unsigned char* const byteIndices = _packed.byteFlagIndices();
+    const unsigned* const wordIndices = _packed.wordFlagIndices();
+    if (!(_packed.allAlike()      ? jointsUnchanged([](std::size_t) { return 0u; })
+          : _packed.byteIndices() ? jointsUnchanged([byteIndices](std::size_t j) { return unsigned(byteIndices[j]); })
+                                  : jointsUnchanged([wordIndices](std::size_t j) { return wordIndices[j]; })))
         return false;
     for (const NodeCheck* check = _packed.checksBegin(); check != _packed.checksEnd(); ++check)
         if (!isUnchanged(*check)) return false;
@@ -516,8 +527,8 @@ bool ActorCullPlan::isCurrent() const
     return true;
 }
 
-template <class Index>
-bool ActorCullPlan::jointsUnchanged(const Index* seenIndex) const
+template <class FlagIndex>
+bool ActorCullPlan::jointsUnchanged(FlagIndex flagIndex) const
 {
     // Every joint compared, the differences gathered with no branch: the loads of one node do not wait on the
     // comparison of the one before.
@@ -527,7 +538,7 @@ bool ActorCullPlan::jointsUnchanged(const Index* seenIndex) const
     int frames = 0;
     for (std::size_t j = 0, n = _packed.numJoints(); j < n; ++j)
     {
-        const JointFlags& flags = seen[seenIndex[j]];
+        const JointFlags& flags = seen[flagIndex(j)];
         blocks.add(NodeFlags::flagBlock(*nodes[j]), flags.nodeFlags, _flagMask);
         frames |= nodes[j]->getReferenceFrame() ^ flags.referenceFrame;
     }

@@ -179,8 +179,8 @@ private:
     typedef std::unordered_map<JointFlags, unsigned, JointFlagsHash> JointFlagsIndex;
 
     /** One allocation, cache-line aligned, holding in turn: each checked joint's node; which distinct flags each
-      * had (a byte each while there are at most 256 distinct ones, else four); the distinct flags; the geodes' and
-      * drawables' checks; the geodes' children. */
+      * had (none where all had the same, as most actors' joints do; a byte each while there are at most 256
+      * distinct ones, else four); the distinct flags; the geodes' and drawables' checks; the geodes' children. */
     class PackedChecks
     {
     public:
@@ -189,6 +189,7 @@ private:
                   const std::vector<const osg::Node*>& geodeChildren);
         std::size_t numJoints() const { return _numJoints; }
         const SkeletonNode* const* jointNodes() const { return at<const SkeletonNode*>(0); }
+        bool allAlike() const { return _allAlike; }
         bool byteIndices() const { return _byteIndices; }
         const unsigned char* byteFlagIndices() const { return at<unsigned char>(_flagIndicesAt); }
         const unsigned* wordFlagIndices() const { return at<unsigned>(_flagIndicesAt); }
@@ -213,11 +214,12 @@ private:
         unsigned _numJoints = 0;
         unsigned _numChecks = 0;
         unsigned _flagIndicesAt = 0, _jointFlagsAt = 0, _checksAt = 0, _geodeChildrenAt = 0;
+        bool _allAlike = false;
         bool _byteIndices = true;
     };
-    /** jointsUnchanged() with the flag indices as packed. */
-    template <class Index>
-    bool jointsUnchanged(const Index* flagIndices) const;
+    /** Whether every checked joint's flags are those it had, flagIndex(j) saying which of the distinct ones. */
+    template <class FlagIndex>
+    bool jointsUnchanged(FlagIndex flagIndex) const;
     /** Adds a joint's check to the packed ones; false where its flags are not in one block. */
     bool addJointCheck(const SkeletonNode& node);
 
