@@ -231,8 +231,8 @@ private:
     osg::ref_ptr<ActorCullPlan> _plan;
     unsigned _planVersion;
     bool _replayable;
-    bool _prepared = false;
-    bool _callsTraverse = false; // a TRAVERSE among them
+    bool _prepared = false;      // what prepare() decided (below) is for the cull that follows
+    bool _callsTraverse = false; // a TRAVERSE among the kept calls
     /** The model-view matrix the visitor held where it entered the actor for the kept calls, when the key's
       * actorModelView is the actor's matrix composed with it as the visitor composes it (an ActorNode in a relative
       * frame): while the actor's matrix stays (its bound is not recomputed) the replay compares this one alone. */

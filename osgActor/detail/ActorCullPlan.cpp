@@ -187,6 +187,9 @@ void ActorCullPlan::PackedChecks::pack(const std::vector<const SkeletonNode*>& j
     _numJoints = static_cast<unsigned>(jointNodes.size());
     _numChecks = static_cast<unsigned>(checks.size());
     _allAlike = jointFlags.size() == 1;
+    _blocksStartLines = std::all_of(jointNodes.begin(), jointNodes.end(), [](const SkeletonNode* node) {
+        return reinterpret_cast<std::uintptr_t>(NodeFlags::flagBlock(*node)) % sizeof(CacheLine) == 0;
+    });
     _byteIndices = jointFlags.size() <= 256;
     const std::size_t numIndices = _allAlike ? 0 : jointNodes.size();
     std::size_t size = 0;
@@ -496,13 +499,18 @@ void ActorCullPlan::prefetchCheckedNodes() const
 {
     // A joint's flag block and what follows it, where osg::Transform keeps its reference frame: its first and last
     // line.
+    static_assert(2 * kNodeFlagBytes <= 64, "a block and its reference frame within a line that the block starts");
     const SkeletonNode* const* nodes = _packed.jointNodes();
-    for (std::size_t j = 0, n = _packed.numJoints(); j < n; ++j)
-    {
-        const unsigned char* const block = NodeFlags::flagBlock(*nodes[j]);
-        prefetchLine(block);
-        prefetchLine(block + 2 * kNodeFlagBytes - 1);
-    }
+    const std::size_t n = _packed.numJoints();
+    if (_packed.blocksStartLines())
+        for (std::size_t j = 0; j < n; ++j) prefetchLine(NodeFlags::flagBlock(*nodes[j]));
+    else
+        for (std::size_t j = 0; j < n; ++j)
+        {
+            const unsigned char* const block = NodeFlags::flagBlock(*nodes[j]);
+            prefetchLine(block);
+            prefetchLine(block + 2 * kNodeFlagBytes - 1);
+        }
     for (const NodeCheck* check = _packed.checksBegin(); check != _packed.checksEnd(); ++check)
         prefetchLine(NodeFlags::maskAddress(*check->node));
 }

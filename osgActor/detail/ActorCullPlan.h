@@ -190,6 +190,9 @@ private:
         std::size_t numJoints() const { return _numJoints; }
         const SkeletonNode* const* jointNodes() const { return at<const SkeletonNode*>(0); }
         bool allAlike() const { return _allAlike; }
+        /** Whether every checked joint's flag block starts a cache line (skeleton nodes an actor built, placed so),
+          * so that the block and the reference frame after it are one line. */
+        bool blocksStartLines() const { return _blocksStartLines; }
         bool byteIndices() const { return _byteIndices; }
         const unsigned char* byteFlagIndices() const { return at<unsigned char>(_flagIndicesAt); }
         const unsigned* wordFlagIndices() const { return at<unsigned>(_flagIndicesAt); }
@@ -216,6 +219,7 @@ private:
         unsigned _flagIndicesAt = 0, _jointFlagsAt = 0, _checksAt = 0, _geodeChildrenAt = 0;
         bool _allAlike = false;
         bool _byteIndices = true;
+        bool _blocksStartLines = false;
     };
     /** Whether every checked joint's flags are those it had, flagIndex(j) saying which of the distinct ones. */
     template <class FlagIndex>
