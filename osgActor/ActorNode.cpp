@@ -110,11 +110,11 @@ void giveBoundMode(SkeletonNode& node, const ActorDefinition& def, ActorNode::Bo
 } // namespace
 
 ActorNode::ActorNode()
-    : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _transformMatricesDirty(true),
+    : _lastControllerTime(std::numeric_limits<double>::quiet_NaN()), _cullState(new detail::ActorCullState),
+      _cullPlanVersion(0), _poseVersion(0), _boundVersion(0), _transformMatricesDirty(true),
       _boundsToPropagate(false), _actorMatrixWritten(false), _blocked(false),
       _boundMode(BOUND_COVERS_ROTATIONS), _numUpdatesRun(0), _lastFrameNumber(kNoFrame), _cullMode(CULL_AS_ONE),
-      _numUpdatesSkipped(0), _lodPhase(nextLodPhase()), _lastSeen(0), _cullState(new detail::ActorCullState),
-      _cullPlanVersion(0), _poseVersion(0), _boundVersion(0)
+      _numUpdatesSkipped(0), _lodPhase(nextLodPhase()), _lastSeen(0)
 {
     setDataVariance(osg::Object::DYNAMIC);
     setUpdateCallback(new ActorUpdateCallback);
@@ -130,12 +130,12 @@ ActorNode::ActorNode(const ActorNode& actor, const osg::CopyOp& copyop)
       _lastControllerTime(std::numeric_limits<double>::quiet_NaN()),
       _transforms(actor._transforms), _preTransformMatrix(actor._preTransformMatrix),
       _postTransformMatrix(actor._postTransformMatrix), _actorMatrix(actor._actorMatrix),
+      _cullState(new detail::ActorCullState), _cullPlanVersion(0), _poseVersion(0), _boundVersion(0),
       _transformMatricesDirty(actor._transformMatricesDirty), _boundsToPropagate(false),
       _actorMatrixWritten(actor._actorMatrixWritten),
       _blocked(actor._blocked), _boundMode(actor._boundMode), _numUpdatesRun(0), _lastFrameNumber(kNoFrame),
       _cullMode(actor._cullMode), _updatePolicy(actor._updatePolicy), _numUpdatesSkipped(0),
-      _lodPhase(nextLodPhase()), _lastSeen(0), _cullState(new detail::ActorCullState), _cullPlanVersion(0),
-      _poseVersion(0), _boundVersion(0), _definitionObject(actor._definitionObject),
+      _lodPhase(nextLodPhase()), _lastSeen(0), _definitionObject(actor._definitionObject),
       _clipLibraryObject(actor._clipLibraryObject)
 {
     for (const ControllerPtr& controller : actor._controllers)
@@ -701,8 +701,9 @@ void ActorNode::prefetchCullAhead(const osg::Node& node, unsigned ahead) const
         };
         detail::prefetchLine(other); // its class
         span(&_boundingSphere, &_boundingSphereComputed + 1);
-        span(&_cullCallback, &_matrix + 1); // the flags, the reference frame, actor_m
-        span(&_cullMode, &_boundVersion + 1);
+        // The flags and the reference frame; not actor_m, which the replay of an unchanged actor does not read.
+        span(&_cullCallback, &_referenceFrame + 1);
+        span(&_cullState, &_updatePolicy.onlyWhenSeen + 1); // the cull state and counters, cull mode and policy
         return;
     }
     if (typeid(node) != typeid(ActorNode)) return;
@@ -846,6 +847,8 @@ void ActorNode::noteSeen(osg::NodeVisitor& nv)
 
 void ActorNode::writeJointMatrices()
 {
+    // Nothing written since the last call (an idle actor): nothing read past the pose's flag.
+    if (!_pose.hasChangedLocals()) return;
     if (_boundMode == BOUND_COVERS_ROTATIONS)
     {
         writeJointMatricesKeepingBalls();

@@ -69,9 +69,9 @@ void ActorCullState::prefetchAhead(AheadStage stage)
 {
     if (stage == AHEAD_STATE)
     {
-        // The members a replay reads, from the flag to the kept calls (the key between them).
+        // The members a replay reads, from the flag to the key's view.
         const char* const first = reinterpret_cast<const char*>(this);
-        prefetchForRead(first, static_cast<std::size_t>(reinterpret_cast<const char*>(&_callsTraverse + 1) - first));
+        prefetchForRead(first, static_cast<std::size_t>(reinterpret_cast<const char*>(&_key.view + 1) - first));
         return;
     }
     // The plan may be replaced under a cull on another thread: read only while holding the state.
@@ -101,10 +101,9 @@ void ActorCullState::prefetchAhead(AheadStage stage)
     release();
 }
 
-ActorCullState::Key ActorCullState::keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView)
+ActorCullState::View ActorCullState::viewOf(const ActorCullView& view)
 {
-    Key key;
-    key.actorModelView = actorModelView;
+    View key;
     key.projection = view.projection;
     key.cullingMode = view.cullingMode;
     // With near and far computed, the viewer clamps the camera's projection to them after each cull (SceneView does
@@ -130,17 +129,35 @@ ActorCullState::Key ActorCullState::keyOf(const ActorCullView& view, const osg::
     return key;
 }
 
-bool ActorCullState::Key::operator==(const Key& other) const
+ActorCullState::Key ActorCullState::keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView)
+{
+    // The view this thread made last, shared by the keys of the actors culled after it while it stays the same;
+    // keys made on other threads hold equal views in other objects, compared by value.
+    static thread_local osg::ref_ptr<const SharedView> last;
+    const View current = viewOf(view);
+    if (!last || !(last->view == current)) last = new SharedView(current);
+    Key key;
+    key.view = last;
+    key.actorModelView = actorModelView;
+    return key;
+}
+
+bool ActorCullState::View::operator==(const View& other) const
 {
     // Bit for bit: the calls kept are those of these very matrices (a -0 is not a 0 to the products made from it).
-    return std::memcmp(actorModelView.ptr(), other.actorModelView.ptr(), sizeof(osg::Matrixd)) == 0 &&
-           std::memcmp(projection.ptr(), other.projection.ptr(), sizeof(osg::Matrixd)) == 0 &&
+    return std::memcmp(projection.ptr(), other.projection.ptr(), sizeof(osg::Matrixd)) == 0 &&
            std::memcmp(viewport, other.viewport, sizeof viewport) == 0 && traversalMask == other.traversalMask &&
            nodeMaskOverride == other.nodeMaskOverride && cullingMask == other.cullingMask &&
            cullingMode == other.cullingMode &&
            std::memcmp(&smallFeaturePixelSize, &other.smallFeaturePixelSize, sizeof(float)) == 0 &&
            computeNearFar == other.computeNearFar && binNumber == other.binNumber &&
            binSortMode == other.binSortMode;
+}
+
+bool ActorCullState::Key::operator==(const Key& other) const
+{
+    return std::memcmp(actorModelView.ptr(), other.actorModelView.ptr(), sizeof(osg::Matrixd)) == 0 &&
+           (view == other.view || (view && other.view && view->view == other.view->view));
 }
 
 template <class Object>
@@ -194,6 +211,24 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
     _state._key = _state._preparedKey;
     _state._versions = versions;
     _state._replayable = true;
+    noteEntry(actor);
+}
+
+void ActorCull::noteEntry(const osg::Group& actor)
+{
+    // The visitor's model-view matrix below the actor's: where it entered the actor. Kept where the actor's is that
+    // one and the actor's matrix composed as replayBeforeEntering() composes them, bit for bit.
+    _state._entryKnown = false;
+    const osg::CullStack::MatrixStack& stack = _cv.getModelViewStack();
+    if (typeid(actor) != typeid(ActorNode) || stack.size() < 2 || !stack._stack.back()) return;
+    const ActorNode& node = static_cast<const ActorNode&>(actor);
+    if (node.getReferenceFrame() != osg::Transform::RELATIVE_RF) return;
+    const osg::Matrixd& entry = *stack._stack.back();
+    osg::Matrixd composed;
+    composeModelView(node.getMatrix().ptr(), entry.ptr(), composed.ptr());
+    if (std::memcmp(composed.ptr(), _state._key.actorModelView.ptr(), sizeof(osg::Matrixd)) != 0) return;
+    _state._entryModelView = entry;
+    _state._entryKnown = true;
 }
 
 void ActorCullState::prepare(const ActorCullView& view, const osg::Matrixd& actorModelView,
@@ -340,17 +375,31 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     if (state._prepared || !planKept || !state._replayable || state._callsTraverse || !(state._versions == versions) ||
         cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
         return false;
-    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it: for an ActorNode (relative,
-    // the caller checked), MatrixTransform's preMult, the same bits inline; another class's own call.
-    osg::Matrixd actorModelView;
-    if (typeid(actor) == typeid(ActorNode))
-        composeModelView(actor.getMatrix().ptr(), cv.getModelViewMatrix()->ptr(), actorModelView.ptr());
+    if (!state._key.view || !(ActorCullState::viewOf(ActorCullView(cv)) == state._key.view->view)) return false;
+    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it. For an ActorNode (relative,
+    // the caller checked) whose bound has not been recomputed, its matrix is the one the kept key was composed from
+    // (every setter of a MatrixTransform's matrix dirties its bound, and the versions counted its recomputations),
+    // unless a callback computes its bound instead: the key holds where the visitor entered then, and the
+    // visitor's matrix now is compared with it. Otherwise, MatrixTransform's preMult, the same bits inline; another
+    // class's own call.
+    const osg::Matrixd& entry = *cv.getModelViewMatrix();
+    if (typeid(actor) == typeid(ActorNode) && state._entryKnown && !actor.getComputeBoundingSphereCallback())
+    {
+        if (std::memcmp(entry.ptr(), state._entryModelView.ptr(), sizeof(osg::Matrixd)) != 0) return false;
+    }
     else
     {
-        actorModelView = *cv.getModelViewMatrix();
-        actor.computeLocalToWorldMatrix(actorModelView, &cv);
+        osg::Matrixd actorModelView;
+        if (typeid(actor) == typeid(ActorNode))
+            composeModelView(actor.getMatrix().ptr(), entry.ptr(), actorModelView.ptr());
+        else
+        {
+            actorModelView = entry;
+            actor.computeLocalToWorldMatrix(actorModelView, &cv);
+        }
+        if (std::memcmp(actorModelView.ptr(), state._key.actorModelView.ptr(), sizeof(osg::Matrixd)) != 0)
+            return false;
     }
-    if (!(ActorCullState::keyOf(ActorCullView(cv), actorModelView) == state._key)) return false;
     const ActorCullPlan* kept = state._plan.get();
     state.currentPlan(actor, versions.plan);
     if (state._plan.get() != kept) return false; // changed: culled afresh, the visitor in the actor

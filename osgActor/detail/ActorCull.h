@@ -158,10 +158,9 @@ private:
     friend class InstancedCull;
     friend class InstancedCullState;
 
-    /** What the calls depend on beyond the actor: the visitor's settings and where it enters the actor. */
-    struct Key
+    /** What the calls depend on of the visitor's settings: the same for every actor a visitor culls. */
+    struct View
     {
-        osg::Matrixd actorModelView;
         osg::Matrixd projection;
         double viewport[4] = {};
         unsigned traversalMask = 0;
@@ -172,6 +171,25 @@ private:
         int computeNearFar = 0;
         int binNumber = 0;
         int binSortMode = 0;
+        bool operator==(const View& other) const;
+    };
+    static View viewOf(const ActorCullView& view);
+    /** A View made once and shared by the keys of every actor culled with it (keyOf()), so that an actor keeps a
+      * pointer rather than a copy (fewer lines of its state read per cull) and a replay compares the visitor's view
+      * with an object every actor's check has just read. Never changed once made. */
+    struct SharedView : osg::Referenced
+    {
+        explicit SharedView(const View& v) : view(v) {}
+        const View view;
+
+    protected:
+        ~SharedView() override = default;
+    };
+    /** What the calls depend on beyond the actor: the visitor's settings and where it enters the actor. */
+    struct Key
+    {
+        osg::ref_ptr<const SharedView> view; // first: the replay reads it and not the matrix
+        osg::Matrixd actorModelView;
         bool operator==(const Key& other) const;
     };
     static Key keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView);
@@ -206,15 +224,23 @@ private:
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame, const ActorCullView& view);
     bool isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView, const ActorCullView& view) const;
 
+    // What an idle actor's replay reads (replayBeforeEntering()), together from the start of the object up to its
+    // key's view (prefetchAhead() asks for these lines); the key's matrix and the rest after them.
     std::atomic_flag _busy;
     std::atomic<const void*> _holder;
     osg::ref_ptr<ActorCullPlan> _plan;
     unsigned _planVersion;
     bool _replayable;
+    bool _prepared = false;      // what prepare() decided (below) is for the cull that follows
+    bool _callsTraverse = false; // a TRAVERSE among the kept calls
+    /** The model-view matrix the visitor held where it entered the actor for the kept calls, when the key's
+      * actorModelView is the actor's matrix composed with it as the visitor composes it (an ActorNode in a relative
+      * frame): while the actor's matrix stays (its bound is not recomputed) the replay compares this one alone. */
+    bool _entryKnown = false;
     Versions _versions;
-    Key _key;
     std::vector<Call> _calls;
-    bool _callsTraverse = false; // a TRAVERSE among them
+    osg::Matrixd _entryModelView;
+    Key _key;
     Pool<JointModelViews> _modelViews;
     Pool<JointDrawBatch> _batches;
     Pool<osg::RefMatrix> _matrices;
@@ -222,7 +248,6 @@ private:
     osg::ref_ptr<JointModelViews> _keptModelViews;
     // What prepare() decided, for the cull that follows: replay the kept calls, or make new ones with these
     // matrices and, per step, whether it is culled (JOINT, GEODE, DRAWABLE) and the drawable's depth.
-    bool _prepared = false;
     bool _preparedReplay = false;
     Key _preparedKey;
     Versions _preparedVersions;
@@ -290,6 +315,8 @@ private:
     static void replayCalls(osgUtil::CullVisitor& cv, const std::vector<Call>& calls);
     /** The plan followed afresh from the prepared decisions, every call kept for the next frame. */
     void cull();
+    /** Keeps where the visitor entered the actor for the calls just kept (ActorCullState::_entryModelView). */
+    void noteEntry(const osg::Group& actor);
     void addDrawable(const Step& step, unsigned stepIndex);
     void traverseOrdinarily(const Step& step);
     /** The frame's model-view matrix as the render graph holds it, made at its first use this cull. */

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <type_traits>
 #include <typeinfo>
 #include <vector>
 
@@ -148,7 +149,71 @@ ActorCullPlan::ActorCullPlan(osg::Group& actor)
     for (unsigned i = 0; i < actor.getNumChildren(); ++i) addChild(*actor.getChild(i), -1);
     std::unordered_set<const osg::Referenced*>().swap(_checked);
     JointFlagsIndex().swap(_distinctJointFlags);
+    _packed.pack(_jointCheckNodes, _jointCheckFlags, _jointFlags, _checks, _geodeChildren);
+    std::vector<const SkeletonNode*>().swap(_jointCheckNodes);
+    std::vector<unsigned>().swap(_jointCheckFlags);
+    std::vector<JointFlags>().swap(_jointFlags);
+    std::vector<NodeCheck>().swap(_checks);
+    std::vector<const osg::Node*>().swap(_geodeChildren);
     noteShape();
+}
+
+namespace {
+
+/** Where an array of count T starts after `offset` bytes, at T's alignment. */
+template <class T>
+std::size_t placeAfter(std::size_t& offset, std::size_t count)
+{
+    const std::size_t at = (offset + alignof(T) - 1) / alignof(T) * alignof(T);
+    offset = at + count * sizeof(T);
+    return at;
+}
+
+template <class T>
+void copyTo(unsigned char* block, std::size_t at, const std::vector<T>& values)
+{
+    if (!values.empty()) std::memcpy(block + at, values.data(), values.size() * sizeof(T));
+}
+
+} // namespace
+
+void ActorCullPlan::PackedChecks::pack(const std::vector<const SkeletonNode*>& jointNodes,
+                                       const std::vector<unsigned>& jointFlagIndices,
+                                       const std::vector<JointFlags>& jointFlags, const std::vector<NodeCheck>& checks,
+                                       const std::vector<const osg::Node*>& geodeChildren)
+{
+    static_assert(std::is_trivially_copyable<NodeCheck>::value && std::is_trivially_copyable<JointFlags>::value,
+                  "copied as bytes");
+    _numJoints = static_cast<unsigned>(jointNodes.size());
+    _numChecks = static_cast<unsigned>(checks.size());
+    _allAlike = jointFlags.size() == 1;
+    _blocksStartLines = std::all_of(jointNodes.begin(), jointNodes.end(), [](const SkeletonNode* node) {
+        return reinterpret_cast<std::uintptr_t>(NodeFlags::flagBlock(*node)) % sizeof(CacheLine) == 0;
+    });
+    _byteIndices = jointFlags.size() <= 256;
+    const std::size_t numIndices = _allAlike ? 0 : jointNodes.size();
+    std::size_t size = 0;
+    placeAfter<const SkeletonNode*>(size, jointNodes.size());
+    _flagIndicesAt = static_cast<unsigned>(_byteIndices ? placeAfter<unsigned char>(size, numIndices)
+                                                        : placeAfter<unsigned>(size, numIndices));
+    _jointFlagsAt = static_cast<unsigned>(placeAfter<JointFlags>(size, jointFlags.size()));
+    _checksAt = static_cast<unsigned>(placeAfter<NodeCheck>(size, checks.size()));
+    _geodeChildrenAt = static_cast<unsigned>(placeAfter<const osg::Node*>(size, geodeChildren.size()));
+    _lines.assign((size + sizeof(CacheLine) - 1) / sizeof(CacheLine), CacheLine());
+    unsigned char* const block = reinterpret_cast<unsigned char*>(_lines.data());
+    copyTo(block, 0, jointNodes);
+    if (_allAlike)
+    {
+        // No index: every joint had the first flags.
+    }
+    else if (_byteIndices)
+        for (std::size_t j = 0; j < jointFlagIndices.size(); ++j)
+            block[_flagIndicesAt + j] = static_cast<unsigned char>(jointFlagIndices[j]);
+    else
+        copyTo(block, _flagIndicesAt, jointFlagIndices);
+    copyTo(block, _jointFlagsAt, jointFlags);
+    copyTo(block, _checksAt, checks);
+    copyTo(block, _geodeChildrenAt, geodeChildren);
 }
 
 void ActorCullPlan::noteShape()
@@ -426,24 +491,28 @@ void prefetchArray(const std::vector<T>& array)
 
 void ActorCullPlan::prefetchChecks() const
 {
-    prefetchArray(_jointCheckNodes);
-    prefetchArray(_jointCheckFlags);
-    prefetchArray(_jointFlags);
-    prefetchArray(_checks);
-    prefetchArray(_geodeChildren);
+    prefetchForRead(_packed.data(), _packed.bytes());
+    prefetchArray(_stateChecks);
 }
 
 void ActorCullPlan::prefetchCheckedNodes() const
 {
     // A joint's flag block and what follows it, where osg::Transform keeps its reference frame: its first and last
     // line.
-    for (const SkeletonNode* node : _jointCheckNodes)
-    {
-        const unsigned char* const block = NodeFlags::flagBlock(*node);
-        prefetchLine(block);
-        prefetchLine(block + 2 * kNodeFlagBytes - 1);
-    }
-    for (const NodeCheck& check : _checks) prefetchLine(NodeFlags::maskAddress(*check.node));
+    static_assert(2 * kNodeFlagBytes <= 64, "a block and its reference frame within a line that the block starts");
+    const SkeletonNode* const* nodes = _packed.jointNodes();
+    const std::size_t n = _packed.numJoints();
+    if (_packed.blocksStartLines())
+        for (std::size_t j = 0; j < n; ++j) prefetchLine(NodeFlags::flagBlock(*nodes[j]));
+    else
+        for (std::size_t j = 0; j < n; ++j)
+        {
+            const unsigned char* const block = NodeFlags::flagBlock(*nodes[j]);
+            prefetchLine(block);
+            prefetchLine(block + 2 * kNodeFlagBytes - 1);
+        }
+    for (const NodeCheck* check = _packed.checksBegin(); check != _packed.checksEnd(); ++check)
+        prefetchLine(NodeFlags::maskAddress(*check->node));
 }
 
 bool ActorCullPlan::isCurrent() const
@@ -451,26 +520,33 @@ bool ActorCullPlan::isCurrent() const
     // The joints compared without a branch, so that their loads overlap; the nodes were asked for ahead, by the
     // cull of the actors before this one (ActorNode::prefetchCullAhead()) or with the joints' matrices
     // (prefetchJoints()).
-    if (!jointsUnchanged()) return false;
-    for (const NodeCheck& check : _checks)
-        if (!isUnchanged(check)) return false;
+    // Most actors' joints all have the same flags: then the one block is compared with every node's, held in
+    // registers, and no index is read.
+    const unsigned char* const byteIndices = _packed.byteFlagIndices();
+    const unsigned* const wordIndices = _packed.wordFlagIndices();
+    if (!(_packed.allAlike()      ? jointsUnchanged([](std::size_t) { return 0u; })
+          : _packed.byteIndices() ? jointsUnchanged([byteIndices](std::size_t j) { return unsigned(byteIndices[j]); })
+                                  : jointsUnchanged([wordIndices](std::size_t j) { return wordIndices[j]; })))
+        return false;
+    for (const NodeCheck* check = _packed.checksBegin(); check != _packed.checksEnd(); ++check)
+        if (!isUnchanged(*check)) return false;
     for (const StateCheck& check : _stateChecks)
         if (!isUnchanged(check)) return false;
     return true;
 }
 
-bool ActorCullPlan::jointsUnchanged() const
+template <class FlagIndex>
+bool ActorCullPlan::jointsUnchanged(FlagIndex flagIndex) const
 {
     // Every joint compared, the differences gathered with no branch: the loads of one node do not wait on the
     // comparison of the one before.
-    const SkeletonNode* const* nodes = _jointCheckNodes.data();
-    const unsigned* seenIndex = _jointCheckFlags.data();
-    const JointFlags* seen = _jointFlags.data();
+    const SkeletonNode* const* nodes = _packed.jointNodes();
+    const JointFlags* seen = _packed.jointFlags();
     BlockDifference blocks;
     int frames = 0;
-    for (std::size_t j = 0, n = _jointCheckNodes.size(); j < n; ++j)
+    for (std::size_t j = 0, n = _packed.numJoints(); j < n; ++j)
     {
-        const JointFlags& flags = seen[seenIndex[j]];
+        const JointFlags& flags = seen[flagIndex(j)];
         blocks.add(NodeFlags::flagBlock(*nodes[j]), flags.nodeFlags, _flagMask);
         frames |= nodes[j]->getReferenceFrame() ^ flags.referenceFrame;
     }
@@ -494,7 +570,7 @@ bool ActorCullPlan::isUnchanged(const NodeCheck& check) const
         const osg::Group& geode = static_cast<const osg::Group&>(node);
         if (geode.getNumChildren() != check.numChildren) return false;
         for (unsigned i = 0; i < check.numChildren; ++i)
-            if (geode.getChild(i) != _geodeChildren[check.firstChild + i]) return false;
+            if (geode.getChild(i) != _packed.geodeChildren()[check.firstChild + i]) return false;
         return true;
     }
     default: return node.getDataVariance() == check.dataVariance;

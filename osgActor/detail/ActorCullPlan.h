@@ -177,9 +177,55 @@ private:
         std::size_t operator()(const JointFlags& flags) const;
     };
     typedef std::unordered_map<JointFlags, unsigned, JointFlagsHash> JointFlagsIndex;
+
+    /** One allocation, cache-line aligned, holding in turn: each checked joint's node; which distinct flags each
+      * had (none where all had the same, as most actors' joints do; a byte each while there are at most 256
+      * distinct ones, else four); the distinct flags; the geodes' and drawables' checks; the geodes' children. */
+    class PackedChecks
+    {
+    public:
+        void pack(const std::vector<const SkeletonNode*>& jointNodes, const std::vector<unsigned>& jointFlagIndices,
+                  const std::vector<JointFlags>& jointFlags, const std::vector<NodeCheck>& checks,
+                  const std::vector<const osg::Node*>& geodeChildren);
+        std::size_t numJoints() const { return _numJoints; }
+        const SkeletonNode* const* jointNodes() const { return at<const SkeletonNode*>(0); }
+        bool allAlike() const { return _allAlike; }
+        /** Whether every checked joint's flag block starts a cache line (skeleton nodes an actor built, placed so),
+          * so that the block and the reference frame after it are one line. */
+        bool blocksStartLines() const { return _blocksStartLines; }
+        bool byteIndices() const { return _byteIndices; }
+        const unsigned char* byteFlagIndices() const { return at<unsigned char>(_flagIndicesAt); }
+        const unsigned* wordFlagIndices() const { return at<unsigned>(_flagIndicesAt); }
+        const JointFlags* jointFlags() const { return at<JointFlags>(_jointFlagsAt); }
+        const NodeCheck* checksBegin() const { return at<NodeCheck>(_checksAt); }
+        const NodeCheck* checksEnd() const { return checksBegin() + _numChecks; }
+        const osg::Node* const* geodeChildren() const { return at<const osg::Node*>(_geodeChildrenAt); }
+        const void* data() const { return _lines.data(); }
+        std::size_t bytes() const { return _lines.size() * sizeof(CacheLine); }
+
+    private:
+        struct alignas(64) CacheLine
+        {
+            unsigned char bytes[64];
+        };
+        template <class T>
+        const T* at(std::size_t offset) const
+        {
+            return reinterpret_cast<const T*>(reinterpret_cast<const unsigned char*>(_lines.data()) + offset);
+        }
+        std::vector<CacheLine> _lines;
+        unsigned _numJoints = 0;
+        unsigned _numChecks = 0;
+        unsigned _flagIndicesAt = 0, _jointFlagsAt = 0, _checksAt = 0, _geodeChildrenAt = 0;
+        bool _allAlike = false;
+        bool _byteIndices = true;
+        bool _blocksStartLines = false;
+    };
+    /** Whether every checked joint's flags are those it had, flagIndex(j) saying which of the distinct ones. */
+    template <class FlagIndex>
+    bool jointsUnchanged(FlagIndex flagIndex) const;
     /** Adds a joint's check to the packed ones; false where its flags are not in one block. */
     bool addJointCheck(const SkeletonNode& node);
-    bool jointsUnchanged() const;
 
     void addChild(osg::Node& child, int joint);
     void addJoint(SkeletonNode& node, int parent);
@@ -200,6 +246,14 @@ private:
       * _topStepsAllJoints) and the DRAWABLE steps. */
     void noteShape();
 
+    // First, so that the check reads the plan's first lines only.
+    /** Everything isCurrent() reads of the plan but the state sets' checks, packed in one allocation in the order
+      * it is read (PackedChecks), so that an idle actor's check reads a few whole lines of the plan, not a part of
+      * five arrays' each. Made from the planning's arrays below once the plan is made. */
+    PackedChecks _packed;
+    /** Which bytes of a flag block are fields (osg::Node's layout); null until a joint is checked as a block. */
+    const unsigned char* _flagMask = nullptr;
+    std::vector<StateCheck> _stateChecks;
     std::vector<Step> _steps;
     std::vector<Joint> _joints;
     std::vector<osg::Node::NodeMask> _masks;
@@ -207,18 +261,14 @@ private:
     bool _topStepsAllJoints = true;
     std::vector<unsigned> _drawableSteps;
     std::vector<const osg::Node*> _geodesBelow; // runs of Joint::firstGeode, numGeodes
-    /** The joints' checks, packed apart from the geodes' and drawables': per joint its node and which of
-      * _jointFlags it had, so that the plan's side of the check is a few lines read in order. */
+    /** While planning: per checked joint its node and which of _jointFlags it had; the distinct flags (where each
+      * one is: _distinctJointFlags); the geodes' and drawables' checks, and each checked geode's children, in
+      * order (consecutive runs, one per geode). Packed into _packed, then emptied. */
     std::vector<const SkeletonNode*> _jointCheckNodes;
     std::vector<unsigned> _jointCheckFlags;
     std::vector<JointFlags> _jointFlags;
-    /** Which bytes of a flag block are fields (osg::Node's layout); null until a joint is checked as a block. */
-    const unsigned char* _flagMask = nullptr;
-    /** Where each distinct one of _jointFlags is, kept only while planning. */
     JointFlagsIndex _distinctJointFlags;
     std::vector<NodeCheck> _checks;
-    std::vector<StateCheck> _stateChecks;
-    /** Each checked geode's children when planned, in order: consecutive runs, one per geode. */
     std::vector<const osg::Node*> _geodeChildren;
     /** Every node a step names, held so that none of them is freed while the plan is kept. */
     std::vector<osg::ref_ptr<osg::Node>> _held;

@@ -143,21 +143,33 @@ TEST(CullPlan, AnUnchangedActorBeforeAStillCameraGivesTheLeavesOfItsPreviousFram
 
 TEST(CullPlan, UnchangedActorsPartlyOutOfViewGiveTheOrdinaryGraphFrameAfterFrame)
 {
-    // An unchanged actor before a still camera is not entered by the visitor (ActorNode::accept()): its bound is
-    // tested where the visitor would test it, and its calls made again. One figure out of view, one in it.
-    Scene scene;
-    const std::size_t allInView = scene.cullExpectingTheOrdinaryGraph().size();
-    scene.probe.lookAt(osg::Vec3d(2.2, -3.0, 1.2), osg::Vec3d(3.2, 0.0, 0.9));
-    scene.setCullMode(ActorNode::CULL_NODE_BY_NODE);
-    const std::vector<CulledLeaf> ordinary = scene.probe.cull(++scene.frame);
-    scene.setCullMode(ActorNode::CULL_AS_ONE);
-    ASSERT_FALSE(ordinary.empty());
-    ASSERT_LT(ordinary.size(), allInView); // the test can fail: a figure is out of view
-    for (int frame = 0; frame < 4; ++frame)
+    // An unchanged actor before a still camera is not entered by the visitor (ActorNode::accept(), where near and
+    // far are not computed): its bound is tested where the visitor would test it, and its calls made again; where
+    // they are, the visitor enters it and its cull finds its calls kept. One figure out of view, one in it.
+    for (const bool computeNearFar : {true, false})
     {
-        const std::vector<CulledLeaf> asOne = scene.probe.cull(++scene.frame);
-        ASSERT_EQ(asOne.size(), ordinary.size()) << "frame " << frame;
-        for (std::size_t i = 0; i < asOne.size(); ++i) EXPECT_TRUE(asOne[i] == ordinary[i]) << "frame " << frame << ", leaf " << i;
+        SCOPED_TRACE(computeNearFar ? "near and far computed" : "near and far not computed");
+        Scene scene;
+        if (!computeNearFar)
+            scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+        const std::size_t allInView = scene.cullExpectingTheOrdinaryGraph().size();
+        scene.probe.lookAt(osg::Vec3d(2.2, -3.0, 1.2), osg::Vec3d(3.2, 0.0, 0.9));
+        scene.setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        const std::vector<CulledLeaf> ordinary = scene.probe.cull(++scene.frame);
+        scene.setCullMode(ActorNode::CULL_AS_ONE);
+        ASSERT_FALSE(ordinary.empty());
+        ASSERT_LT(ordinary.size(), allInView); // the test can fail: a figure is out of view
+        // Without near and far the cull as one does not test the parts of a figure in view against the frustum
+        // (OpenGL clips them; ActorCull.h): its first cull from here, made afresh, is what the replays must give.
+        const std::vector<CulledLeaf> expected = computeNearFar ? ordinary : scene.probe.cull(++scene.frame);
+        ASSERT_LT(expected.size(), allInView); // the figure out of view is culled by its bound
+        for (int frame = 0; frame < 4; ++frame)
+        {
+            const std::vector<CulledLeaf> asOne = scene.probe.cull(++scene.frame);
+            ASSERT_EQ(asOne.size(), expected.size()) << "frame " << frame;
+            for (std::size_t i = 0; i < asOne.size(); ++i)
+                EXPECT_TRUE(asOne[i] == expected[i]) << "frame " << frame << ", leaf " << i;
+        }
     }
 }
 
@@ -184,6 +196,82 @@ TEST(CullPlan, AJointMatrixSetByHandIsSeen)
     scene.first().getSkeletonNode("head")->setMatrix(osg::Matrix::translate(0.3, 0.0, 0.4));
     const std::vector<CulledLeaf> leaves = scene.cullExpectingTheOrdinaryGraph();
     EXPECT_FALSE(leaves.empty());
+}
+
+namespace {
+
+/** A bound computed by a callback, not by the node: ActorNode::computeBound() is then not called. */
+class FixedBound : public osg::Node::ComputeBoundingSphereCallback
+{
+public:
+    osg::BoundingSphere computeBound(const osg::Node&) const override
+    {
+        return osg::BoundingSphere(osg::Vec3(1.0f, 0.0f, 1.0f), 5.0f);
+    }
+};
+
+} // namespace
+
+TEST(CullPlan, AnActorsOwnMatrixSetByHandIsSeenWhateverComputesItsBound)
+{
+    // An unchanged actor's replay takes its matrix to be the one of its kept calls while its bound has not been
+    // recomputed (every setter of a MatrixTransform's matrix dirties it); a bound callback recomputes it without the
+    // actor knowing, so there the matrix itself is compared. Near and far not computed: the visitor does not enter
+    // such an actor (ActorNode::accept()); computed: it does, and the actor's cull finds its kept calls.
+    for (const bool callback : {false, true})
+        for (const bool computeNearFar : {false, true})
+        {
+            SCOPED_TRACE(std::string(callback ? "a bound callback" : "no bound callback") +
+                         (computeNearFar ? ", near and far computed" : ", near and far not computed"));
+            Scene scene;
+            if (!computeNearFar)
+                scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+            ActorNode& actor = scene.first();
+            if (callback) actor.setComputeBoundingSphereCallback(new FixedBound);
+            const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
+            scene.cullExpectingTheOrdinaryGraph();
+            scene.probe.cull(++scene.frame);
+            const std::vector<CulledLeaf> kept = scene.probe.cull(++scene.frame); // replayed
+            // Not through the pre-translation: osg::MatrixTransform::setMatrix() on the actor, as a user may.
+            actor.setMatrix(actor.getMatrix() * osg::Matrix::translate(0.4, 0.0, 0.0));
+            const std::vector<CulledLeaf> moved = scene.cullExpectingTheOrdinaryGraph();
+            const CulledLeaf* keptHead = find(kept, head);
+            const CulledLeaf* movedHead = find(moved, head);
+            ASSERT_TRUE(keptHead && movedHead);
+            EXPECT_NEAR(movedHead->modelView[12] - keptHead->modelView[12], 0.4, 1e-6);
+            scene.probe.cull(++scene.frame);
+            const std::vector<CulledLeaf> replayed = scene.probe.cull(++scene.frame);
+            ASSERT_EQ(replayed.size(), moved.size());
+            for (std::size_t i = 0; i < moved.size(); ++i) EXPECT_TRUE(replayed[i] == moved[i]) << "leaf " << i;
+        }
+}
+
+TEST(CullPlan, AnActorWhoseParentTransformMovesIsCulledAfresh)
+{
+    // The replay compares where the visitor enters the actor (the parent's model-view matrix) with where it entered
+    // for the kept calls.
+    for (const bool computeNearFar : {false, true})
+    {
+        SCOPED_TRACE(computeNearFar ? "near and far computed" : "near and far not computed");
+        Scene scene;
+        if (!computeNearFar)
+            scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+        osg::ref_ptr<osg::MatrixTransform> parent = new osg::MatrixTransform;
+        scene.root->replaceChild(scene.actors[1].get(), parent.get());
+        parent->addChild(scene.actors[1].get());
+        const osg::Drawable* head = scene.actors[1]->getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
+        scene.cullExpectingTheOrdinaryGraph();
+        scene.probe.cull(++scene.frame);
+        const std::vector<CulledLeaf> kept = scene.probe.cull(++scene.frame);
+        parent->setMatrix(osg::Matrix::translate(0.0, 0.0, 0.3));
+        const std::vector<CulledLeaf> moved = scene.cullExpectingTheOrdinaryGraph();
+        const CulledLeaf* keptHead = find(kept, head);
+        const CulledLeaf* movedHead = find(moved, head);
+        ASSERT_TRUE(keptHead && movedHead);
+        // Up the world's z, the camera looking down a little: up the eye's y by a little less.
+        EXPECT_GT(movedHead->modelView[13] - keptHead->modelView[13], 0.29);
+        EXPECT_LT(movedHead->modelView[13] - keptHead->modelView[13], 0.3 + 1e-9);
+    }
 }
 
 TEST(CullPlan, ChildrenAddedRemovedOrReplacedBelowJointsAndGeodesAreSeen)

@@ -5,6 +5,8 @@
 // current again.
 #include <osgActor/detail/ActorCullPlan.h>
 
+#include <osgActor/core/ActorDefinitionBuilder>
+
 #include "render/TestFigure.h"
 
 #include <osg/NodeCallback>
@@ -124,4 +126,39 @@ TEST(CullPlanCheck, JointsWithAStateSetEachAreEachComparedWithTheirOwn)
     EXPECT_FALSE(check.plan->isCurrent());
     first.setStateSet(firstState.get());
     EXPECT_TRUE(check.plan->isCurrent());
+}
+
+TEST(CullPlanCheck, MoreDistinctJointsThanAByteCountsAreEachComparedWithTheirOwn)
+{
+    // The plan numbers a joint's distinct flags in a byte while there are at most 256 of them, in four bytes past
+    // that: a chain of 300 joints with a state set each takes the wider numbers.
+    ActorDefinitionBuilder builder("chain");
+    builder.addJoint("j0");
+    for (unsigned i = 1; i < 300; ++i)
+        builder.addJoint("j" + std::to_string(i), "j" + std::to_string(i - 1)).offset(0, 0, 1);
+    const BuildResult built = builder.build();
+    ASSERT_TRUE(built) << built.error;
+    osg::ref_ptr<ActorNode> actor = new ActorNode(built.definition);
+    ASSERT_EQ(actor->getNumSkeletonNodes(), 300u);
+    std::vector<osg::ref_ptr<osg::StateSet>> states;
+    for (unsigned i = 0; i < actor->getNumSkeletonNodes(); ++i)
+    {
+        states.push_back(new osg::StateSet);
+        actor->getSkeletonNode(i)->setStateSet(states.back().get());
+    }
+    osg::ref_ptr<ActorCullPlan> plan = new ActorCullPlan(*actor);
+    ASSERT_TRUE(plan->isCurrent());
+    for (unsigned joint : {0u, 255u, 256u, 299u})
+    {
+        SkeletonNode& node = *actor->getSkeletonNode(joint);
+        // Another joint's state set (one the plan knows, under another number), then its own back.
+        node.setStateSet(states[joint == 0 ? 299 : joint - 1].get());
+        EXPECT_FALSE(plan->isCurrent()) << joint;
+        node.setStateSet(states[joint].get());
+        EXPECT_TRUE(plan->isCurrent()) << joint;
+        node.setNodeMask(0x2);
+        EXPECT_FALSE(plan->isCurrent()) << joint;
+        node.setNodeMask(~0u);
+        EXPECT_TRUE(plan->isCurrent()) << joint;
+    }
 }
