@@ -263,12 +263,22 @@ std::vector<double*> ActorNode::buildSkeletonNodes(const ActorDefinition& def)
     // large actor's nodes do not fit the caches, and every later pass over them would fetch them again.
     const unsigned numJoints = def.getNumJoints();
     const double* const defaultDofs = def.getDefaultDofs().data();
+    // Each node's list of children made as long as it will be: grown child by child, it would be copied each time
+    // it is full, and each copy touches every child (its reference count). [numJoints] counts this node's.
+    std::vector<unsigned> numChildren(numJoints + 1, 0);
+    for (unsigned j = 0; j < numJoints; ++j)
+    {
+        const int parent = def.getParent(j);
+        ++numChildren[parent == kNoParent ? numJoints : static_cast<unsigned>(parent)];
+    }
+    _children.reserve(_children.size() + numChildren[numJoints]);
     std::vector<double*> locals;
     locals.reserve(numJoints);
     _skeletonNodes.reserve(numJoints);
     for (unsigned j = 0; j < numJoints; ++j)
     {
         osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def.getJointName(j));
+        if (numChildren[j] > 0) SkeletonNodeAccess::reserveChildren(*node, numChildren[j]);
         giveBoundMode(*node, def, _boundMode);
         // skl_m at the default DOFs (local space), written over the identity the constructor left: its inverse
         // must be made afresh.
