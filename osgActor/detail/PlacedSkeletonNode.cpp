@@ -1,8 +1,6 @@
 #include <osgActor/detail/PlacedSkeletonNode.h>
 
-#include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <new>
 
 namespace osgActor {
@@ -24,30 +22,23 @@ std::size_t matrixOffset()
     return offset;
 }
 
+/** Bytes between a cache-line boundary and the node's address that put its matrix at the next boundary. */
+std::size_t placementPad() { return (kCacheLine - matrixOffset() % kCacheLine) % kCacheLine; }
+
 } // namespace
 
-// A block from malloc() with room to place the node in, and the block's address kept just below the node, rather
-// than a block from aligned_alloc(): glibc makes an aligned block by carving a larger one and filing the pieces
-// left over in its bins, several times malloc()'s work, and the next allocations then sort through those pieces.
 void* PlacedSkeletonNode::operator new(std::size_t size)
 {
-    static_assert(alignof(SkeletonNode) <= alignof(void*), "a node placed at any multiple of a pointer's size");
-    const std::uintptr_t matrixInLine = matrixOffset() % kCacheLine;
-    void* const block = std::malloc(sizeof(void*) + kCacheLine - 1 + size);
+    const std::size_t pad = placementPad();
+    const std::size_t blockSize = (size + pad + kCacheLine - 1) / kCacheLine * kCacheLine;
+    void* block = std::aligned_alloc(kCacheLine, blockSize);
     if (!block) throw std::bad_alloc();
-    // The lowest address past the kept pointer whose matrix starts a cache line.
-    const std::uintptr_t lowest = reinterpret_cast<std::uintptr_t>(block) + sizeof(void*);
-    const std::uintptr_t node = (lowest + matrixInLine + kCacheLine - 1) / kCacheLine * kCacheLine - matrixInLine;
-    std::memcpy(reinterpret_cast<void*>(node - sizeof(void*)), &block, sizeof block);
-    return reinterpret_cast<void*>(node);
+    return static_cast<char*>(block) + pad;
 }
 
 void PlacedSkeletonNode::operator delete(void* node)
 {
-    if (!node) return;
-    void* block;
-    std::memcpy(&block, static_cast<const char*>(node) - sizeof(void*), sizeof block);
-    std::free(block);
+    if (node) std::free(static_cast<char*>(node) - placementPad());
 }
 
 } // namespace detail
