@@ -1,6 +1,7 @@
 #include <osgActor/ActorNode>
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/GlmOsg>
+#include <osgActor/core/LocalMatricesJob>
 #include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/PoseFollower.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
@@ -179,12 +180,15 @@ void ActorNode::setDefinition(ActorDefinitionPtr definition)
         if (getDefinition() && getDefinition()->getParent(node->getJointIndex()) == kNoParent) removeChild(node.get());
     }
     releaseSkeletonNodes();
-    // Pose the actor before its nodes exist, so a fresh actor has correct bounds and queries before its first
-    // frame: FK then reads and writes the pose's own arrays in order, rather than the new nodes scattered on the heap.
-    _pose = ActorPose(std::move(definition), ActorPose::PosedAtDefaults());
+    // The nodes come first, each posed as it is made, so a fresh actor has correct bounds before its first frame;
+    // the pose then takes their matrices where they are, and makes the model matrices on the first query. For a
+    // large actor, whose nodes and pose do not fit the caches, every pass over them costs as much as its arithmetic:
+    // the local matrices are written once, into memory the node's constructor has just written, and never copied.
+    std::vector<double*> locals;
+    if (definition) locals = buildSkeletonNodes(*definition);
+    _pose = ActorPose(std::move(definition), ActorPose::LocalMatricesBuiltAt{std::move(locals)});
     updateSharedObjects();
     dropUnfittingIkChains();
-    buildSkeletonNodes();
     writeActorMatrix();
 }
 
@@ -253,28 +257,36 @@ IkChainPtr ActorNode::findIkChain(const std::string& name) const
     return IkChainPtr();
 }
 
-void ActorNode::buildSkeletonNodes()
+std::vector<double*> ActorNode::buildSkeletonNodes(const ActorDefinition& def)
 {
-    const ActorDefinition* def = getDefinition().get();
-    if (!def) return;
-    // Each node is made, linked, given its bound mode and its place for the local matrix in one visit, while its
-    // cache lines are fresh: a large actor's nodes do not fit the caches, and every later pass over them would fetch
-    // them again.
-    std::vector<double*> targets;
-    targets.reserve(def->getNumJoints());
-    _skeletonNodes.reserve(def->getNumJoints());
-    double* const* const posedLocals = _pose.getLocalMatrixTargets();
-    for (unsigned j = 0; j < def->getNumJoints(); ++j)
+    // Each node is made, posed, linked and given its bound mode in one visit, while its cache lines are fresh: a
+    // large actor's nodes do not fit the caches, and every later pass over them would fetch them again.
+    const unsigned numJoints = def.getNumJoints();
+    const double* const defaultDofs = def.getDefaultDofs().data();
+    // Each node's list of children made as long as it will be: grown child by child, it would be copied each time
+    // it is full, and each copy touches every child (its reference count). [numJoints] counts this node's.
+    std::vector<unsigned> numChildren(numJoints + 1, 0);
+    for (unsigned j = 0; j < numJoints; ++j)
     {
-        osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def->getJointName(j));
-        giveBoundMode(*node, *def, _boundMode);
-        // The pose's local matrix goes into the node now (the pose is redirected to it below): its inverse must be
-        // made afresh.
+        const int parent = def.getParent(j);
+        ++numChildren[parent == kNoParent ? numJoints : static_cast<unsigned>(parent)];
+    }
+    _children.reserve(_children.size() + numChildren[numJoints]);
+    std::vector<double*> locals;
+    locals.reserve(numJoints);
+    _skeletonNodes.reserve(numJoints);
+    for (unsigned j = 0; j < numJoints; ++j)
+    {
+        osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def.getJointName(j));
+        if (numChildren[j] > 0) SkeletonNodeAccess::reserveChildren(*node, numChildren[j]);
+        giveBoundMode(*node, def, _boundMode);
+        // skl_m at the default DOFs (local space), written over the identity the constructor left: its inverse
+        // must be made afresh.
         double* const matrix = SkeletonNodeAccess::matrixStorage(*node);
-        std::memcpy(matrix, posedLocals[j], 16 * sizeof(double));
+        writeJointMatrix(def.getKinematics(j), defaultDofs, matrix);
         SkeletonNodeAccess::matrixWritten(*node);
-        targets.push_back(matrix);
-        const int parent = def->getParent(j);
+        locals.push_back(matrix);
+        const int parent = def.getParent(j);
         // osg::Group's own addChild(): the skeleton node's would report each edit up its chain to this actor, a walk
         // as deep as the joint; the plan is dirtied once below.
         osg::Group& group = parent == kNoParent ? static_cast<osg::Group&>(*this)
@@ -283,13 +295,11 @@ void ActorNode::buildSkeletonNodes()
         _skeletonNodes.push_back(node);
     }
     dirtyCullPlan();
-    // The nodes hold the pose's local matrices already; they are written, so the changes are consumed here: no pass
-    // over the nodes to dirty them (a new node's bound is not computed yet, nor are its parents').
-    _pose.redirectLocalMatrices(std::move(targets), LocalMatrices::Values::AlreadyThere);
-    bool written = false;
-    _pose.consumeChangedLocals([&written](unsigned, double*) { written = true; });
-    if (written) ++_poseVersion;
+    // The nodes' matrices are new: a cull composes them afresh. No pass over the nodes to dirty them (a new node's
+    // bound is not computed yet, nor are its parents').
+    if (numJoints > 0) ++_poseVersion;
     _boundsToPropagate = true;
+    return locals;
 }
 
 void ActorNode::bindLocalMatricesToNodes()

@@ -478,9 +478,8 @@ ActorNodeResult createActorNode(const ActorDocument& document, const ActorDefini
     if (!buildIkChains(document, *definition, fileName, chains, result.error)) return result;
     for (IkChainPtr& chain : chains) actor->addIkChain(std::move(chain));
     if (!document.sections.empty()) actor->setUserValue(kSectionsUserValue, sectionsText(document.sections));
-    // Pose the actor now, both its matrices for queries and its scene graph: a blocked actor would otherwise
-    // show and answer with its default pose until unblocked.
-    actor->updatePose();
+    // Pose the actor's scene graph now, before it may be blocked: a blocked actor would otherwise show and answer
+    // with its default pose until unblocked. Its model matrices follow on the first query (updatePose()).
     actor->update(nullptr);
     // Set only when it differs from the new actor's: setting it visits every skeleton node.
     const ActorNode::BoundMode boundMode =

@@ -85,6 +85,25 @@ ActorPose::ActorPose(ActorDefinitionPtr definition, PosedAtDefaults) : _definiti
     updateMatrices();
 }
 
+ActorPose::ActorPose(ActorDefinitionPtr definition, LocalMatricesBuiltAt built) : _definition(std::move(definition))
+{
+    if (!_definition) return;
+    takeDefinition();
+    _model.resize(_numJoints); // default-initialized (AlignedAllocator): written by the first updateModelMatrices()
+    _local = LocalMatrices::at(std::move(built.targets));
+    if (_local.size() != _numJoints)
+    {
+        _local = LocalMatrices::unwritten(_numJoints);
+        updateMatrices();
+        return;
+    }
+    std::fill_n(jointDirtyFlags(), _numJoints, 0);
+    std::fill_n(modelStaleFlags(), _numJoints, 1);
+    _anyDirty = false;
+    _anyModelStale = _numJoints > 0;
+    _totalRecomputed = _numJoints;
+}
+
 void ActorPose::takeDefinition()
 {
     const unsigned numJoints = _definition->getNumJoints();

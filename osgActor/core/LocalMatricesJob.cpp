@@ -129,6 +129,13 @@ glm::dmat4 computeJointMatrix(const JointKinematics& k, const double* dofs)
     return result;
 }
 
+OSGACTOR_HOT_PATH void writeJointMatrix(const JointKinematics& k, const double* dofs, double* local)
+{
+    FastSinCosRangeGuard guard;
+    buildJointMatrixDispatched(k, dofs, TrigInOrder::inFastRange(k, dofs, guard), local);
+    if (!guard.passed()) buildJointMatrixDispatched(k, dofs, TrigInOrder::exact(k, dofs), local);
+}
+
 bool LocalMatricesJob::validate() const
 {
     if (!definition) return false;

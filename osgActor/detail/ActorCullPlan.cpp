@@ -103,6 +103,25 @@ struct NodeFlags : osg::Node
     }
 };
 
+/** Appends node to held. osg::ref_ptr has no move constructor, so a vector of them that grows copies each one, and
+  * each copy and each destruction of the old one touches its node (its reference count): the nodes held, one or two
+  * a joint, would all be fetched again at each growth. Grown here by swapping the pointers across instead. */
+void hold(std::vector<osg::ref_ptr<osg::Node>>& held, osg::Node& node)
+{
+    if (held.size() == held.capacity())
+    {
+        std::vector<osg::ref_ptr<osg::Node>> grown;
+        grown.reserve(2 * held.size() + 16);
+        for (osg::ref_ptr<osg::Node>& old : held)
+        {
+            grown.emplace_back();
+            grown.back().swap(old);
+        }
+        held.swap(grown); // grown now holds only null pointers
+    }
+    held.push_back(&node);
+}
+
 /** The bytes in which blocks of ActorCullPlan::kNodeFlagBytes differ, gathered over many pairs with no branch,
   * sixteen bytes at a time where the compiler has vectors (a byte order that never changes the answer). */
 class BlockDifference
@@ -259,7 +278,7 @@ ActorCullPlan::Step& ActorCullPlan::addStep(Kind kind, osg::Node& node, int join
     _steps.push_back(step);
     if (kind == JOINT || kind == GEODE || kind == DRAWABLE)
     {
-        _held.push_back(&node);
+        hold(_held, node);
         addCheck(kind, node);
     }
     return _steps.back();
@@ -458,7 +477,7 @@ void ActorCullPlan::addGeode(osg::Geode& geode, int joint)
 
 void ActorCullPlan::addOrdinary(osg::Node& node, int joint)
 {
-    _held.push_back(&node);
+    hold(_held, node);
     addStep(ORDINARY, node, joint);
     notePathNeeded();
 }

@@ -18,6 +18,10 @@ struct SkeletonNodeAccess
       * joint's skl_m. */
     static double* matrixStorage(SkeletonNode& node) { return node._matrix.ptr(); }
 
+    /** Makes room for the node's children before they are added: adding them one by one would grow the list by
+      * copying it, and each copy of an osg::ref_ptr touches the child it points to. */
+    static void reserveChildren(SkeletonNode& node, unsigned numChildren) { node._children.reserve(numChildren); }
+
     /** Marks the node's bound dirty without walking to the parents; returns whether it had been computed (false:
       * it, and so its ancestors', were dirty already). */
     static bool markBoundDirty(SkeletonNode& node)

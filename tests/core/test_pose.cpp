@@ -1,5 +1,6 @@
 #include <osgActor/core/ActorDefinitionBuilder>
 #include <osgActor/core/ActorPose>
+#include <osgActor/core/LocalMatricesJob>
 
 #include <gtest/gtest.h>
 
@@ -238,6 +239,90 @@ TEST(ActorPose, APosedPoseIsWhatAnUpdateOfANewPoseGives)
     EXPECT_EQ(posed.updateMatrices(), 0u) << "nothing left to do";
 
     ActorPose empty(nullptr, ActorPose::PosedAtDefaults{});
+    EXPECT_EQ(empty.getNumJoints(), 0u);
+}
+
+/** The arm with a default pose that is not the identity anywhere, so each joint's matrix tells the joints apart. */
+ActorDefinitionPtr makeBentArm()
+{
+    ActorDefinitionBuilder b("arm");
+    b.addJoint("shoulder").dofs(kRotationDofs).defaultValue(Dof::RY, 0.4).defaultValue(Dof::RZ, -0.2);
+    b.addJoint("elbow", "shoulder").offset(0, 0, -0.3).dofs(dofBit(Dof::RX)).limits(Dof::RX, 0.0, 2.5)
+        .defaultValue(Dof::RX, 1.1);
+    b.addJoint("wrist", "elbow").offset(0, 0, -0.25).dofs(Dof::RX | Dof::RY).defaultValue(Dof::RY, -0.7);
+    b.addJoint("hand", "wrist").offset(0, 0, -0.1);
+    b.addJoint("slider", "shoulder").dofs(dofBit(Dof::TX)).limits(Dof::TX, -0.1, 0.1).defaultValue(Dof::TX, 0.05);
+    return b.build().definition;
+}
+
+/** Each joint's local matrix at the default DOFs, built where the caller keeps it, as ActorNode does in its nodes. */
+std::vector<glm::dmat4> localMatricesBuiltOutside(const ActorDefinition& definition)
+{
+    std::vector<glm::dmat4> built(definition.getNumJoints(), glm::dmat4(0.0));
+    for (unsigned j = 0; j < definition.getNumJoints(); ++j)
+        writeJointMatrix(definition.getKinematics(j), definition.getDefaultDofs().data(), &built[j][0][0]);
+    return built;
+}
+
+TEST(ActorPose, ANullBuiltLocalMatrixOrAWrongCountGivesAPoseWithMatricesOfItsOwn)
+{
+    const ActorDefinitionPtr arm = makeBentArm();
+    ActorPose updated(arm);
+    updated.updateMatrices();
+    std::vector<glm::dmat4> built = localMatricesBuiltOutside(*arm);
+    std::vector<double*> withNull, tooFew;
+    for (glm::dmat4& m : built) withNull.push_back(&m[0][0]);
+    tooFew = withNull;
+    tooFew.pop_back();
+    withNull[2] = nullptr;
+    for (const std::vector<double*>& targets : {withNull, tooFew})
+    {
+        ActorPose pose(arm, ActorPose::LocalMatricesBuiltAt{targets});
+        ASSERT_EQ(pose.getNumJoints(), arm->getNumJoints());
+        EXPECT_NE(pose.getLocalMatrixTargets()[0], &built[0][0][0]) << "matrices of its own";
+        for (unsigned j = 0; j < pose.getNumJoints(); ++j)
+        {
+            EXPECT_EQ(pose.getLocalMatrix(j), updated.getLocalMatrix(j)) << j;
+            EXPECT_EQ(pose.getModelMatrix(j), updated.getModelMatrix(j)) << j;
+        }
+        unsigned changed = 0;
+        pose.consumeChangedLocals([&changed](unsigned, double*) { ++changed; });
+        EXPECT_EQ(changed, pose.getNumJoints()) << "as PosedAtDefaults: every local matrix new";
+    }
+}
+
+TEST(ActorPose, APoseTakesLocalMatricesBuiltWhereTheyLiveAndComposesTheModelMatricesOnTheFirstUpdate)
+{
+    const ActorDefinitionPtr arm = makeBentArm();
+    ActorPose updated(arm);
+    updated.updateMatrices();
+    std::vector<glm::dmat4> built = localMatricesBuiltOutside(*arm);
+    std::vector<double*> targets;
+    for (glm::dmat4& m : built) targets.push_back(&m[0][0]);
+
+    ActorPose pose(arm, ActorPose::LocalMatricesBuiltAt{targets});
+    ASSERT_EQ(pose.getNumJoints(), arm->getNumJoints());
+    EXPECT_FALSE(pose.hasDirtyJoints());
+    EXPECT_FALSE(pose.hasChangedLocals()) << "the caller has them where they are shown";
+    EXPECT_EQ(pose.getTotalRecomputedJoints(), updated.getTotalRecomputedJoints());
+    for (unsigned j = 0; j < pose.getNumJoints(); ++j)
+    {
+        EXPECT_EQ(pose.getLocalMatrixTargets()[j], targets[j]) << j;
+        EXPECT_EQ(pose.getLocalMatrix(j), updated.getLocalMatrix(j)) << j;
+    }
+    // The elbow: offset (0, 0, -0.3), turned 1.1 radians about x (local space).
+    EXPECT_EQ(pose.getLocalMatrix(1)[3], glm::dvec4(0.0, 0.0, -0.3, 1.0));
+    EXPECT_NEAR(pose.getLocalMatrix(1)[1][1], std::cos(1.1), 1e-15);
+    EXPECT_NEAR(pose.getLocalMatrix(1)[1][2], std::sin(1.1), 1e-15);
+
+    EXPECT_EQ(pose.updateMatrices(), 0u) << "no local matrix to rebuild";
+    for (unsigned j = 0; j < pose.getNumJoints(); ++j)
+        EXPECT_EQ(pose.getModelMatrix(j), updated.getModelMatrix(j)) << j;
+    pose.setDof(3, 0.5); // the elbow
+    pose.updateMatrices();
+    EXPECT_NEAR(built[1][1][1], std::cos(0.5), 1e-15) << "forward kinematics writes where the matrices live";
+
+    ActorPose empty(nullptr, ActorPose::LocalMatricesBuiltAt{});
     EXPECT_EQ(empty.getNumJoints(), 0u);
 }
 

@@ -197,6 +197,24 @@ TEST(ActorNode, LimitsAreEnforcedOnWrite)
     EXPECT_EQ(actor->getDof(1u), 2.0);
 }
 
+TEST(ActorNode, ANewActorShowsItsDefaultPoseAndABlockedOneComposesItOnTheFirstQuery)
+{
+    // Each joint turned a quarter about z by default, each child one unit along its parent's x (model units).
+    ActorDefinitionBuilder b("bent");
+    b.addJoint("base").dofs(dofBit(Dof::RZ)).defaultValue(Dof::RZ, kQuarter);
+    b.addJoint("upper", "base").offset(1, 0, 0).dofs(dofBit(Dof::RZ)).defaultValue(Dof::RZ, kQuarter);
+    b.addJoint("hand", "upper").offset(1, 0, 0);
+    osg::ref_ptr<ActorNode> actor = new ActorNode(b.build().definition);
+    // The nodes hold the local matrices (local space): upper one unit along x, x turned onto y.
+    const osg::Matrixd& upper = actor->getSkeletonNode(1)->getMatrix();
+    EXPECT_TRUE(vec3Near(upper.getTrans(), osg::Vec3d(1, 0, 0)));
+    EXPECT_TRUE(vec3Near(osg::Vec3d(1, 0, 0) * osg::Matrixd::rotate(upper.getRotate()), osg::Vec3d(0, 1, 0), 1e-15));
+    // Blocked before any query or frame: the model matrices are composed from the nodes' on the first query.
+    actor->setBlocked(true);
+    EXPECT_TRUE(vec3Near(actor->getJointModelMatrix(1).getTrans(), osg::Vec3d(0, 1, 0), 1e-15));
+    EXPECT_TRUE(vec3Near(actor->getJointModelMatrix(2).getTrans(), osg::Vec3d(-1, 1, 0), 1e-15)) << "turned twice";
+}
+
 TEST(ActorNode, BlockFreezesTheActorUntilUnblocked)
 {
     osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());

@@ -19,6 +19,15 @@ LocalMatrices LocalMatrices::unwritten(unsigned numJoints)
     return matrices;
 }
 
+LocalMatrices LocalMatrices::at(std::vector<double*> targets)
+{
+    LocalMatrices matrices;
+    if (std::any_of(targets.begin(), targets.end(), [](const double* t) { return t == nullptr; })) return matrices;
+    matrices._targets = std::move(targets);
+    matrices._redirected = true;
+    return matrices;
+}
+
 LocalMatrices::LocalMatrices(const LocalMatrices& other) : LocalMatrices(unwritten(other.size()))
 {
     copyValuesFrom(other.targets());
