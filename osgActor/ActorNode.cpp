@@ -761,9 +761,11 @@ void ActorNode::accept(osg::NodeVisitor& nv)
                           detail::ActorCull::canCullAsOne(*cv) && _cullState->tryAcquire() &&
                           [&] {
                               getBound(); // as the ordinary way computes it first: a recomputed bound is a change
-                              const bool done = detail::ActorCull::replayBeforeEntering(
-                                  *cv, *_cullState, *this,
-                                  detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
+                              const detail::ActorCullState::Versions versions =
+                                  detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion);
+                              const bool done =
+                                  detail::ActorCull::replayBeforeEntering(*cv, *_cullState, *this, versions) ||
+                                  detail::ActorCull::replayReshapedBeforeEntering(*cv, *_cullState, *this, versions);
                               _cullState->release();
                               return done;
                           }();

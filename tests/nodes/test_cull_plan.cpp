@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <set>
+#include <string>
 
 using namespace osgActor;
 using namespace osgActor::test;
@@ -174,6 +175,34 @@ TEST(CullPlan, AMovedCameraOrAPoseChangeIsCulledAfresh)
     scene.actors[1]->setPreTranslation(osg::Vec3d(1.3, 0.5, 0.0));
     scene.actors[1]->update(nullptr);
     scene.cullExpectingTheOrdinaryGraph();
+}
+
+TEST(CullPlan, MovingActorsWithoutNearAndFarGiveTheOrdinaryGraphFrameAfterFrame)
+{
+    // Without near and far computed, an actor that moved, seen with the same plan and view but for its own model-view
+    // matrix, makes its last cull's calls again with its new matrices and depths (ActorCull::replayReshaped()) where
+    // its last cull and this one need no test below the top joints. Poses, a figure's place and the camera change
+    // from frame to frame, the camera backing away through the small-feature threshold (where the steps are tested
+    // and some culled, so the calls change shape) and coming back.
+    Scene scene;
+    scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    const double distances[] = {6.0, 6.0, 6.5, 7.0, 7.0, 30.0, 60.0, 120.0, 240.0, 60.0, 7.0, 6.0, 6.0, 6.0};
+    std::set<std::size_t> counts;
+    for (std::size_t frame = 0; frame < sizeof distances / sizeof distances[0]; ++frame)
+    {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        scene.probe.lookAt(osg::Vec3d(1.1, -distances[frame], 1.5), osg::Vec3d(1.1, 0.0, 0.9));
+        for (std::size_t a = 0; a < scene.actors.size(); ++a)
+        {
+            if ((frame + a) % 3 == 0) continue; // one figure in three still
+            scene.actors[a]->setDof("l_elbow.rx", -0.1 * double(frame));
+            scene.actors[a]->setDof("r_knee.rx", 0.05 * double(frame + a));
+            if (frame % 4 == 1) scene.actors[a]->setPreTranslation(osg::Vec3d(1.1 * a, 0.2 * a + 0.01 * frame, 0.0));
+            scene.actors[a]->update(nullptr);
+        }
+        counts.insert(scene.cullExpectingTheOrdinaryGraph().size());
+    }
+    EXPECT_GT(counts.size(), 2u); // the test can fail: from afar, small features are culled
 }
 
 TEST(CullPlan, AJointMatrixSetByHandIsSeen)
