@@ -2,6 +2,7 @@
 #include <osgActor/ActorUpdateCallback>
 #include <osgActor/GlmOsg>
 #include <osgActor/detail/ActorCull.h>
+#include <osgActor/detail/AffineBound.h>
 #include <osgActor/detail/PoseFollower.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/Prefetch.h>
@@ -169,7 +170,9 @@ bool ActorNode::setChild(unsigned int i, osg::Node* node) { return reportEdit(os
 osg::BoundingSphere ActorNode::computeBound() const
 {
     _boundVersion.fetch_add(1, std::memory_order_relaxed);
-    return osg::MatrixTransform::computeBound();
+    // Computed at every frame where the root joint translates: without OSG's generic steps for this very class (a
+    // subclass may compute its matrix otherwise).
+    return typeid(*this) == typeid(ActorNode) ? detail::matrixTransformBound(*this) : osg::MatrixTransform::computeBound();
 }
 
 void ActorNode::setDefinition(ActorDefinitionPtr definition)

@@ -1,5 +1,6 @@
 #include <osgActor/SkeletonNode>
 #include <osgActor/ActorNode>
+#include <osgActor/detail/AffineBound.h>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/core/detail/HotPath.h>
@@ -92,7 +93,11 @@ osg::BoundingSphere SkeletonNode::computeBound() const
 {
     if (!_boundCoversRotations || _referenceFrame != RELATIVE_RF)
     {
-        const osg::BoundingSphere bound = osg::MatrixTransform::computeBound();
+        // A joint that translates (the root, mostly) computes this at every frame: without OSG's generic steps
+        // where the class computes its matrix as osg::MatrixTransform does (a subclass may not).
+        const bool plainClass = typeid(*this) == typeid(SkeletonNode) || typeid(*this) == typeid(detail::PlacedSkeletonNode);
+        const osg::BoundingSphere bound =
+            plainClass ? detail::matrixTransformBound(*this) : osg::MatrixTransform::computeBound();
         noteSubtreeShape(isRigidMatrix(_matrix.ptr()));
         return bound;
     }
