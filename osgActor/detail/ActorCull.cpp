@@ -368,6 +368,21 @@ void ActorCull::prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahea
     }
 }
 
+inline osg::Matrixd ActorCull::modelViewOnEntering(osgUtil::CullVisitor& cv, osg::MatrixTransform& actor)
+{
+    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it: for an ActorNode (relative,
+    // the caller checked), MatrixTransform's preMult, the same bits inline; another class's own call.
+    osg::Matrixd actorModelView;
+    if (typeid(actor) == typeid(ActorNode))
+        composeModelView(actor.getMatrix().ptr(), cv.getModelViewMatrix()->ptr(), actorModelView.ptr());
+    else
+    {
+        actorModelView = *cv.getModelViewMatrix();
+        actor.computeLocalToWorldMatrix(actorModelView, &cv);
+    }
+    return actorModelView;
+}
+
 bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
                                      const ActorCullState::Versions& versions)
 {
@@ -386,21 +401,6 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     // adds nothing.
     if (!cv.isCulled(actor)) replayCalls(cv, state._calls);
     return true;
-}
-
-osg::Matrixd ActorCull::modelViewOnEntering(osgUtil::CullVisitor& cv, osg::MatrixTransform& actor)
-{
-    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it: for an ActorNode (relative,
-    // the caller checked), MatrixTransform's preMult, the same bits inline; another class's own call.
-    osg::Matrixd actorModelView;
-    if (typeid(actor) == typeid(ActorNode))
-        composeModelView(actor.getMatrix().ptr(), cv.getModelViewMatrix()->ptr(), actorModelView.ptr());
-    else
-    {
-        actorModelView = *cv.getModelViewMatrix();
-        actor.computeLocalToWorldMatrix(actorModelView, &cv);
-    }
-    return actorModelView;
 }
 
 bool ActorCull::replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
