@@ -455,8 +455,7 @@ void ActorCull::replayReshaped()
     // Each leaf is given to the visitor as soon as it is remade, so that the pools see it held and give the next
     // leaf another batch or matrix.
     const float* depths = _state._stepDepths.data();
-    const ActorCullState::KeptLeaves& keptLeaves = *_state._keptLeaves;
-    const ActorCullState::KeptLeaf* kept = keptLeaves.leaves.data();
+    const ActorCullState::KeptLeaf* kept = _state._keptLeaves.data();
     for (Call& c : _state._calls)
     {
         if (c.kind == Call::ADD_LEAF)
@@ -466,7 +465,7 @@ void ActorCull::replayReshaped()
             {
                 JointDrawBatch* batch = _state._batches.acquire();
                 batch->reset(_plan, _modelViews);
-                batch->add(keptLeaves.entries.data() + leaf.firstEntry, leaf.numEntries);
+                batch->add(_state._keptEntries.data() + leaf.firstEntry, leaf.numEntries);
                 c.object = batch;
             }
             c.matrix = leafMatrix(leaf.frame);
@@ -488,8 +487,8 @@ void ActorCull::keepLeafSources()
         return;
     }
     // The batches' entries, complete now.
-    std::vector<ActorCullState::KeptLeaf>& leaves = _state._keptLeaves->leaves;
-    std::vector<JointDrawBatch::Entry>& entries = _state._keptLeaves->entries;
+    std::vector<ActorCullState::KeptLeaf>& leaves = _state._keptLeaves;
+    std::vector<JointDrawBatch::Entry>& entries = _state._keptEntries;
     entries.clear();
     std::size_t k = 0;
     for (const Call& c : _state._calls)
@@ -506,8 +505,7 @@ void ActorCull::keepLeafSources()
 
 void ActorCull::cull()
 {
-    if (!_state._keptLeaves) _state._keptLeaves.reset(new ActorCullState::KeptLeaves);
-    _state._keptLeaves->leaves.clear();
+    _state._keptLeaves.clear();
     _state._callsReshapable = true; // until found otherwise
     const Step* steps = _plan->getSteps().data();
     const std::size_t numSteps = _plan->getSteps().size();
@@ -595,7 +593,7 @@ void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
             batch->add(drawable, frame);
             _cv.addDrawableAndDepth(batch, matrix, depth);
             call(Call::ADD_LEAF, batch, matrix, depth);
-            _state._keptLeaves->leaves.push_back({frame, stepIndex, 0, 1}); // its entries noted at the end
+            _state._keptLeaves.push_back({frame, stepIndex, 0, 1}); // its entries noted at the end
             if (_numOpen == kMaxOpenBatches) closeBatch(_open[0].graph);
             _open[_numOpen++] = {graph, batch};
         }
@@ -604,7 +602,7 @@ void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
             closeBatch(graph);
             _cv.addDrawableAndDepth(&drawable, matrix, depth);
             call(Call::ADD_LEAF, &drawable, matrix, depth);
-            _state._keptLeaves->leaves.push_back({frame, stepIndex, 0, 0});
+            _state._keptLeaves.push_back({frame, stepIndex, 0, 0});
         }
     }
     if (step.stateSet) unwantState();

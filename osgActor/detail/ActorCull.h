@@ -46,7 +46,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
-#include <memory>
 #include <vector>
 
 namespace osgActor {
@@ -218,7 +217,6 @@ private:
     Key _key;
     std::vector<Call> _calls;
     bool _callsTraverse = false; // a TRAVERSE among them
-    bool _callsReshapable = false; // their shape holds for other matrices (_keptLeaves)
     Pool<JointModelViews> _modelViews;
     Pool<JointDrawBatch> _batches;
     Pool<osg::RefMatrix> _matrices;
@@ -228,8 +226,6 @@ private:
     // matrices and, per step, whether it is culled (JOINT, GEODE, DRAWABLE) and the drawable's depth.
     bool _prepared = false;
     bool _preparedReplay = false;
-    bool _preparedReshape = false; // replay the kept calls with the prepared matrices and depths
-    bool _preparedPlain = false;   // nothing culled below the top joints (every step's decision skipped)
     Key _preparedKey;
     Versions _preparedVersions;
     osg::ref_ptr<JointModelViews> _preparedModelViews;
@@ -262,12 +258,13 @@ private:
     };
     InstancedVerdict _instancedVerdict;
 
+    // Last, so that the members an idle actor's replay reads keep their places (and cache lines; its look-ahead
+    // fetches them by address range).
     /** Where each kept ADD_LEAF call's leaf came from: its (first) drawable's frame and step and, for a batch, its
-      * entries (a range of entries; none: a drawable's own leaf). With _callsReshapable (the cull that made the calls
-      * culled nothing, dropped no drawable, computed no near and far and traversed no subtree), a moving actor seen
-      * with the same plan and view but for its own model-view matrix makes the same calls with its new matrices and
-      * depths (ActorCull::replayReshaped()) instead of following its plan step by step. Made at the first cull that
-      * keeps them, apart: the members an idle actor's replay reads keep their places and this state its size. */
+      * entries (a range of _keptEntries; none: a drawable's own leaf). With _callsReshapable (the cull that made the
+      * calls culled nothing, dropped no drawable, computed no near and far and traversed no subtree), a moving
+      * actor seen with the same plan and view but for its own model-view matrix makes the same calls with its new
+      * matrices and depths (ActorCull::replayReshaped()) instead of following its plan step by step. */
     struct KeptLeaf
     {
         unsigned frame;
@@ -275,12 +272,13 @@ private:
         unsigned firstEntry;
         unsigned numEntries;
     };
-    struct KeptLeaves
-    {
-        std::vector<KeptLeaf> leaves;
-        std::vector<JointDrawBatch::Entry> entries;
-    };
-    std::unique_ptr<KeptLeaves> _keptLeaves;
+    std::vector<KeptLeaf> _keptLeaves;
+    std::vector<JointDrawBatch::Entry> _keptEntries;
+    bool _callsReshapable = false;
+    // What prepare() decided besides: replay the kept calls with the prepared matrices and depths; nothing culled
+    // below the top joints (every step's decision skipped).
+    bool _preparedReshape = false;
+    bool _preparedPlain = false;
 };
 
 class ActorCull
