@@ -3,6 +3,7 @@
 #include <osgActor/GlmOsg>
 #include <osgActor/core/LocalMatricesJob>
 #include <osgActor/detail/ActorCull.h>
+#include <osgActor/detail/AffineBound.h>
 #include <osgActor/detail/PoseFollower.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/Prefetch.h>
@@ -170,7 +171,9 @@ bool ActorNode::setChild(unsigned int i, osg::Node* node) { return reportEdit(os
 osg::BoundingSphere ActorNode::computeBound() const
 {
     _boundVersion.fetch_add(1, std::memory_order_relaxed);
-    return osg::MatrixTransform::computeBound();
+    // Computed at every frame where the root joint translates: without OSG's generic steps for this very class (a
+    // subclass may compute its matrix otherwise).
+    return typeid(*this) == typeid(ActorNode) ? detail::matrixTransformBound(*this) : osg::MatrixTransform::computeBound();
 }
 
 void ActorNode::setDefinition(ActorDefinitionPtr definition)
@@ -772,9 +775,11 @@ void ActorNode::accept(osg::NodeVisitor& nv)
                           detail::ActorCull::canCullAsOne(*cv) && _cullState->tryAcquire() &&
                           [&] {
                               getBound(); // as the ordinary way computes it first: a recomputed bound is a change
-                              const bool done = detail::ActorCull::replayBeforeEntering(
-                                  *cv, *_cullState, *this,
-                                  detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion));
+                              const detail::ActorCullState::Versions versions =
+                                  detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion);
+                              const bool done =
+                                  detail::ActorCull::replayBeforeEntering(*cv, *_cullState, *this, versions) ||
+                                  detail::ActorCull::replayReshapedBeforeEntering(*cv, *_cullState, *this, versions);
                               _cullState->release();
                               return done;
                           }();

@@ -1,5 +1,6 @@
 #include <osgActor/SkeletonNode>
 #include <osgActor/ActorNode>
+#include <osgActor/detail/AffineBound.h>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/core/detail/HotPath.h>
@@ -92,7 +93,14 @@ osg::BoundingSphere SkeletonNode::computeBound() const
 {
     if (!_boundCoversRotations || _referenceFrame != RELATIVE_RF)
     {
-        const osg::BoundingSphere bound = osg::MatrixTransform::computeBound();
+        // A joint that translates (the root, mostly) computes this at every frame: without OSG's generic steps
+        // where the class computes its matrix as osg::MatrixTransform does (a subclass may not). The type's identity
+        // by address: type_info's comparison compares the names of two different types, and a type told apart
+        // wrongly only takes OSG's way.
+        const std::type_info* const type = &typeid(*this);
+        const bool plainClass = type == &typeid(SkeletonNode) || type == &typeid(detail::PlacedSkeletonNode);
+        const osg::BoundingSphere bound =
+            plainClass ? detail::matrixTransformBound(*this) : osg::MatrixTransform::computeBound();
         noteSubtreeShape(isRigidMatrix(_matrix.ptr()));
         return bound;
     }

@@ -154,10 +154,16 @@ bool ActorCullState::View::operator==(const View& other) const
            binSortMode == other.binSortMode;
 }
 
+bool ActorCullState::Key::sameViewAs(const Key& other) const
+{
+    return view == other.view || (view && other.view && view->view == other.view->view);
+}
+
 bool ActorCullState::Key::operator==(const Key& other) const
 {
+    // Bit for bit, as the view's matrices.
     return std::memcmp(actorModelView.ptr(), other.actorModelView.ptr(), sizeof(osg::Matrixd)) == 0 &&
-           (view == other.view || (view && other.view && view->view == other.view->view));
+           sameViewAs(other);
 }
 
 template <class Object>
@@ -205,29 +211,48 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
         return;
     }
     _modelViews = _state._preparedModelViews.get();
-    cull();
+    if (_state._preparedReshape)
+        replayReshaped();
+    else
+        cull();
+    // The visitor is in the actor: the model-view matrix below the actor's on its stack is where it entered.
+    const osg::CullStack::MatrixStack& stack = _cv.getModelViewStack();
+    keepCalls(versions, actor, stack.size() >= 2 ? stack._stack.back().get() : nullptr);
+}
+
+ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
+                     const ActorCullState::Versions& versions, const osg::Matrixd& entry)
+    : _cv(cv), _state(state), _plan(state._plan.get()), _computeNearFar(false),
+      _modelViews(state._preparedModelViews.get()), _open(), _numOpen(0)
+{
+    _state._prepared = false;
+    replayReshaped();
+    keepCalls(versions, actor, &entry);
+}
+
+void ActorCull::keepCalls(const ActorCullState::Versions& versions, const osg::Group& actor,
+                          const osg::Matrixd* entry)
+{
     _state._keptModelViews = _modelViews;
     _state._preparedModelViews = nullptr;
     _state._key = _state._preparedKey;
     _state._versions = versions;
     _state._replayable = true;
-    noteEntry(actor);
+    noteEntry(actor, entry);
 }
 
-void ActorCull::noteEntry(const osg::Group& actor)
+void ActorCull::noteEntry(const osg::Group& actor, const osg::Matrixd* entry)
 {
-    // The visitor's model-view matrix below the actor's: where it entered the actor. Kept where the actor's is that
-    // one and the actor's matrix composed as replayBeforeEntering() composes them, bit for bit.
+    // Kept where the key's model-view matrix is the actor's matrix composed with the entry as
+    // replayBeforeEntering() composes them, bit for bit; otherwise the replay composes and compares the whole key.
     _state._entryKnown = false;
-    const osg::CullStack::MatrixStack& stack = _cv.getModelViewStack();
-    if (typeid(actor) != typeid(ActorNode) || stack.size() < 2 || !stack._stack.back()) return;
+    if (!entry || typeid(actor) != typeid(ActorNode)) return;
     const ActorNode& node = static_cast<const ActorNode&>(actor);
     if (node.getReferenceFrame() != osg::Transform::RELATIVE_RF) return;
-    const osg::Matrixd& entry = *stack._stack.back();
     osg::Matrixd composed;
-    composeModelView(node.getMatrix().ptr(), entry.ptr(), composed.ptr());
+    composeModelView(node.getMatrix().ptr(), entry->ptr(), composed.ptr());
     if (std::memcmp(composed.ptr(), _state._key.actorModelView.ptr(), sizeof(osg::Matrixd)) != 0) return;
-    _state._entryModelView = entry;
+    _state._entryModelView = *entry;
     _state._entryKnown = true;
 }
 
@@ -250,12 +275,21 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     if (_plan.get() != kept) replayable = false;
     _prepared = true;
     _preparedReplay = replayable;
+    _preparedReshape = false;
+    _preparedPlain = false;
     _preparedKey = key;
     _preparedVersions = versions;
     if (replayable) return;
+    // The kept calls may keep their shape (the same plan and view, the actor or its joints moved): decided once the
+    // steps' decisions are known, the calls cleared otherwise.
+    const bool mayReshape = planKept && _plan.get() == kept && _replayable && _callsReshapable && _key.sameViewAs(key);
     _replayable = false;
-    _calls.clear();
-    _callsTraverse = false;
+    const auto forgetCalls = [this] {
+        _calls.clear();
+        _callsTraverse = false;
+        _callsReshapable = false;
+    };
+    if (!mayReshape) forgetCalls();
     _keptModelViews = nullptr; // free for the pool again once the render graph lets go of it
 
     // Every planned joint's model-view matrix, parents first.
@@ -292,14 +326,21 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
                                          }))
     {
         // Nothing culled (as the loop below would find, step by step): the drawables' depths alone.
+        bool nanDepth = false;
         for (unsigned i : _plan->getDrawableSteps())
         {
             const ActorCullPlan::Step& step = stepData[i];
             const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
             depths[i] = box.valid() ? eyeDepth(box.center(), frames[step.joint + 1]) : 0.0f;
+            nanDepth = nanDepth || osg::isNaN(depths[i]);
         }
+        // The kept calls were made for the same steps, none culled and no drawable dropped: so are this cull's.
+        _preparedPlain = true;
+        _preparedReshape = mayReshape && !nanDepth;
+        if (mayReshape && nanDepth) forgetCalls();
         return;
     }
+    if (mayReshape) forgetCalls();
     for (std::size_t i = 0; i < numSteps; ++i)
     {
         const ActorCullPlan::Step& step = stepData[i];
@@ -365,6 +406,21 @@ void ActorCull::prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahea
     }
 }
 
+inline osg::Matrixd ActorCull::modelViewOnEntering(osgUtil::CullVisitor& cv, osg::MatrixTransform& actor)
+{
+    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it: for an ActorNode (relative,
+    // the caller checked), MatrixTransform's preMult, the same bits inline; another class's own call.
+    osg::Matrixd actorModelView;
+    if (typeid(actor) == typeid(ActorNode))
+        composeModelView(actor.getMatrix().ptr(), cv.getModelViewMatrix()->ptr(), actorModelView.ptr());
+    else
+    {
+        actorModelView = *cv.getModelViewMatrix();
+        actor.computeLocalToWorldMatrix(actorModelView, &cv);
+    }
+    return actorModelView;
+}
+
 bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
                                      const ActorCullState::Versions& versions)
 {
@@ -376,27 +432,19 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
         cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
         return false;
     if (!state._key.view || !(ActorCullState::viewOf(ActorCullView(cv)) == state._key.view->view)) return false;
-    // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it. For an ActorNode (relative,
-    // the caller checked) whose bound has not been recomputed, its matrix is the one the kept key was composed from
-    // (every setter of a MatrixTransform's matrix dirties its bound, and the versions counted its recomputations),
-    // unless a callback computes its bound instead: the key holds where the visitor entered then, and the
-    // visitor's matrix now is compared with it. Otherwise, MatrixTransform's preMult, the same bits inline; another
-    // class's own call.
-    const osg::Matrixd& entry = *cv.getModelViewMatrix();
+    // For an ActorNode (relative, the caller checked) whose bound has not been recomputed, its matrix is the one the
+    // kept key was composed from (every setter of a MatrixTransform's matrix dirties its bound, and the versions
+    // counted its recomputations), unless a callback computes its bound instead: the key holds where the visitor
+    // entered then, and the visitor's matrix now is compared with it. Otherwise the actor's model-view matrix is
+    // composed as the visitor would and compared with the key's.
     if (typeid(actor) == typeid(ActorNode) && state._entryKnown && !actor.getComputeBoundingSphereCallback())
     {
-        if (std::memcmp(entry.ptr(), state._entryModelView.ptr(), sizeof(osg::Matrixd)) != 0) return false;
+        if (std::memcmp(cv.getModelViewMatrix()->ptr(), state._entryModelView.ptr(), sizeof(osg::Matrixd)) != 0)
+            return false;
     }
     else
     {
-        osg::Matrixd actorModelView;
-        if (typeid(actor) == typeid(ActorNode))
-            composeModelView(actor.getMatrix().ptr(), entry.ptr(), actorModelView.ptr());
-        else
-        {
-            actorModelView = entry;
-            actor.computeLocalToWorldMatrix(actorModelView, &cv);
-        }
+        const osg::Matrixd actorModelView = modelViewOnEntering(cv, actor);
         if (std::memcmp(actorModelView.ptr(), state._key.actorModelView.ptr(), sizeof(osg::Matrixd)) != 0)
             return false;
     }
@@ -409,29 +457,110 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     return true;
 }
 
+bool ActorCull::replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
+                                             osg::MatrixTransform& actor, const ActorCullState::Versions& versions)
+{
+    // What prepare() needs to reshape the kept calls, ahead (it checks them all again): a kept plan, complete calls
+    // of a shape that holds for other matrices, no near and far computed (the actor's culling set would be read).
+    const bool planKept = state._plan && state._planVersion == versions.plan;
+    if (state._prepared || !planKept || !state._replayable || !state._callsReshapable ||
+        cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
+        return false;
+    const ActorCullView view(cv);
+    const ActorCullState::Key key = ActorCullState::keyOf(view, modelViewOnEntering(cv, actor));
+    if (!state._key.sameViewAs(key)) return false;
+    // The visitor's own test on its way in (the mask was tested by accept()), its writes included; a culled actor
+    // adds nothing, and its kept calls stay as they were.
+    if (cv.isCulled(actor)) return true;
+    // The pixel-size vector the visitor's pushCullingSet() would compute in the actor's frame.
+    const osg::Vec4 pixelSizeVector =
+        osg::CullingSet::computePixelSizeVector(*view.viewport, view.projection, key.actorModelView);
+    state.prepare(key, view, pixelSizeVector, actor, versions);
+    if (!state._preparedReshape) return false; // prepared for the visitor, which enters the actor and finds it so
+    const ActorCull reshaped(cv, state, actor, versions, *cv.getModelViewMatrix());
+    return true;
+}
+
 void ActorCull::replayCalls(osgUtil::CullVisitor& cv, const std::vector<Call>& calls)
 {
-    for (const Call& c : calls)
+    for (const Call& c : calls) replayCall(cv, c);
+}
+
+inline void ActorCull::replayCall(osgUtil::CullVisitor& cv, const Call& c)
+{
+    switch (c.kind)
     {
-        switch (c.kind)
+    case Call::PUSH_STATE: cv.pushStateSet(static_cast<osg::StateSet*>(c.object)); break;
+    case Call::POP_STATE: cv.popStateSet(); break;
+    case Call::PUSH_PATH: cv.pushOntoNodePath(static_cast<osg::Node*>(c.object)); break;
+    case Call::POP_PATH: cv.popFromNodePath(); break;
+    case Call::ADD_LEAF: cv.addDrawableAndDepth(static_cast<osg::Drawable*>(c.object), c.matrix, c.depth); break;
+    case Call::NEAR_FAR: cv.updateCalculatedNearFar(*c.modelView, *static_cast<osg::Drawable*>(c.object), true); break;
+    case Call::TRAVERSE:
+        if (c.matrix) cv.pushModelViewMatrix(c.matrix, osg::Transform::RELATIVE_RF);
+        static_cast<osg::Node*>(c.object)->accept(cv);
+        if (c.matrix) cv.popModelViewMatrix();
+        break;
+    }
+}
+
+void ActorCull::replayReshaped()
+{
+    // Each leaf is given to the visitor as soon as it is remade, so that the pools see it held and give the next
+    // leaf another batch or matrix.
+    const float* depths = _state._stepDepths.data();
+    const ActorCullState::KeptLeaf* kept = _state._keptLeaves.data();
+    for (Call& c : _state._calls)
+    {
+        if (c.kind == Call::ADD_LEAF)
         {
-        case Call::PUSH_STATE: cv.pushStateSet(static_cast<osg::StateSet*>(c.object)); break;
-        case Call::POP_STATE: cv.popStateSet(); break;
-        case Call::PUSH_PATH: cv.pushOntoNodePath(static_cast<osg::Node*>(c.object)); break;
-        case Call::POP_PATH: cv.popFromNodePath(); break;
-        case Call::ADD_LEAF: cv.addDrawableAndDepth(static_cast<osg::Drawable*>(c.object), c.matrix, c.depth); break;
-        case Call::NEAR_FAR: cv.updateCalculatedNearFar(*c.modelView, *static_cast<osg::Drawable*>(c.object), true); break;
-        case Call::TRAVERSE:
-            if (c.matrix) cv.pushModelViewMatrix(c.matrix, osg::Transform::RELATIVE_RF);
-            static_cast<osg::Node*>(c.object)->accept(cv);
-            if (c.matrix) cv.popModelViewMatrix();
-            break;
+            const ActorCullState::KeptLeaf& leaf = *kept++;
+            if (leaf.numEntries)
+            {
+                JointDrawBatch* batch = _state._batches.acquire();
+                batch->reset(_plan, _modelViews);
+                batch->add(_state._keptEntries.data() + leaf.firstEntry, leaf.numEntries);
+                c.object = batch;
+            }
+            c.matrix = leafMatrix(leaf.frame);
+            c.depth = depths[leaf.step];
         }
+        replayCall(_cv, c);
+    }
+}
+
+void ActorCull::keepLeafSources()
+{
+    // The calls keep their shape for other matrices of the same plan and view where nothing was culled and no
+    // drawable dropped (prepare()'s plain steps, no depth not a number), without near and far (which may drop a
+    // drawable) and with no subtree traversed ordinarily (its calls are not kept).
+    if (!_state._callsReshapable) return;
+    if (!_state._preparedPlain || _computeNearFar || _state._callsTraverse)
+    {
+        _state._callsReshapable = false;
+        return;
+    }
+    // The batches' entries, complete now.
+    std::vector<ActorCullState::KeptLeaf>& leaves = _state._keptLeaves;
+    std::vector<JointDrawBatch::Entry>& entries = _state._keptEntries;
+    entries.clear();
+    std::size_t k = 0;
+    for (const Call& c : _state._calls)
+    {
+        if (c.kind != Call::ADD_LEAF) continue;
+        ActorCullState::KeptLeaf& leaf = leaves[k++];
+        if (!leaf.numEntries) continue;
+        const std::vector<JointDrawBatch::Entry>& batched = static_cast<const JointDrawBatch*>(c.object)->getEntries();
+        leaf.firstEntry = static_cast<unsigned>(entries.size());
+        leaf.numEntries = static_cast<unsigned>(batched.size());
+        entries.insert(entries.end(), batched.begin(), batched.end());
     }
 }
 
 void ActorCull::cull()
 {
+    _state._keptLeaves.clear();
+    _state._callsReshapable = true; // until found otherwise
     const Step* steps = _plan->getSteps().data();
     const std::size_t numSteps = _plan->getSteps().size();
     const unsigned char* culled = _state._stepCulled.data();
@@ -472,6 +601,7 @@ void ActorCull::cull()
         ++i;
     }
     applyWantedStates(); // pops what is left
+    keepLeafSources();
 }
 
 void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
@@ -490,7 +620,11 @@ void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
         call(Call::NEAR_FAR, &drawable, nullptr, 0.0f, &modelView);
     }
     const float depth = _state._stepDepths[stepIndex];
-    if (osg::isNaN(depth)) return; // the visitor drops it too (with a notice)
+    if (osg::isNaN(depth))
+    {
+        _state._callsReshapable = false;
+        return; // the visitor drops it too (with a notice)
+    }
     if (step.stateSet) wantState(step.stateSet);
     applyWantedStates();
     osgUtil::StateGraph* graph = _cv.getCurrentStateGraph();
@@ -513,6 +647,7 @@ void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
             batch->add(drawable, frame);
             _cv.addDrawableAndDepth(batch, matrix, depth);
             call(Call::ADD_LEAF, batch, matrix, depth);
+            _state._keptLeaves.push_back({frame, stepIndex, 0, 1}); // its entries noted at the end
             if (_numOpen == kMaxOpenBatches) closeBatch(_open[0].graph);
             _open[_numOpen++] = {graph, batch};
         }
@@ -521,6 +656,7 @@ void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
             closeBatch(graph);
             _cv.addDrawableAndDepth(&drawable, matrix, depth);
             call(Call::ADD_LEAF, &drawable, matrix, depth);
+            _state._keptLeaves.push_back({frame, stepIndex, 0, 0});
         }
     }
     if (step.stateSet) unwantState();

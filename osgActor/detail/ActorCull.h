@@ -191,6 +191,8 @@ private:
         osg::ref_ptr<const SharedView> view; // first: the replay reads it and not the matrix
         osg::Matrixd actorModelView;
         bool operator==(const Key& other) const;
+        /** The same but for the actor's model-view matrix. */
+        bool sameViewAs(const Key& other) const;
     };
     static Key keyOf(const ActorCullView& view, const osg::Matrixd& actorModelView);
     /** prepare() for the key of the view and the actor's model-view matrix (its actorModelView). */
@@ -280,6 +282,28 @@ private:
         std::vector<float> matrices;
     };
     InstancedVerdict _instancedVerdict;
+
+    // Last, so that the members an idle actor's replay reads keep their places (and cache lines; its look-ahead
+    // fetches them by address range).
+    /** Where each kept ADD_LEAF call's leaf came from: its (first) drawable's frame and step and, for a batch, its
+      * entries (a range of _keptEntries; none: a drawable's own leaf). With _callsReshapable (the cull that made the
+      * calls culled nothing, dropped no drawable, computed no near and far and traversed no subtree), a moving
+      * actor seen with the same plan and view but for its own model-view matrix makes the same calls with its new
+      * matrices and depths (ActorCull::replayReshaped()) instead of following its plan step by step. */
+    struct KeptLeaf
+    {
+        unsigned frame;
+        unsigned step;
+        unsigned firstEntry;
+        unsigned numEntries;
+    };
+    std::vector<KeptLeaf> _keptLeaves;
+    std::vector<JointDrawBatch::Entry> _keptEntries;
+    bool _callsReshapable = false;
+    // What prepare() decided besides: replay the kept calls with the prepared matrices and depths; nothing culled
+    // below the top joints (every step's decision skipped).
+    bool _preparedReshape = false;
+    bool _preparedPlain = false;
 };
 
 class ActorCull
@@ -303,6 +327,13 @@ public:
       * seen, makes the calls again; true then. false, having made no call, where the visitor must enter the actor. */
     static bool replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
                                      const ActorCullState::Versions& versions);
+    /** The same for an actor that moved (its pose or its place): where its last cull's calls keep their shape for
+      * what the visitor holds now (the same plan and view but for the actor's model-view matrix, no test needed
+      * below its top joints, no depth not a number), tests the actor's bound as the visitor would and, if it is
+      * seen, makes them again with the new matrices and depths (replayReshaped()); true then. Otherwise false,
+      * having made no call, the cull left prepared for the visitor entering the actor. */
+    static bool replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
+                                             osg::MatrixTransform& actor, const ActorCullState::Versions& versions);
     /** For the look-ahead of a crowd's cull: asks for the render leaf the visitor will reuse `ahead` leaves from
       * now (from those it kept from its previous cull), which the replay of an actor culled after this one sets. */
     static void prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahead);
@@ -311,12 +342,29 @@ private:
     using Step = ActorCullPlan::Step;
     using Call = ActorCullState::Call;
 
+    /** For replayReshapedBeforeEntering(): the calls of the cull prepared, reshaped, without the visitor in the
+      * actor (where it will enter it: the model-view matrix on top of its stack). */
+    ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
+              const ActorCullState::Versions& versions, const osg::Matrixd& entry);
+    /** The actor's model-view matrix as CullVisitor::apply(osg::Transform&) will compute it (the same bits). */
+    static osg::Matrixd modelViewOnEntering(osgUtil::CullVisitor& cv, osg::MatrixTransform& actor);
+    /** What the constructors leave for the next cull once the calls are made: the calls and matrices kept for
+      * the key and counters prepared, and where the visitor entered the actor (entry; null if not known). */
+    void keepCalls(const ActorCullState::Versions& versions, const osg::Group& actor, const osg::Matrixd* entry);
+
     void replay() { replayCalls(_cv, _state._calls); }
     static void replayCalls(osgUtil::CullVisitor& cv, const std::vector<Call>& calls);
+    static void replayCall(osgUtil::CullVisitor& cv, const Call& call);
+    /** The kept calls made again, each leaf with this cull's matrix and depth (and a batch of this cull's matrices,
+      * with the same entries): their shape holds (ActorCullState::prepare() decided it). */
+    void replayReshaped();
+    /** Notes what replayReshaped() needs of the calls cull() just made, if their shape holds for other matrices. */
+    void keepLeafSources();
     /** The plan followed afresh from the prepared decisions, every call kept for the next frame. */
     void cull();
-    /** Keeps where the visitor entered the actor for the calls just kept (ActorCullState::_entryModelView). */
-    void noteEntry(const osg::Group& actor);
+    /** Keeps where the visitor entered the actor (entry, null if not known) for the calls just kept
+      * (ActorCullState::_entryModelView). */
+    void noteEntry(const osg::Group& actor, const osg::Matrixd* entry);
     void addDrawable(const Step& step, unsigned stepIndex);
     void traverseOrdinarily(const Step& step);
     /** The frame's model-view matrix as the render graph holds it, made at its first use this cull. */

@@ -45,8 +45,16 @@ public:
     /** Empties the batch for the given matrices; keepAlive holds the drawables it will be given (the actor's cull
       * plan), as a render leaf keeps its drawable until drawn. */
     void reset(const osg::Referenced* keepAlive, const JointModelViews* modelViews);
-    /** frame: the index of the drawable's frame in the matrices. */
+    /** A drawable and the index of its frame in the matrices. */
+    struct Entry
+    {
+        const osg::Drawable* drawable;
+        unsigned frame;
+    };
     void add(const osg::Drawable& drawable, unsigned frame) { _entries.push_back({&drawable, frame}); }
+    /** Adds entries (as another batch holds them). */
+    void add(const Entry* first, std::size_t count) { _entries.insert(_entries.end(), first, first + count); }
+    const std::vector<Entry>& getEntries() const { return _entries; }
 
     unsigned getNumEntries() const { return static_cast<unsigned>(_entries.size()); }
     const osg::Drawable* getEntryDrawable(unsigned i) const { return _entries[i].drawable; }
@@ -70,11 +78,6 @@ protected:
     ~JointDrawBatch() override = default;
 
 private:
-    struct Entry
-    {
-        const osg::Drawable* drawable;
-        unsigned frame;
-    };
     std::vector<Entry> _entries;
     osg::ref_ptr<const osg::Referenced> _keepAlive;
     osg::ref_ptr<const JointModelViews> _modelViews;
