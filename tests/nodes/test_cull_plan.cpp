@@ -329,6 +329,40 @@ TEST(CullPlan, AnActorWhoseParentTransformMovesIsCulledAfresh)
     }
 }
 
+TEST(CullPlan, AnActorThatMovedWhileItsParentMovedIsNotReplayedFromWhereItWasBefore)
+{
+    // A moving actor's reshaped calls (made before the visitor enters it) are kept with where the visitor entered it
+    // then: when its parent moves back and the actor stands still, the replay must not take the entry of the calls
+    // before those for theirs.
+    Scene scene;
+    scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    osg::ref_ptr<osg::MatrixTransform> parent = new osg::MatrixTransform;
+    scene.root->replaceChild(scene.actors[1].get(), parent.get());
+    parent->addChild(scene.actors[1].get());
+    ActorNode& actor = *scene.actors[1];
+    const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
+    scene.cullExpectingTheOrdinaryGraph();
+    scene.probe.cull(++scene.frame);
+    scene.probe.cull(++scene.frame); // replayed, the entry kept
+
+    parent->setMatrix(osg::Matrix::translate(0.0, 0.0, 0.3));
+    actor.setDof("l_elbow.rx", -0.4);
+    actor.update(nullptr);
+    scene.probe.cull(++scene.frame); // moved: the kept calls reshaped
+
+    parent->setMatrix(osg::Matrix::identity());
+    const std::vector<CulledLeaf> back = scene.probe.cull(++scene.frame);
+    scene.setCullMode(ActorNode::CULL_NODE_BY_NODE);
+    const std::vector<CulledLeaf> ordinary = scene.probe.cull(++scene.frame);
+    scene.setCullMode(ActorNode::CULL_AS_ONE);
+    const CulledLeaf* backHead = find(back, head);
+    const CulledLeaf* ordinaryHead = find(ordinary, head);
+    ASSERT_TRUE(backHead && ordinaryHead);
+    EXPECT_TRUE(*backHead == *ordinaryHead);
+    ASSERT_EQ(back.size(), ordinary.size());
+    for (std::size_t i = 0; i < back.size(); ++i) EXPECT_TRUE(back[i] == ordinary[i]) << "leaf " << i;
+}
+
 TEST(CullPlan, ChildrenAddedRemovedOrReplacedBelowJointsAndGeodesAreSeen)
 {
     Scene scene;
