@@ -144,8 +144,8 @@ ActorCullState::Key ActorCullState::keyOf(const ActorCullView& view, const osg::
 
 bool ActorCullState::View::operator==(const View& other) const
 {
-    // Bit for bit: the calls kept are those of these very matrices (a -0 is not a 0 to the products made from it).
-    return std::memcmp(projection.ptr(), other.projection.ptr(), sizeof(osg::Matrixd)) == 0 &&
+    // Bit for bit: the calls kept are those of these very matrices and numbers.
+    return sameBits(projection, other.projection) &&
            std::memcmp(viewport, other.viewport, sizeof viewport) == 0 && traversalMask == other.traversalMask &&
            nodeMaskOverride == other.nodeMaskOverride && cullingMask == other.cullingMask &&
            cullingMode == other.cullingMode &&
@@ -161,9 +161,7 @@ bool ActorCullState::Key::sameViewAs(const Key& other) const
 
 bool ActorCullState::Key::operator==(const Key& other) const
 {
-    // Bit for bit, as the view's matrices.
-    return std::memcmp(actorModelView.ptr(), other.actorModelView.ptr(), sizeof(osg::Matrixd)) == 0 &&
-           sameViewAs(other);
+    return sameBits(actorModelView, other.actorModelView) && sameViewAs(other);
 }
 
 template <class Object>
@@ -251,7 +249,7 @@ void ActorCull::noteEntry(const osg::Group& actor, const osg::Matrixd* entry)
     if (node.getReferenceFrame() != osg::Transform::RELATIVE_RF) return;
     osg::Matrixd composed;
     composeModelView(node.getMatrix().ptr(), entry->ptr(), composed.ptr());
-    if (std::memcmp(composed.ptr(), _state._key.actorModelView.ptr(), sizeof(osg::Matrixd)) != 0) return;
+    if (!sameBits(composed, _state._key.actorModelView)) return;
     _state._entryModelView = *entry;
     _state._entryKnown = true;
 }
@@ -437,17 +435,11 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     // counted its recomputations), unless a callback computes its bound instead: the key holds where the visitor
     // entered then, and the visitor's matrix now is compared with it. Otherwise the actor's model-view matrix is
     // composed as the visitor would and compared with the key's.
-    if (typeid(actor) == typeid(ActorNode) && state._entryKnown && !actor.getComputeBoundingSphereCallback())
-    {
-        if (std::memcmp(cv.getModelViewMatrix()->ptr(), state._entryModelView.ptr(), sizeof(osg::Matrixd)) != 0)
-            return false;
-    }
-    else
-    {
-        const osg::Matrixd actorModelView = modelViewOnEntering(cv, actor);
-        if (std::memcmp(actorModelView.ptr(), state._key.actorModelView.ptr(), sizeof(osg::Matrixd)) != 0)
-            return false;
-    }
+    const bool entryKept =
+        typeid(actor) == typeid(ActorNode) && state._entryKnown && !actor.getComputeBoundingSphereCallback();
+    if (entryKept ? !sameBits(*cv.getModelViewMatrix(), state._entryModelView)
+                  : !sameBits(modelViewOnEntering(cv, actor), state._key.actorModelView))
+        return false;
     const ActorCullPlan* kept = state._plan.get();
     state.currentPlan(actor, versions.plan);
     if (state._plan.get() != kept) return false; // changed: culled afresh, the visitor in the actor

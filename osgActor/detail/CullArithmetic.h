@@ -14,6 +14,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <vector>
 
 namespace osgActor {
@@ -23,6 +24,13 @@ namespace detail {
 inline bool isMaskedOut(unsigned traversalMask, unsigned nodeMaskOverride, unsigned nodeMask)
 {
     return (traversalMask & (nodeMaskOverride | nodeMask)) == 0;
+}
+
+/** Whether two matrices hold the same bits: what the cull kept for one matrix holds for the other (a -0 is not a 0 to
+  * the products made from it, and a NaN is the same NaN). */
+inline bool sameBits(const osg::Matrixd& a, const osg::Matrixd& b)
+{
+    return std::memcmp(a.ptr(), b.ptr(), sizeof(osg::Matrixd)) == 0;
 }
 
 /** modelView = local * parent (OSG's row-vector order): what MatrixTransform::computeLocalToWorldMatrix() computes

@@ -573,7 +573,7 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
     }
     const osg::Matrixd& actorModelView = _state._modelViews[0];
     if (mayReplay(kept, versions) &&
-        std::memcmp(kept.actorModelView.ptr(), actorModelView.ptr(), sizeof(osg::Matrixd)) == 0)
+        sameBits(kept.actorModelView, actorModelView))
     {
         // Run by run of instances of one batch (an actor's parts of one drawable follow one another): one copy where
         // the batch's region has room for the run, one instance at a time where it may not.
