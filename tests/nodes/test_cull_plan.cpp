@@ -26,6 +26,14 @@ using namespace osgActor::test;
 
 namespace {
 
+/** The same leaves, one by one. */
+void expectSameLeaves(const std::vector<CulledLeaf>& actual, const std::vector<CulledLeaf>& expected)
+{
+    EXPECT_EQ(actual.size(), expected.size());
+    for (std::size_t i = 0; i < actual.size() && i < expected.size(); ++i)
+        EXPECT_TRUE(actual[i] == expected[i]) << "leaf " << i;
+}
+
 /** Three test figures in a row, seen from the front, their poses apart. */
 struct Scene
 {
@@ -50,9 +58,34 @@ struct Scene
     }
     ActorNode& first() { return *actors.front(); }
 
+    /** Near and far computed (SceneView's default) or not. */
+    void computeNearFar(bool on)
+    {
+        if (!on) probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    }
+
+    /** Puts a transform of its own (the identity) between actor a and the root; returns it. */
+    osg::MatrixTransform* placeUnderTransform(unsigned a)
+    {
+        osg::ref_ptr<osg::MatrixTransform> parent = new osg::MatrixTransform;
+        root->replaceChild(actors[a].get(), parent.get());
+        parent->addChild(actors[a].get());
+        return parent.get();
+    }
+
     void setCullMode(ActorNode::CullMode mode)
     {
         for (osg::ref_ptr<ActorNode>& actor : actors) actor->setCullMode(mode);
+    }
+
+    /** The ordinary traversal's leaves through cullProbe (the scene's own probe by default): the actors culled node
+      * by node, then as one again. */
+    std::vector<CulledLeaf> cullOrdinarily(CullProbe* cullProbe = nullptr)
+    {
+        setCullMode(ActorNode::CULL_NODE_BY_NODE);
+        const std::vector<CulledLeaf> ordinary = (cullProbe ? *cullProbe : probe).cull(++frame);
+        setCullMode(ActorNode::CULL_AS_ONE);
+        return ordinary;
     }
 
     /** Culls as one, then node by node with the same camera, and expects the same render graph; returns the leaves
@@ -61,14 +94,10 @@ struct Scene
     {
         const std::vector<CulledLeaf> asOne = probe.cull(++frame);
         const double asOneNear = probe.calculatedNear(), asOneFar = probe.calculatedFar();
-        setCullMode(ActorNode::CULL_NODE_BY_NODE);
-        const std::vector<CulledLeaf> ordinary = probe.cull(++frame);
-        setCullMode(ActorNode::CULL_AS_ONE);
+        const std::vector<CulledLeaf> ordinary = cullOrdinarily();
         EXPECT_EQ(asOneNear, probe.calculatedNear());
         EXPECT_EQ(asOneFar, probe.calculatedFar());
-        EXPECT_EQ(asOne.size(), ordinary.size());
-        for (std::size_t i = 0; i < asOne.size() && i < ordinary.size(); ++i)
-            EXPECT_TRUE(asOne[i] == ordinary[i]) << "leaf " << i;
+        expectSameLeaves(asOne, ordinary);
         return asOne;
     }
 
@@ -132,8 +161,7 @@ TEST(CullPlan, AnUnchangedActorBeforeAStillCameraGivesTheLeavesOfItsPreviousFram
     const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
     detail::SkeletonNodeAccess::matrixStorage(*actor.getSkeletonNode("head"))[12] += 0.25; // x of the translation
     const std::vector<CulledLeaf> replayed = scene.probe.cull(++scene.frame);
-    ASSERT_EQ(replayed.size(), kept.size());
-    for (std::size_t i = 0; i < kept.size(); ++i) EXPECT_TRUE(replayed[i] == kept[i]) << "leaf " << i;
+    expectSameLeaves(replayed, kept);
     scene.probe.lookAt(osg::Vec3d(1.1, -6.5, 1.5), osg::Vec3d(1.1, 0.0, 0.9)); // the camera moved
     const std::vector<CulledLeaf> afresh = scene.cullExpectingTheOrdinaryGraph();
     // Seen from there without the write, the head would be where it was, to the eye's side.
@@ -152,13 +180,10 @@ TEST(CullPlan, UnchangedActorsPartlyOutOfViewGiveTheOrdinaryGraphFrameAfterFrame
     {
         SCOPED_TRACE(computeNearFar ? "near and far computed" : "near and far not computed");
         Scene scene;
-        if (!computeNearFar)
-            scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+        scene.computeNearFar(computeNearFar);
         const std::size_t allInView = scene.cullExpectingTheOrdinaryGraph().size();
         scene.probe.lookAt(osg::Vec3d(2.2, -3.0, 1.2), osg::Vec3d(3.2, 0.0, 0.9));
-        scene.setCullMode(ActorNode::CULL_NODE_BY_NODE);
-        const std::vector<CulledLeaf> ordinary = scene.probe.cull(++scene.frame);
-        scene.setCullMode(ActorNode::CULL_AS_ONE);
+        const std::vector<CulledLeaf> ordinary = scene.cullOrdinarily();
         ASSERT_FALSE(ordinary.empty());
         ASSERT_LT(ordinary.size(), allInView); // the test can fail: a figure is out of view
         // Without near and far the cull as one does not test the parts of a figure in view against the frustum
@@ -198,7 +223,7 @@ TEST(CullPlan, MovingActorsWithoutNearAndFarGiveTheOrdinaryGraphFrameAfterFrame)
     // from frame to frame, the camera backing away through the small-feature threshold (where the steps are tested
     // and some culled, so the calls change shape) and coming back.
     Scene scene;
-    scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    scene.computeNearFar(false);
     const double distances[] = {6.0, 6.0, 6.5, 7.0, 7.0, 30.0, 60.0, 120.0, 240.0, 60.0, 7.0, 6.0, 6.0, 6.0};
     std::set<std::size_t> counts;
     for (std::size_t frame = 0; frame < sizeof distances / sizeof distances[0]; ++frame)
@@ -223,7 +248,7 @@ TEST(CullPlan, AMovingActorsDrawableWithoutADepthIsDroppedAsTheOrdinaryTraversal
     // A depth that is not a number (here a joint's matrix written behind OSG's back, which the plan's check does not
     // see) drops the drawable, so the calls change shape: made afresh, then again with new matrices once it is back.
     Scene scene;
-    scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    scene.computeNearFar(false);
     ActorNode& actor = scene.first();
     const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
     double* headMatrix = detail::SkeletonNodeAccess::matrixStorage(*actor.getSkeletonNode("head"));
@@ -279,8 +304,7 @@ TEST(CullPlan, AnActorsOwnMatrixSetByHandIsSeenWhateverComputesItsBound)
             SCOPED_TRACE(std::string(callback ? "a bound callback" : "no bound callback") +
                          (computeNearFar ? ", near and far computed" : ", near and far not computed"));
             Scene scene;
-            if (!computeNearFar)
-                scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+            scene.computeNearFar(computeNearFar);
             ActorNode& actor = scene.first();
             if (callback) actor.setComputeBoundingSphereCallback(new FixedBound);
             const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
@@ -296,8 +320,7 @@ TEST(CullPlan, AnActorsOwnMatrixSetByHandIsSeenWhateverComputesItsBound)
             EXPECT_NEAR(movedHead->modelView[12] - keptHead->modelView[12], 0.4, 1e-6);
             scene.probe.cull(++scene.frame);
             const std::vector<CulledLeaf> replayed = scene.probe.cull(++scene.frame);
-            ASSERT_EQ(replayed.size(), moved.size());
-            for (std::size_t i = 0; i < moved.size(); ++i) EXPECT_TRUE(replayed[i] == moved[i]) << "leaf " << i;
+            expectSameLeaves(replayed, moved);
         }
 }
 
@@ -309,11 +332,8 @@ TEST(CullPlan, AnActorWhoseParentTransformMovesIsCulledAfresh)
     {
         SCOPED_TRACE(computeNearFar ? "near and far computed" : "near and far not computed");
         Scene scene;
-        if (!computeNearFar)
-            scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
-        osg::ref_ptr<osg::MatrixTransform> parent = new osg::MatrixTransform;
-        scene.root->replaceChild(scene.actors[1].get(), parent.get());
-        parent->addChild(scene.actors[1].get());
+        scene.computeNearFar(computeNearFar);
+        osg::MatrixTransform* const parent = scene.placeUnderTransform(1);
         const osg::Drawable* head = scene.actors[1]->getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
         scene.cullExpectingTheOrdinaryGraph();
         scene.probe.cull(++scene.frame);
@@ -335,10 +355,8 @@ TEST(CullPlan, AnActorThatMovedWhileItsParentMovedIsNotReplayedFromWhereItWasBef
     // then: when its parent moves back and the actor stands still, the replay must not take the entry of the calls
     // before those for theirs.
     Scene scene;
-    scene.probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
-    osg::ref_ptr<osg::MatrixTransform> parent = new osg::MatrixTransform;
-    scene.root->replaceChild(scene.actors[1].get(), parent.get());
-    parent->addChild(scene.actors[1].get());
+    scene.computeNearFar(false);
+    osg::MatrixTransform* const parent = scene.placeUnderTransform(1);
     ActorNode& actor = *scene.actors[1];
     const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
     scene.cullExpectingTheOrdinaryGraph();
@@ -352,15 +370,12 @@ TEST(CullPlan, AnActorThatMovedWhileItsParentMovedIsNotReplayedFromWhereItWasBef
 
     parent->setMatrix(osg::Matrix::identity());
     const std::vector<CulledLeaf> back = scene.probe.cull(++scene.frame);
-    scene.setCullMode(ActorNode::CULL_NODE_BY_NODE);
-    const std::vector<CulledLeaf> ordinary = scene.probe.cull(++scene.frame);
-    scene.setCullMode(ActorNode::CULL_AS_ONE);
+    const std::vector<CulledLeaf> ordinary = scene.cullOrdinarily();
     const CulledLeaf* backHead = find(back, head);
     const CulledLeaf* ordinaryHead = find(ordinary, head);
     ASSERT_TRUE(backHead && ordinaryHead);
     EXPECT_TRUE(*backHead == *ordinaryHead);
-    ASSERT_EQ(back.size(), ordinary.size());
-    for (std::size_t i = 0; i < back.size(); ++i) EXPECT_TRUE(back[i] == ordinary[i]) << "leaf " << i;
+    expectSameLeaves(back, ordinary);
 }
 
 TEST(CullPlan, ChildrenAddedRemovedOrReplacedBelowJointsAndGeodesAreSeen)
@@ -484,12 +499,8 @@ TEST(CullPlan, TwoCamerasCullingOneActorGetEachTheOrdinaryGraph)
     for (unsigned round = 0; round < 3; ++round)
     {
         scene.cullExpectingTheOrdinaryGraph();
-        const std::vector<CulledLeaf> asOne = side.cull(100 + 2 * round);
-        scene.setCullMode(ActorNode::CULL_NODE_BY_NODE);
-        const std::vector<CulledLeaf> ordinary = side.cull(101 + 2 * round);
-        scene.setCullMode(ActorNode::CULL_AS_ONE);
-        ASSERT_EQ(asOne.size(), ordinary.size());
-        for (std::size_t i = 0; i < asOne.size(); ++i) EXPECT_TRUE(asOne[i] == ordinary[i]) << "leaf " << i;
+        const std::vector<CulledLeaf> asOne = side.cull(++scene.frame);
+        expectSameLeaves(asOne, scene.cullOrdinarily(&side));
     }
 }
 
