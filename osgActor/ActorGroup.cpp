@@ -2,6 +2,7 @@
 #include <osgActor/core/detail/WorkerPool>
 #include <osgActor/detail/ActorCull.h>
 
+#include <OpenThreads/Thread>
 #include <osg/FrameStamp>
 #include <osgUtil/CullVisitor>
 
@@ -14,6 +15,15 @@ namespace {
 /** Where the cull's preparation on the threads starts to pay (docs/performance.md). */
 constexpr unsigned kDefaultMinActorsForParallelCull = 64;
 
+/** Puts the calling worker on the processors asked for, or on every processor for an empty set. */
+void applyWorkerAffinity(const OpenThreads::Affinity& asked)
+{
+    OpenThreads::Affinity affinity = asked;
+    if (!affinity)
+        for (int cpu = 0; cpu < OpenThreads::GetNumberOfProcessors(); ++cpu) affinity.add(static_cast<unsigned>(cpu));
+    OpenThreads::SetProcessorAffinityOfCurrentThread(affinity);
+}
+
 } // namespace
 
 ActorGroup::ActorGroup()
@@ -25,7 +35,7 @@ ActorGroup::ActorGroup()
 }
 
 ActorGroup::ActorGroup(const ActorGroup& group, const osg::CopyOp& copyop)
-    : osg::Group(group, copyop), _numThreads(group._numThreads),
+    : osg::Group(group, copyop), _numThreads(group._numThreads), _workerAffinity(group._workerAffinity),
       _minActorsForParallelCull(group._minActorsForParallelCull), _numParallelCulls(0), _actorsStale(true),
       _hasActorPolicy(group._hasActorPolicy), _actorPolicy(group._actorPolicy)
 {
@@ -38,6 +48,13 @@ void ActorGroup::setNumThreads(unsigned numThreads)
     std::lock_guard<std::mutex> lock(_poolMutex);
     _numThreads = numThreads;
     _pool.reset();
+}
+
+void ActorGroup::setWorkerAffinity(const OpenThreads::Affinity& affinity)
+{
+    std::lock_guard<std::mutex> lock(_poolMutex);
+    _workerAffinity = affinity;
+    _pool.reset(); // the next frame's workers start on the new processors
 }
 
 void ActorGroup::setActorUpdatePolicy(const ActorNode::UpdatePolicy& policy)
@@ -104,7 +121,11 @@ void ActorGroup::traverseAfterActors(osg::NodeVisitor& nv)
 
 WorkerPool& ActorGroup::pool()
 {
-    if (!_pool) _pool = std::make_shared<WorkerPool>(_numThreads);
+    if (!_pool)
+    {
+        const OpenThreads::Affinity affinity = _workerAffinity;
+        _pool = std::make_shared<WorkerPool>(_numThreads, [affinity] { applyWorkerAffinity(affinity); });
+    }
     return *_pool;
 }
 

@@ -1,7 +1,8 @@
 // The whole frame drawn, side by side in one run (issues 26 and 28): N rigid humanoids (osgActor, osgAnimation,
 // plain OSG; the benchmark's 31-joint humanoid with a box under every joint) and N skinned Cesium Men (osgActor's
 // SkinnedMesh on its GPU path, drawn one by one or instanced; osgAnimation's RigGeometry with
-// RigTransformHardware), standing on a square grid that
+// RigTransformHardware; the _group and _threaded systems update and prepare their cull on an ActorGroup's thread
+// per core, the _threaded ones instanced), standing on a square grid that
 // the camera frames, animated, drawn at 1280 x 720 through osgViewer into a headless context: on a GPU through EGL
 // (osgactor_gpu_draw_bench, EglPbufferContext: no X server needed), or on OSMesa (osgactor_osmesa_draw_bench,
 // OsMesaGraphicsContext). Each frame ends with glFinish, so its time holds the GL's work too. Reported per system and
@@ -61,9 +62,16 @@ namespace {
 struct Options
 {
     std::vector<int> actors{1000, 10000};
-    std::vector<std::string> systems{"rigid_osgActor",       "rigid_osgActor_group",    "rigid_osgActor_instanced",
-                                     "rigid_osgAnimation",   "rigid_plainOSG",          "skinned_osgActor_gpu",
-                                     "skinned_osgActor_instanced", "skinned_osgAnimation_hw"};
+    std::vector<std::string> systems{"rigid_osgActor",
+                                     "rigid_osgActor_group",
+                                     "rigid_osgActor_instanced",
+                                     "rigid_osgActor_instanced_threaded",
+                                     "rigid_osgAnimation",
+                                     "rigid_plainOSG",
+                                     "skinned_osgActor_gpu",
+                                     "skinned_osgActor_instanced",
+                                     "skinned_osgActor_instanced_threaded",
+                                     "skinned_osgAnimation_hw"};
     double seconds = 3.0;
     int width = 1280, height = 720;
     bool drawThread = false;
@@ -118,6 +126,9 @@ void placeOnGrid(osg::Group& crowd, double spacing)
     }
 }
 
+/** The threads of the _group and _threaded systems' ActorGroups: one per core. */
+unsigned allCores() { return std::max(1u, std::thread::hardware_concurrency()); }
+
 osg::ref_ptr<osg::Group> makeCrowd(const std::string& system, unsigned n, const Options& options)
 {
     osg::ref_ptr<osg::Group> crowd;
@@ -125,13 +136,14 @@ osg::ref_ptr<osg::Group> makeCrowd(const std::string& system, unsigned n, const 
     else if (system == "rigid_osgActor_group")
     {
         bench::OsgActorCrowd group;
-        group.threads = std::max(1u, std::thread::hardware_concurrency());
+        group.threads = allCores();
         crowd = bench::makeOsgActorScene(n, group);
     }
-    else if (system == "rigid_osgActor_instanced")
+    else if (system == "rigid_osgActor_instanced" || system == "rigid_osgActor_instanced_threaded")
     {
         bench::OsgActorCrowd instanced;
         instanced.instanced = true;
+        if (system == "rigid_osgActor_instanced_threaded") instanced.threads = allCores();
         crowd = bench::makeOsgActorScene(n, instanced);
     }
     else if (system == "rigid_osgAnimation") crowd = bench::makeOsgAnimationScene(n);
@@ -140,6 +152,8 @@ osg::ref_ptr<osg::Group> makeCrowd(const std::string& system, unsigned n, const 
         crowd = bench::makeSkinnedCrowd(bench::SkinnedSystem::OsgActorGpu, n, options.cesiumMan);
     else if (system == "skinned_osgActor_instanced")
         crowd = bench::makeSkinnedCrowd(bench::SkinnedSystem::OsgActorGpuInstanced, n, options.cesiumMan);
+    else if (system == "skinned_osgActor_instanced_threaded")
+        crowd = bench::makeSkinnedCrowd(bench::SkinnedSystem::OsgActorGpuInstanced, n, options.cesiumMan, allCores());
     else if (system == "skinned_osgActor_cpu")
         crowd = bench::makeSkinnedCrowd(bench::SkinnedSystem::OsgActorCpu, n, options.cesiumMan);
     else if (system == "skinned_osgAnimation_hw")

@@ -28,7 +28,7 @@ namespace {
 
 /** group: null for a plain group of the file's scene nodes, else the group to put the actors in. */
 osg::ref_ptr<osg::Group> makeOsgActorCrowd(unsigned n, bool cpu, const std::string& file,
-                                           osgActor::InstancedActorGroup* group = nullptr)
+                                           osgActor::InstancedActorGroup* group = nullptr, unsigned groupThreads = 1)
 {
     osgActor::RiggedModelActorOptions options;
     options.skinning = cpu ? osgActor::SkinnedMesh::CPU_SKINNING : osgActor::SkinnedMesh::GPU_SKINNING;
@@ -47,7 +47,7 @@ osg::ref_ptr<osg::Group> makeOsgActorCrowd(unsigned n, bool cpu, const std::stri
     }
     // The group's children must be the actors: the file's root scale (a transform above the actor, if any) goes
     // above the group.
-    group->setNumThreads(1);
+    group->setNumThreads(groupThreads);
     for (unsigned a = 0; a < n; ++a) group->addChild(osg::clone(read.actor.get(), osg::CopyOp::SHALLOW_COPY));
     if (read.sceneNode == read.actor)
     {
@@ -62,11 +62,11 @@ osg::ref_ptr<osg::Group> makeOsgActorCrowd(unsigned n, bool cpu, const std::stri
 }
 
 osg::ref_ptr<osg::Group> makeOsgActorGroupCrowd(unsigned n, osgActor::InstancedActorGroup::DrawMode mode,
-                                                const std::string& file)
+                                                const std::string& file, unsigned threads)
 {
     osg::ref_ptr<osgActor::InstancedActorGroup> group = new osgActor::InstancedActorGroup;
     group->setDrawMode(mode);
-    return makeOsgActorCrowd(n, false, file, group.get());
+    return makeOsgActorCrowd(n, false, file, group.get(), threads);
 }
 
 bool isUnit(const glm::dvec3& scale) { return glm::length(scale - glm::dvec3(1.0)) < 1e-5; }
@@ -240,16 +240,17 @@ const char* nameOf(SkinnedSystem system)
     return "";
 }
 
-osg::ref_ptr<osg::Group> makeSkinnedCrowd(SkinnedSystem system, unsigned n, const std::string& file)
+osg::ref_ptr<osg::Group> makeSkinnedCrowd(SkinnedSystem system, unsigned n, const std::string& file,
+                                          unsigned groupThreads)
 {
     switch (system)
     {
     case SkinnedSystem::OsgActorGpu: return makeOsgActorCrowd(n, false, file);
     case SkinnedSystem::OsgActorCpu: return makeOsgActorCrowd(n, true, file);
     case SkinnedSystem::OsgActorGpuGroup:
-        return makeOsgActorGroupCrowd(n, osgActor::InstancedActorGroup::ORDINARY, file);
+        return makeOsgActorGroupCrowd(n, osgActor::InstancedActorGroup::ORDINARY, file, groupThreads);
     case SkinnedSystem::OsgActorGpuInstanced:
-        return makeOsgActorGroupCrowd(n, osgActor::InstancedActorGroup::INSTANCED, file);
+        return makeOsgActorGroupCrowd(n, osgActor::InstancedActorGroup::INSTANCED, file, groupThreads);
     case SkinnedSystem::OsgAnimationSoftware: return makeOsgAnimationCrowd(n, false, file);
     case SkinnedSystem::OsgAnimationHardware: return makeOsgAnimationCrowd(n, true, file);
     }

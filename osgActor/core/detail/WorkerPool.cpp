@@ -5,11 +5,15 @@
 
 namespace osgActor {
 
-WorkerPool::WorkerPool(unsigned numThreads)
+WorkerPool::WorkerPool(unsigned numThreads, std::function<void()> onWorkerStart)
 {
     if (numThreads == 0) numThreads = std::max(1u, std::thread::hardware_concurrency());
     _slices.reset(new Slice[numThreads]);
-    for (unsigned i = 1; i < numThreads; ++i) _workers.emplace_back([this, i] { workerLoop(i); });
+    for (unsigned i = 1; i < numThreads; ++i)
+        _workers.emplace_back([this, i, onWorkerStart] {
+            if (onWorkerStart) onWorkerStart();
+            workerLoop(i);
+        });
 }
 
 WorkerPool::~WorkerPool()
