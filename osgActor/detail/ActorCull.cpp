@@ -239,7 +239,9 @@ void ActorCull::keepCalls(const ActorCullState::Versions& versions, const osg::G
     _state._key = _state._preparedKey;
     _state._versions = versions;
     _state._keptDepths = _state._preparedDepths;
-    _state._keptCulled = _state._stepCulled; // what the reshaped calls compare their drops with
+    // What the reshaped calls compare their drops with.
+    _state._keptDropped = _state._preparedDropped;
+    if (_state._keptDropped) _state._keptCulled = _state._stepCulled;
     _state._replayable = true;
     noteEntry(actor, entry);
 }
@@ -331,6 +333,7 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
         !_plan->hasOrdinarySteps();
     _preparedDepthsByBounds = depthsByBounds;
     _preparedDepths = DepthRange();
+    _preparedDropped = 0;
     if ((!frustumCullingForNearFar || depthsByBounds) &&
         _plan->needsNoTestBelowTopJoints(view.traversalMask, view.nodeMaskOverride,
                                          smallFeatureCulling, pixelSizeVector,
@@ -338,45 +341,24 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
                                              return isSmallFeature(bound, 0, view);
                                          }))
     {
-        // No joint or geode culled (as the loop below would find, step by step): the drawables' depths and, near and
-        // far computed, which drawables the visitor would drop (outside the frustum, behind the eye), as below. Their
-        // boxes are tested against the frustum but below a top step (a joint or geode in the actor's frame) whose
-        // sphere lies wholly inside every plane: the visitor tests it so (the planes moved into the actor's frame)
-        // and then tests no plane below it, where no box can be outside one (each bound holds its children's).
-        const bool boxTests = depthsByBounds && frustumCullingForNearFar;
-        if (boxTests)
-        {
-            _actorFramePlanes = view.frustum->getPlaneList();
-            for (osg::Plane& plane : _actorFramePlanes) plane.transformProvidingInverse(actorModelView);
-        }
-        std::size_t topEnd = 0;  // the end of the top step the drawables are below
-        bool insideTop = false; // its sphere wholly inside the frustum
+        // No joint or geode culled (as the loop below would find, step by step): the drawables' depths alone, or with
+        // near and far from bounding volumes, those the visitor keeps and their near and far.
         bool nanDepth = false;
-        for (unsigned i : _plan->getDrawableSteps())
-        {
-            const ActorCullPlan::Step& step = stepData[i];
-            const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
-            const osg::Matrixd& modelView = frames[step.joint + 1];
-            while (boxTests && topEnd <= i)
+        if (depthsByBounds)
+            nanDepth = prepareDrawablesByBounds(view, frustumCullingForNearFar);
+        else
+            for (unsigned i : _plan->getDrawableSteps())
             {
-                const ActorCullPlan::Step& top = stepData[topEnd];
-                topEnd = top.end ? top.end : topEnd + 1;
-                insideTop = top.cullingActive && isWhollyInside(top.node->getBound(), _actorFramePlanes);
+                const ActorCullPlan::Step& step = stepData[i];
+                const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
+                depths[i] = box.valid() ? eyeDepth(box.center(), frames[step.joint + 1]) : 0.0f;
+                nanDepth = nanDepth || osg::isNaN(depths[i]);
             }
-            if (depthsByBounds && box.valid() &&
-                ((boxTests && !insideTop && step.cullingActive && isOutsideFrustum(box, modelView, view)) ||
-                 !_preparedDepths.addBox(box, modelView)))
-            {
-                culled[i] = 1;
-                continue;
-            }
-            depths[i] = box.valid() ? eyeDepth(box.center(), modelView) : 0.0f;
-            nanDepth = nanDepth || osg::isNaN(depths[i]);
-        }
         // The kept calls were made for the same steps, no joint or geode culled: so are this cull's, and where it
         // drops the same drawables (none, mostly) the calls keep their shape.
         _preparedPlain = true;
-        _preparedReshape = mayReshape && !nanDepth && _stepCulled == _keptCulled;
+        _preparedReshape = mayReshape && !nanDepth && _preparedDropped == _keptDropped &&
+                           (_keptDropped == 0 || _stepCulled == _keptCulled);
         if (mayReshape && !_preparedReshape) forgetCalls();
         return;
     }
@@ -420,6 +402,54 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
         default: break;
         }
     }
+}
+
+bool ActorCullState::prepareDrawablesByBounds(const ActorCullView& view, bool frustumCulling)
+{
+    // What CullVisitor::apply(osg::Drawable&) decides for each drawable, no joint or geode culled above it: its box
+    // against the frustum, then near and far from it (dropped if wholly behind the eye), then its depth. The boxes
+    // are tested against the frustum but below a top step (a joint or geode in the actor's frame) whose sphere lies
+    // wholly inside every plane: the visitor tests it so (the planes moved into the actor's frame) and then tests no
+    // plane below it, where no box can be outside one (each bound holds its children's).
+    const ActorCullPlan::Step* steps = _plan->getSteps().data();
+    const osg::Matrixd* frames = _preparedModelViews->matrices.data();
+    unsigned char* culled = _stepCulled.data();
+    float* depths = _stepDepths.data();
+    if (frustumCulling)
+    {
+        _actorFramePlanes = view.frustum->getPlaneList();
+        for (osg::Plane& plane : _actorFramePlanes) plane.transformProvidingInverse(frames[0]);
+    }
+    std::size_t topEnd = 0;  // the end of the top step the drawables are below
+    bool insideTop = false; // its sphere wholly inside the frustum
+    bool nanDepth = false;
+    for (unsigned i : _plan->getDrawableSteps())
+    {
+        const ActorCullPlan::Step& step = steps[i];
+        const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
+        const osg::Matrixd& modelView = frames[step.joint + 1];
+        while (frustumCulling && topEnd <= i)
+        {
+            const ActorCullPlan::Step& top = steps[topEnd];
+            topEnd = top.end ? top.end : topEnd + 1;
+            insideTop = top.cullingActive && isWhollyInside(top.node->getBound(), _actorFramePlanes);
+        }
+        if (!box.valid())
+        {
+            depths[i] = 0.0f;
+            continue;
+        }
+        if ((frustumCulling && !insideTop && step.cullingActive && isOutsideFrustum(box, modelView, view)) ||
+            !_preparedDepths.addBox(box, modelView))
+        {
+            culled[i] = 1;
+            ++_preparedDropped;
+            continue;
+        }
+        depths[i] = eyeDepth(box.center(), modelView);
+        nanDepth = nanDepth || osg::isNaN(depths[i]);
+    }
+    return nanDepth;
 }
 
 namespace {

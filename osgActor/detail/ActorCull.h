@@ -230,6 +230,10 @@ private:
     }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame, const ActorCullView& view);
     bool isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView, const ActorCullView& view) const;
+    /** For prepare(), no joint or geode culled, near and far from bounding volumes: each drawable's decision (outside
+      * the frustum, when frustumCulling, or wholly behind the eye: culled, counted in _preparedDropped), its near and
+      * far into _preparedDepths and its depth; true where a depth kept is not a number. */
+    bool prepareDrawablesByBounds(const ActorCullView& view, bool frustumCulling);
 
     // What an idle actor's replay reads (replayBeforeEntering()), together from the start of the object up to its
     // key's view (prefetchAhead() asks for these lines); the key's matrix and the rest after them.
@@ -269,6 +273,7 @@ private:
     bool _preparedDepthsByBounds = false;
     DepthRange _preparedDepths;
     std::vector<osg::Plane> _actorFramePlanes; // the frustum's planes in the actor's frame, for prepare()
+    unsigned _preparedDropped = 0;             // the drawables prepareDrawablesByBounds() dropped
     // A cull's working space, kept so that a frame allocates nothing. Per frame (the actor's, then each planned
     // joint's): its matrix for the render graph, or null; its pixel-size vector.
     std::vector<osg::RefMatrix*> _leafMatrices;
@@ -313,7 +318,8 @@ private:
     };
     std::vector<KeptLeaf> _keptLeaves;
     std::vector<JointDrawBatch::Entry> _keptEntries;
-    std::vector<unsigned char> _keptCulled; // the _stepCulled of the cull that made the kept calls
+    unsigned _keptDropped = 0;              // the drawables the cull that made the kept calls dropped
+    std::vector<unsigned char> _keptCulled; // and its _stepCulled, where it dropped any
     bool _callsReshapable = false;
     // What prepare() decided besides: replay the kept calls with the prepared matrices and depths; nothing culled
     // below the top joints (every step's decision skipped).
