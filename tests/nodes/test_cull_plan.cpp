@@ -336,6 +336,10 @@ TEST(CullPlan, StillActorsWithNearAndFarFromBoundingVolumesAreReplayedUnenteredW
         EXPECT_GT(entered, enteringNone); // the test can fail: the first cull enters the actors in view
         const std::vector<CulledLeaf> ordinary = scene.cullOrdinarily();
         const double ordinaryNear = scene.probe.calculatedNear(), ordinaryFar = scene.probe.calculatedFar();
+        if (&camera == &cameras[2])
+        {
+            EXPECT_LT(ordinaryNear, 0.0); // the test can fail: a box across the eye's plane
+        }
         for (int frame = 0; frame < 4; ++frame)
         {
             SCOPED_TRACE("frame " + std::to_string(frame));
@@ -343,7 +347,10 @@ TEST(CullPlan, StillActorsWithNearAndFarFromBoundingVolumesAreReplayedUnenteredW
             expectSameLeaves(asOne, ordinary);
             expectSameBits(scene.probe.calculatedNear(), ordinaryNear);
             expectSameBits(scene.probe.calculatedFar(), ordinaryFar);
-            if (frame > 0) EXPECT_EQ(scene.matricesTaken(), enteringNone); // replayed before entering
+            if (frame > 0)
+            {
+                EXPECT_EQ(scene.matricesTaken(), enteringNone); // replayed before entering
+            }
         }
     }
 }
