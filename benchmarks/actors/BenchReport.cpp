@@ -104,7 +104,7 @@ void SummaryReporter::writeSummary()
 {
     std::stable_sort(_results.begin(), _results.end(), [](const Result& a, const Result& b) {
         const auto key = [](const Result& r) {
-            return std::make_tuple(rank(r.mode, {"update", "update_cull", "frame_in_view", "frame_quarter_in_view",
+            return std::make_tuple(rank(r.mode, {"update", "update_cull", "update_cull_nearfar", "frame_in_view", "frame_quarter_in_view",
                                                  "parallel", "parallel_cull", "memory"}),
                                    r.n,
                                    rank(r.system, {"osgActor_all", "osgActor_all_nodebynode", "osgActor_all_follow",

@@ -90,10 +90,11 @@ double poseSignature(osg::Group& scene)
     return summer.sum;
 }
 
-void runScene(benchmark::State& state, osg::Group& scene, bool withCull, bool shouldMove)
+void runScene(benchmark::State& state, osg::Group& scene, bool withCull, bool shouldMove,
+              bench::FrameLoop::NearFar nearFar = bench::FrameLoop::NearFar::NotComputed)
 {
     const unsigned numActors = static_cast<unsigned>(state.range(0));
-    bench::FrameLoop loop(&scene, withCull);
+    bench::FrameLoop loop(&scene, withCull, nearFar);
     // Warm up (osgAnimation links its channels on the first frame) and check that the system moves.
     loop.frame();
     const double before = poseSignature(scene);
@@ -137,6 +138,17 @@ void registerAll(const Sweep& sweep)
                              system != System::OsgActorIdle && system != System::OsgActorIdleInstanced);
                 })->Arg(n)->Unit(benchmark::kMicrosecond);
             }
+    // Update + cull with osgViewer's default camera: near and far computed from bounding volumes.
+    for (int n : sweep.actors)
+        for (System system : {System::OsgActorAll, System::OsgActorIdle, System::OsgAnimation, System::PlainOsg})
+        {
+            const std::string name = std::string("update_cull_nearfar/") + kNames[int(system)];
+            benchmark::RegisterBenchmark(name.c_str(), [system](benchmark::State& state) {
+                osg::ref_ptr<osg::Group> scene = makeScene(system, static_cast<unsigned>(state.range(0)));
+                runScene(state, *scene, true, system != System::OsgActorIdle,
+                         bench::FrameLoop::NearFar::FromBoundingVolumes);
+            })->Arg(n)->Unit(benchmark::kMicrosecond);
+        }
     // The whole frame (update + cull) with every instance in view, and with three in four behind the camera; each
     // instance under a placing transform in both (osgActor's actors placed by their pre-translation, under an
     // InstancedActorGroup too), osgActor's actors updating only when seen.

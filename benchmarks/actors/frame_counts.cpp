@@ -6,7 +6,8 @@
 // counts those frames only (outside valgrind the requests do nothing). Arguments: actors (1000), measured frames
 // (20), then any of "follow" for bounds that follow the pose (the default covers rotations), "cull" for the cull
 // too, "idle" for actors without a controller, "instanced" for the crowd under an InstancedActorGroup (its
-// update_cull/osgActor_all_instanced, or _idle_instanced). Divide the counts by
+// update_cull/osgActor_all_instanced, or _idle_instanced), "nearfar" for a cull computing near and far from bounding
+// volumes as osgViewer's default camera does (update_cull_nearfar/osgActor_all, or _idle). Divide the counts by
 // actors x frames x 31 joints for figures per joint and frame (docs/performance.md).
 #include "FrameLoop"
 #include "PeerScenes"
@@ -21,17 +22,18 @@ int main(int argc, char** argv)
 {
     const unsigned numActors = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 1000u;
     const unsigned numFrames = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 20u;
-    bool follow = false, cull = false, idle = false, instanced = false;
+    bool follow = false, cull = false, idle = false, instanced = false, nearFar = false;
     for (int i = 3; i < argc; ++i)
     {
         follow = follow || std::strcmp(argv[i], "follow") == 0;
         cull = cull || std::strcmp(argv[i], "cull") == 0;
         idle = idle || std::strcmp(argv[i], "idle") == 0;
         instanced = instanced || std::strcmp(argv[i], "instanced") == 0;
+        nearFar = nearFar || std::strcmp(argv[i], "nearfar") == 0;
     }
     if (numActors == 0 || numFrames == 0)
     {
-        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced] [nearfar]\n", argv[0]);
         return 1;
     }
     bench::OsgActorCrowd crowd;
@@ -39,7 +41,8 @@ int main(int argc, char** argv)
     crowd.bounds = follow ? bench::Bounds::FollowPose : bench::Bounds::CoverRotations;
     crowd.instanced = instanced;
     osg::ref_ptr<osg::Group> scene = bench::makeOsgActorScene(numActors, crowd);
-    bench::FrameLoop loop(scene.get(), cull);
+    bench::FrameLoop loop(scene.get(), cull,
+                          nearFar ? bench::FrameLoop::NearFar::FromBoundingVolumes : bench::FrameLoop::NearFar::NotComputed);
     for (int i = 0; i < 10; ++i) loop.frame();
     CALLGRIND_ZERO_STATS;
     CALLGRIND_START_INSTRUMENTATION;
@@ -47,5 +50,6 @@ int main(int argc, char** argv)
     CALLGRIND_STOP_INSTRUMENTATION;
     CALLGRIND_DUMP_STATS_AT("measured frames");
     std::printf("%u actors, %u measured frames\n", numActors, numFrames);
+    if (cull && nearFar) std::printf("near %.9g, far %.9g computed\n", loop.lastNear(), loop.lastFar());
     return 0;
 }

@@ -194,8 +194,7 @@ bool ActorCull::canCullAsOne(osgUtil::CullVisitor& cv)
 
 ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
                      const ActorCullState::Versions& versions)
-    : _cv(cv), _state(state), _plan(nullptr), _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
-      _modelViews(nullptr), _open(), _numOpen(0)
+    : _cv(cv), _state(state), _plan(nullptr), _nearFarByVisitor(false), _modelViews(nullptr), _open(), _numOpen(0)
 {
     const ActorCullView view(cv);
     const ActorCullState::Key key = ActorCullState::keyOf(view, *cv.getModelViewMatrix());
@@ -206,8 +205,10 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
     if (_state._preparedReplay)
     {
         replay();
+        _state._keptDepths.mergeInto(_cv);
         return;
     }
+    _nearFarByVisitor = view.computeNearFar() && !_state._preparedDepthsByBounds;
     _modelViews = _state._preparedModelViews.get();
     if (_state._preparedReshape)
         replayReshaped();
@@ -216,16 +217,18 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
     // The visitor is in the actor: the model-view matrix below the actor's on its stack is where it entered.
     const osg::CullStack::MatrixStack& stack = _cv.getModelViewStack();
     keepCalls(versions, actor, stack.size() >= 2 ? stack._stack.back().get() : nullptr);
+    _state._keptDepths.mergeInto(_cv);
 }
 
 ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
                      const ActorCullState::Versions& versions, const osg::Matrixd& entry)
-    : _cv(cv), _state(state), _plan(state._plan.get()), _computeNearFar(false),
+    : _cv(cv), _state(state), _plan(state._plan.get()), _nearFarByVisitor(false),
       _modelViews(state._preparedModelViews.get()), _open(), _numOpen(0)
 {
     _state._prepared = false;
     replayReshaped();
     keepCalls(versions, actor, &entry);
+    _state._keptDepths.mergeInto(_cv);
 }
 
 void ActorCull::keepCalls(const ActorCullState::Versions& versions, const osg::Group& actor,
@@ -235,6 +238,10 @@ void ActorCull::keepCalls(const ActorCullState::Versions& versions, const osg::G
     _state._preparedModelViews = nullptr;
     _state._key = _state._preparedKey;
     _state._versions = versions;
+    _state._keptDepths = _state._preparedDepths;
+    // What the reshaped calls compare their drops with.
+    _state._keptDropped = _state._preparedDropped;
+    if (_state._keptDropped) _state._keptCulled = _state._stepCulled;
     _state._replayable = true;
     noteEntry(actor, entry);
 }
@@ -316,26 +323,43 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     const osg::Matrixd* frames = matrices.data();
     std::size_t provenUntil = 0; // the steps before it are below a joint with no small feature below it
     const bool frustumCullingForNearFar = view.computeNearFar() && view.frustumCulling();
-    if (!frustumCullingForNearFar &&
+    // Near and far from bounding volumes, where no step gives a subtree the ordinary traversal (which may read them,
+    // or reset and restore them): gathered here as the visitor gathers them, drawable by drawable, and merged into
+    // the visitor's once the calls are made (DepthRange), the drawables wholly behind the eye, which the visitor
+    // drops, dropped here. Otherwise (from primitives, which read the visitor's culling set) the calls ask the
+    // visitor for each drawable.
+    const bool depthsByBounds =
+        view.computeNearFarMode == osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES &&
+        !_plan->hasOrdinarySteps();
+    _preparedDepthsByBounds = depthsByBounds;
+    _preparedDepths = DepthRange();
+    _preparedDropped = 0;
+    if ((!frustumCullingForNearFar || depthsByBounds) &&
         _plan->needsNoTestBelowTopJoints(view.traversalMask, view.nodeMaskOverride,
                                          smallFeatureCulling, pixelSizeVector,
                                          view.smallFeaturePixelSize, [&](const osg::BoundingSphere& bound) {
                                              return isSmallFeature(bound, 0, view);
                                          }))
     {
-        // Nothing culled (as the loop below would find, step by step): the drawables' depths alone.
+        // No joint or geode culled (as the loop below would find, step by step): the drawables' depths alone, or with
+        // near and far from bounding volumes, those the visitor keeps and their near and far.
         bool nanDepth = false;
-        for (unsigned i : _plan->getDrawableSteps())
-        {
-            const ActorCullPlan::Step& step = stepData[i];
-            const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
-            depths[i] = box.valid() ? eyeDepth(box.center(), frames[step.joint + 1]) : 0.0f;
-            nanDepth = nanDepth || osg::isNaN(depths[i]);
-        }
-        // The kept calls were made for the same steps, none culled and no drawable dropped: so are this cull's.
+        if (depthsByBounds)
+            nanDepth = prepareDrawablesByBounds(view, frustumCullingForNearFar);
+        else
+            for (unsigned i : _plan->getDrawableSteps())
+            {
+                const ActorCullPlan::Step& step = stepData[i];
+                const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
+                depths[i] = box.valid() ? eyeDepth(box.center(), frames[step.joint + 1]) : 0.0f;
+                nanDepth = nanDepth || osg::isNaN(depths[i]);
+            }
+        // The kept calls were made for the same steps, no joint or geode culled: so are this cull's, and where it
+        // drops the same drawables (none, mostly) the calls keep their shape.
         _preparedPlain = true;
-        _preparedReshape = mayReshape && !nanDepth;
-        if (mayReshape && nanDepth) forgetCalls();
+        _preparedReshape = mayReshape && !nanDepth && _preparedDropped == _keptDropped &&
+                           (_keptDropped == 0 || _stepCulled == _keptCulled);
+        if (mayReshape && !_preparedReshape) forgetCalls();
         return;
     }
     if (mayReshape) forgetCalls();
@@ -371,12 +395,61 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
             const osg::Matrixd& modelView = frames[step.joint + 1];
             culled[i] = masked || (frustumCullingForNearFar && box.valid() && step.cullingActive &&
                                    isOutsideFrustum(box, modelView, view));
+            if (!culled[i] && depthsByBounds && box.valid() && !_preparedDepths.addBox(box, modelView)) culled[i] = 1;
             depths[i] = box.valid() ? eyeDepth(box.center(), modelView) : 0.0f;
             break;
         }
         default: break;
         }
     }
+}
+
+bool ActorCullState::prepareDrawablesByBounds(const ActorCullView& view, bool frustumCulling)
+{
+    // What CullVisitor::apply(osg::Drawable&) decides for each drawable, no joint or geode culled above it: its box
+    // against the frustum, then near and far from it (dropped if wholly behind the eye), then its depth. The boxes
+    // are tested against the frustum but below a top step (a joint or geode in the actor's frame) whose sphere lies
+    // wholly inside every plane: the visitor tests it so (the planes moved into the actor's frame) and then tests no
+    // plane below it, where no box can be outside one (each bound holds its children's).
+    const ActorCullPlan::Step* steps = _plan->getSteps().data();
+    const osg::Matrixd* frames = _preparedModelViews->matrices.data();
+    unsigned char* culled = _stepCulled.data();
+    float* depths = _stepDepths.data();
+    if (frustumCulling)
+    {
+        _actorFramePlanes = view.frustum->getPlaneList();
+        for (osg::Plane& plane : _actorFramePlanes) plane.transformProvidingInverse(frames[0]);
+    }
+    std::size_t topEnd = 0;  // the end of the top step the drawables are below
+    bool insideTop = false; // its sphere wholly inside the frustum
+    bool nanDepth = false;
+    for (unsigned i : _plan->getDrawableSteps())
+    {
+        const ActorCullPlan::Step& step = steps[i];
+        const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
+        const osg::Matrixd& modelView = frames[step.joint + 1];
+        while (frustumCulling && topEnd <= i)
+        {
+            const ActorCullPlan::Step& top = steps[topEnd];
+            topEnd = top.end ? top.end : topEnd + 1;
+            insideTop = top.cullingActive && isWhollyInside(top.node->getBound(), _actorFramePlanes);
+        }
+        if (!box.valid())
+        {
+            depths[i] = 0.0f;
+            continue;
+        }
+        if ((frustumCulling && !insideTop && step.cullingActive && isOutsideFrustum(box, modelView, view)) ||
+            !_preparedDepths.addBox(box, modelView))
+        {
+            culled[i] = 1;
+            ++_preparedDropped;
+            continue;
+        }
+        depths[i] = eyeDepth(box.center(), modelView);
+        nanDepth = nanDepth || osg::isNaN(depths[i]);
+    }
+    return nanDepth;
 }
 
 namespace {
@@ -404,6 +477,13 @@ void ActorCull::prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahea
     }
 }
 
+inline bool ActorCull::nearFarFromPrimitives(const osgUtil::CullVisitor& cv)
+{
+    const osg::CullSettings::ComputeNearFarMode mode = cv.getComputeNearFarMode();
+    return mode == osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES ||
+           mode == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES;
+}
+
 inline osg::Matrixd ActorCull::modelViewOnEntering(osgUtil::CullVisitor& cv, osg::MatrixTransform& actor)
 {
     // The actor's model-view matrix as CullVisitor::apply(osg::Transform&) computes it: for an ActorNode (relative,
@@ -424,10 +504,11 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
 {
     // What ActorCull's constructor would find, ahead: kept calls for this key and these counters, the plan current.
     // Near and far computed from primitives take the current culling set's frustum, the actor's when entered: only
-    // without them.
+    // without them (from bounding volumes, the visitor's call takes the matrix given, and the actor's kept range no
+    // frame at all).
     const bool planKept = state._plan && state._planVersion == versions.plan;
     if (state._prepared || !planKept || !state._replayable || state._callsTraverse || !(state._versions == versions) ||
-        cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
+        nearFarFromPrimitives(cv))
         return false;
     if (!state._key.view || !(ActorCullState::viewOf(ActorCullView(cv)) == state._key.view->view)) return false;
     // For an ActorNode (relative, the caller checked) whose bound has not been recomputed, its matrix is the one the
@@ -445,7 +526,11 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     if (state._plan.get() != kept) return false; // changed: culled afresh, the visitor in the actor
     // The visitor's own test on its way in (the mask was tested by accept()), its writes included; a culled actor
     // adds nothing.
-    if (!cv.isCulled(actor)) replayCalls(cv, state._calls);
+    if (!cv.isCulled(actor))
+    {
+        replayCalls(cv, state._calls);
+        state._keptDepths.mergeInto(cv);
+    }
     return true;
 }
 
@@ -453,10 +538,10 @@ bool ActorCull::replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCull
                                              osg::MatrixTransform& actor, const ActorCullState::Versions& versions)
 {
     // What prepare() needs to reshape the kept calls, ahead (it checks them all again): a kept plan, complete calls
-    // of a shape that holds for other matrices, no near and far computed (the actor's culling set would be read).
+    // of a shape that holds for other matrices, no near and far computed from primitives (the actor's culling set
+    // would be read).
     const bool planKept = state._plan && state._planVersion == versions.plan;
-    if (state._prepared || !planKept || !state._replayable || !state._callsReshapable ||
-        cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR)
+    if (state._prepared || !planKept || !state._replayable || !state._callsReshapable || nearFarFromPrimitives(cv))
         return false;
     const ActorCullView view(cv);
     const ActorCullState::Key key = ActorCullState::keyOf(view, modelViewOnEntering(cv, actor));
@@ -527,7 +612,7 @@ void ActorCull::keepLeafSources()
     // drawable dropped (prepare()'s plain steps, no depth not a number), without near and far (which may drop a
     // drawable) and with no subtree traversed ordinarily (its calls are not kept).
     if (!_state._callsReshapable) return;
-    if (!_state._preparedPlain || _computeNearFar || _state._callsTraverse)
+    if (!_state._preparedPlain || _nearFarByVisitor || _state._callsTraverse)
     {
         _state._callsReshapable = false;
         return;
@@ -603,7 +688,7 @@ void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
     osg::Drawable& drawable = *step.node->asDrawable();
     const unsigned frame = static_cast<unsigned>(step.joint + 1);
     const osg::Matrixd& modelView = _modelViews->matrices[frame];
-    if (_computeNearFar && drawable.getBoundingBox().valid())
+    if (_nearFarByVisitor && drawable.getBoundingBox().valid())
     {
         // The visitor takes the box's nearest and farthest corners along the view in the frame of the matrix it last
         // pushed, which here is the actor's, not the joint's: its billboard form finds them from the matrix given,

@@ -20,6 +20,10 @@
 // drawable's box against the frustum (in eye space: all eight corners outside one plane, the visitor's test, in
 // another frame) before it counts for near and far. What only saves work is skipped: spheres against the frustum,
 // so a drawable outside the view may reach the render graph, where OpenGL clips it, and the statistics count it.
+// Near and far from bounding volumes (osgViewer's default) are gathered by prepare() with the visitor's arithmetic
+// (DepthRange, the drawables behind the eye dropped as it drops them) and merged into the visitor's once per actor,
+// which gives its values to the bit (each is a least or greatest value); from primitives, or with an ordinary
+// subtree among the steps, each drawable's are asked of the visitor as it is added.
 //
 // The work is in two parts. prepare() touches no visitor: it checks the plan, computes the model-view matrices and
 // decides what small features, and what lies outside the frustum, are culled, and each drawable's depth, from a
@@ -32,7 +36,8 @@
 // list of calls. When the actor is culled again with nothing it depends on changed (the same plan, no joint
 // matrix written, no bound below recomputed, the same model-view matrix on entry, the same projection, viewport
 // and culling settings: an idle actor before a still camera), the calls are made again with the same leaves and
-// matrices, which were only read since: no joint is read but for the flags the plan compares.
+// matrices, which were only read since, and the near and far they gave merged again: no joint is read but for the
+// flags the plan compares.
 #ifndef OSGACTOR_DETAIL_ACTORCULL_H
 #define OSGACTOR_DETAIL_ACTORCULL_H 1
 
@@ -225,6 +230,10 @@ private:
     }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame, const ActorCullView& view);
     bool isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& modelView, const ActorCullView& view) const;
+    /** For prepare(), no joint or geode culled, near and far from bounding volumes: each drawable's decision (outside
+      * the frustum, when frustumCulling, or wholly behind the eye: culled, counted in _preparedDropped), its near and
+      * far into _preparedDepths and its depth; true where a depth kept is not a number. */
+    bool prepareDrawablesByBounds(const ActorCullView& view, bool frustumCulling);
 
     // What an idle actor's replay reads (replayBeforeEntering()), together from the start of the object up to its
     // key's view (prefetchAhead() asks for these lines); the key's matrix and the rest after them.
@@ -240,6 +249,9 @@ private:
       * frame): while the actor's matrix stays (its bound is not recomputed) the replay compares this one alone. */
     bool _entryKnown = false;
     Versions _versions;
+    /** The near and far distances the kept calls' drawables gave, merged into the visitor's after the calls, where
+      * prepare() gathered them (near and far from bounding volumes, no ordinary subtree); empty otherwise. */
+    DepthRange _keptDepths;
     std::vector<Call> _calls;
     osg::Matrixd _entryModelView;
     Key _key;
@@ -256,6 +268,12 @@ private:
     osg::ref_ptr<JointModelViews> _preparedModelViews;
     std::vector<unsigned char> _stepCulled;
     std::vector<float> _stepDepths;
+    /** Near and far from bounding volumes gathered by prepare() (DepthRange), the drawables behind the eye among
+      * those culled; false: the calls ask the visitor for each drawable, if near and far are computed. */
+    bool _preparedDepthsByBounds = false;
+    DepthRange _preparedDepths;
+    std::vector<osg::Plane> _actorFramePlanes; // the frustum's planes in the actor's frame, for prepare()
+    unsigned _preparedDropped = 0;             // the drawables prepareDrawablesByBounds() dropped
     // A cull's working space, kept so that a frame allocates nothing. Per frame (the actor's, then each planned
     // joint's): its matrix for the render graph, or null; its pixel-size vector.
     std::vector<osg::RefMatrix*> _leafMatrices;
@@ -287,9 +305,10 @@ private:
     // fetches them by address range).
     /** Where each kept ADD_LEAF call's leaf came from: its (first) drawable's frame and step and, for a batch, its
       * entries (a range of _keptEntries; none: a drawable's own leaf). With _callsReshapable (the cull that made the
-      * calls culled nothing, dropped no drawable, computed no near and far and traversed no subtree), a moving
-      * actor seen with the same plan and view but for its own model-view matrix makes the same calls with its new
-      * matrices and depths (ActorCull::replayReshaped()) instead of following its plan step by step. */
+      * calls culled no joint or geode, asked the visitor for no drawable's near and far and traversed no subtree), a
+      * moving actor seen with the same plan and view but for its own model-view matrix, whose cull drops the same
+      * drawables (_keptCulled: outside the frustum or behind the eye, near and far computed), makes the same calls
+      * with its new matrices and depths (ActorCull::replayReshaped()) instead of following its plan step by step. */
     struct KeptLeaf
     {
         unsigned frame;
@@ -299,6 +318,8 @@ private:
     };
     std::vector<KeptLeaf> _keptLeaves;
     std::vector<JointDrawBatch::Entry> _keptEntries;
+    unsigned _keptDropped = 0;              // the drawables the cull that made the kept calls dropped
+    std::vector<unsigned char> _keptCulled; // and its _stepCulled, where it dropped any
     bool _callsReshapable = false;
     // What prepare() decided besides: replay the kept calls with the prepared matrices and depths; nothing culled
     // below the top joints (every step's decision skipped).
@@ -323,14 +344,17 @@ public:
       * (ActorNode::accept()), with the state acquired: if its last cull's calls hold for what the visitor holds now
       * (the key with the actor's model-view matrix as the visitor will compute it, the same counters and a current
       * plan), none of them traverses a subtree (which would need the actor's frame on the visitor's stacks) and near
-      * and far are not computed, tests the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is
-      * seen, makes the calls again; true then. false, having made no call, where the visitor must enter the actor. */
+      * and far are not computed from primitives, tests the actor's bound as CullVisitor::apply(osg::Transform&) does
+      * and, if it is seen, makes the calls again and merges the near and far its drawables gave (the same: the same
+      * matrices); true then. false, having made no call, where the visitor must enter the actor. */
     static bool replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
                                      const ActorCullState::Versions& versions);
     /** The same for an actor that moved (its pose or its place): where its last cull's calls keep their shape for
       * what the visitor holds now (the same plan and view but for the actor's model-view matrix, no test needed
-      * below its top joints, no depth not a number), tests the actor's bound as the visitor would and, if it is
-      * seen, makes them again with the new matrices and depths (replayReshaped()); true then. Otherwise false,
+      * below its top joints, no depth not a number, near and far not computed from primitives, and, where they are
+      * computed from bounding volumes, the same drawables outside the frustum or behind the eye), tests the actor's
+      * bound as the visitor would and, if it is seen, makes them again with the new matrices and depths
+      * (replayReshaped()) and merges the near and far gathered with the new matrices; true then. Otherwise false,
       * having made no call, the cull left prepared for the visitor entering the actor. */
     static bool replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
                                              osg::MatrixTransform& actor, const ActorCullState::Versions& versions);
@@ -346,6 +370,9 @@ private:
       * actor (where it will enter it: the model-view matrix on top of its stack). */
     ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
               const ActorCullState::Versions& versions, const osg::Matrixd& entry);
+    /** Whether the visitor computes near and far from primitives (reading its current culling set's frustum, which
+      * the calls made before entering the actor would not hold). */
+    static bool nearFarFromPrimitives(const osgUtil::CullVisitor& cv);
     /** The actor's model-view matrix as CullVisitor::apply(osg::Transform&) will compute it (the same bits). */
     static osg::Matrixd modelViewOnEntering(osgUtil::CullVisitor& cv, osg::MatrixTransform& actor);
     /** What the constructors leave for the next cull once the calls are made: the calls and matrices kept for
@@ -411,7 +438,8 @@ private:
     osgUtil::CullVisitor& _cv;
     ActorCullState& _state;
     const ActorCullPlan* _plan;
-    bool _computeNearFar;
+    /** Near and far computed, each drawable's asked of the visitor as it is added (not gathered by prepare()). */
+    bool _nearFarByVisitor;
     JointModelViews* _modelViews;
     /** The batches this actor is filling, by state graph: a drawable goes into its graph's open batch, which is
       * closed when anything else may land in that graph (a drawable that is not batched, an ordinary traversal),

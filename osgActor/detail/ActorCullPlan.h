@@ -111,6 +111,8 @@ public:
     bool provesNoSmallFeatureBelow(const Step& step, const osg::Vec4& actorVector, float pixelSize) const;
     /** The DRAWABLE steps, in order. */
     const std::vector<unsigned>& getDrawableSteps() const { return _drawableSteps; }
+    /** Whether a step gives a subtree the ordinary traversal (which may read or reset the visitor's near and far). */
+    bool hasOrdinarySteps() const { return _hasOrdinarySteps; }
     /** Whether a cull would test nothing below the top joints' own spheres, so that it culls nothing below them: no
       * joint, geode or drawable ruled out by the visitor's masks, and either no small-feature culling or every step at
       * the top a joint whose sphere is no small feature in the actor's frame (isSmallFeatureAtTop(), the visitor's
@@ -259,6 +261,7 @@ private:
     std::vector<osg::Node::NodeMask> _masks;
     std::vector<unsigned> _topJointSteps;
     bool _topStepsAllJoints = true;
+    bool _hasOrdinarySteps = false;
     std::vector<unsigned> _drawableSteps;
     std::vector<const osg::Node*> _geodesBelow; // runs of Joint::firstGeode, numGeodes
     /** While planning: per checked joint its node and which of _jointFlags it had; the distinct flags (where each

@@ -1,7 +1,8 @@
 // Internal to the library (not installed, NOT API): the cull visitor's arithmetic that the cull of an actor as one
 // (ActorCull) and the instanced cull (InstancedCull) repeat without the visitor's stacks: a frame's model-view matrix,
-// the small-feature test and the frustum test of a box, each as the visitor computes it, so that both give the render
-// graph the very bits, and drop the very drawables, the ordinary traversal does.
+// the small-feature test and the frustum test of a box, and the near and far distances of a box, each as the visitor
+// computes it, so that both give the render graph the very bits, and drop the very drawables, the ordinary traversal
+// does.
 #ifndef OSGACTOR_DETAIL_CULLARITHMETIC_H
 #define OSGACTOR_DETAIL_CULLARITHMETIC_H 1
 
@@ -15,6 +16,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstring>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace osgActor {
@@ -180,6 +183,61 @@ inline bool isOutsideFrustum(const osg::BoundingBox& box, const osg::Matrixd& mo
     }
     return false;
 }
+
+/** Whether a sphere lies wholly inside every plane (osg::Plane::intersect(), the visitor's test of a node's sphere,
+  * for planes in the sphere's frame); a sphere that is not valid never does (the visitor does not test it). */
+inline bool isWhollyInside(const osg::BoundingSphere& bound, const std::vector<osg::Plane>& planes)
+{
+    if (!bound.valid()) return false;
+    for (const osg::Plane& plane : planes)
+        if (plane.intersect(bound) <= 0) return false;
+    return true;
+}
+
+/** A point's distance in front of the eye along the view, in the cull visitor's arithmetic for its near and far
+  * planes (doubles: CullVisitor::value_type): minus the eye-space z. eyeDepth() is the same, rounded to a float for
+  * depth sorting. */
+inline double eyeDistance(const osg::Vec3& point, const osg::Matrixd& modelView)
+{
+    return -(static_cast<double>(point[0]) * modelView(0, 2) + static_cast<double>(point[1]) * modelView(1, 2) +
+             static_cast<double>(point[2]) * modelView(2, 2) + modelView(3, 2));
+}
+
+/** The near and far distances that drawables' boxes give the cull visitor computing its near and far planes from
+  * bounding volumes (osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES), gathered as it gathers them: the
+  * least near and the greatest far, each taken where it is less (greater) than the one so far, so that gathering an
+  * actor's drawables here and then merging the result into the visitor (mergeInto()) gives the visitor's values of
+  * taking them one by one, to the bit. Empty, it changes nothing. */
+struct DepthRange
+{
+    double nearest = std::numeric_limits<double>::infinity();
+    double farthest = -std::numeric_limits<double>::infinity();
+
+    /** What CullVisitor::updateCalculatedNearFar(modelView, drawable, true) does for a drawable of this box (valid)
+      * in a frame of this model-view matrix, with its arithmetic: the box's corners nearest and farthest along the
+      * view (chosen by the signs of the look vector, in floats as the visitor takes it), their distances, and false,
+      * the range unchanged, where the whole box is behind the eye (the visitor then drops the drawable). */
+    bool addBox(const osg::BoundingBox& box, const osg::Matrixd& modelView)
+    {
+        const osg::Vec3 look(-modelView(0, 2), -modelView(1, 2), -modelView(2, 2));
+        const unsigned farCorner = (look.x() >= 0 ? 1u : 0u) + (look.y() >= 0 ? 2u : 0u) + (look.z() >= 0 ? 4u : 0u);
+        const unsigned nearCorner = ~farCorner & 7u;
+        double nearDistance = eyeDistance(box.corner(nearCorner), modelView);
+        double farDistance = eyeDistance(box.corner(farCorner), modelView);
+        if (nearDistance > farDistance) std::swap(nearDistance, farDistance);
+        if (farDistance < 0.0) return false;
+        if (nearDistance < nearest) nearest = nearDistance;
+        if (farDistance > farthest) farthest = farDistance;
+        return true;
+    }
+    /** Into the visitor's computed near and far, as each drawable gathered would have gone. */
+    template <class Visitor>
+    void mergeInto(Visitor& cv) const
+    {
+        if (nearest < cv.getCalculatedNearPlane()) cv.setCalculatedNearPlane(nearest);
+        if (farthest > cv.getCalculatedFarPlane()) cv.setCalculatedFarPlane(farthest);
+    }
+};
 
 } // namespace detail
 } // namespace osgActor

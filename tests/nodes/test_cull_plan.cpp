@@ -17,6 +17,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <set>
 #include <string>
@@ -25,6 +26,23 @@ using namespace osgActor;
 using namespace osgActor::test;
 
 namespace {
+
+/** The same near or far distance, to the bit. */
+void expectSameBits(double actual, double expected)
+{
+    EXPECT_EQ(std::memcmp(&actual, &expected, sizeof(double)), 0) << actual << " against " << expected;
+}
+
+/** The model-view matrices the cull visitor took from its list (osg::CullStack, protected there) at its last cull:
+  * one for each transform it entered, so none for an actor whose calls were made before entering it. */
+struct CullStackAccess : osg::CullStack
+{
+    static unsigned matricesTaken(const osg::CullStack& stack)
+    {
+        const unsigned int osg::CullStack::*const taken = &CullStackAccess::_currentReuseMatrixIndex;
+        return stack.*taken;
+    }
+};
 
 /** The same leaves, one by one. */
 void expectSameLeaves(const std::vector<CulledLeaf>& actual, const std::vector<CulledLeaf>& expected)
@@ -58,11 +76,16 @@ struct Scene
     }
     ActorNode& first() { return *actors.front(); }
 
-    /** Near and far computed (SceneView's default) or not. */
+    /** Near and far computed (SceneView's default, osgViewer's: from bounding volumes) or not. */
     void computeNearFar(bool on)
     {
         if (!on) probe.sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
     }
+    void computeNearFar(osg::CullSettings::ComputeNearFarMode mode) { probe.sceneView().setComputeNearFarMode(mode); }
+
+    /** How many transforms the visitor entered at its last cull (CullStackAccess). */
+    unsigned matricesTaken() { return CullStackAccess::matricesTaken(*probe.sceneView().getCullVisitor()); }
+
 
     /** Puts a transform of its own (the identity) between actor a and the root; returns it. */
     osg::MatrixTransform* placeUnderTransform(unsigned a)
@@ -88,15 +111,17 @@ struct Scene
         return ordinary;
     }
 
-    /** Culls as one, then node by node with the same camera, and expects the same render graph; returns the leaves
-      * culled as one. */
-    std::vector<CulledLeaf> cullExpectingTheOrdinaryGraph()
+    /** Culls as one, then node by node with the same camera, and expects the same render graph and the same near
+      * and far (to the bit); returns the leaves culled as one, and in entered (if given) matricesTaken() of the cull as
+      * one. */
+    std::vector<CulledLeaf> cullExpectingTheOrdinaryGraph(unsigned* entered = nullptr)
     {
         const std::vector<CulledLeaf> asOne = probe.cull(++frame);
+        if (entered) *entered = matricesTaken();
         const double asOneNear = probe.calculatedNear(), asOneFar = probe.calculatedFar();
         const std::vector<CulledLeaf> ordinary = cullOrdinarily();
-        EXPECT_EQ(asOneNear, probe.calculatedNear());
-        EXPECT_EQ(asOneFar, probe.calculatedFar());
+        expectSameBits(asOneNear, probe.calculatedNear());
+        expectSameBits(asOneFar, probe.calculatedFar());
         expectSameLeaves(asOne, ordinary);
         return asOne;
     }
@@ -174,8 +199,8 @@ TEST(CullPlan, AnUnchangedActorBeforeAStillCameraGivesTheLeavesOfItsPreviousFram
 TEST(CullPlan, UnchangedActorsPartlyOutOfViewGiveTheOrdinaryGraphFrameAfterFrame)
 {
     // An unchanged actor before a still camera is not entered by the visitor (ActorNode::accept(), where near and
-    // far are not computed): its bound is tested where the visitor would test it, and its calls made again; where
-    // they are, the visitor enters it and its cull finds its calls kept. One figure out of view, one in it.
+    // far are not computed from primitives): its bound is tested where the visitor would test it, and its calls made
+    // again. One figure out of view, one in it.
     for (const bool computeNearFar : {true, false})
     {
         SCOPED_TRACE(computeNearFar ? "near and far computed" : "near and far not computed");
@@ -268,6 +293,139 @@ TEST(CullPlan, AMovingActorsDrawableWithoutADepthIsDroppedAsTheOrdinaryTraversal
     }
 }
 
+namespace {
+
+/** What a still scene's visitor takes where it enters no actor: the actors' calls made before entering them, near and
+  * far not computed (the replay ActorNode::accept() has made since near and far are computed, which this value
+  * anchors). */
+unsigned matricesTakenEnteringNoActor()
+{
+    Scene scene;
+    scene.computeNearFar(false);
+    for (int frame = 0; frame < 3; ++frame) scene.probe.cull(++scene.frame);
+    return scene.matricesTaken();
+}
+
+/** A camera: where the eye is, where it looks. */
+struct EyeAndCentre
+{
+    osg::Vec3d eye;
+    osg::Vec3d centre;
+};
+
+} // namespace
+
+TEST(CullPlan, StillActorsWithNearAndFarFromBoundingVolumesAreReplayedUnenteredWithTheOrdinaryNearAndFar)
+{
+    // osgViewer's default: near and far computed from the drawables' bounding boxes. An unchanged actor before a
+    // still camera is not entered (ActorNode::accept()): its calls are made again and the near and far its drawables
+    // gave merged into the visitor's, which must be the ordinary traversal's to the bit. Three cameras: all in view;
+    // a figure out of view; the eye inside the middle figure looking along x, the first figure behind it and some of
+    // the middle one's drawables wholly behind the eye (dropped) or across the eye's plane (a near distance below 0).
+    const unsigned enteringNone = matricesTakenEnteringNoActor();
+    const EyeAndCentre cameras[] = {{{1.1, -6.0, 1.5}, {1.1, 0.0, 0.9}},
+                                    {{2.2, -3.0, 1.2}, {3.2, 0.0, 0.9}},
+                                    {{1.12, 0.2, 1.1}, {3.0, 0.2, 1.1}}};
+    for (const EyeAndCentre& camera : cameras)
+    {
+        SCOPED_TRACE("eye at x " + std::to_string(camera.eye.x()) + ", y " + std::to_string(camera.eye.y()));
+        Scene scene;
+        scene.probe.lookAt(camera.eye, camera.centre);
+        unsigned entered = 0;
+        scene.cullExpectingTheOrdinaryGraph(&entered);
+        EXPECT_GT(entered, enteringNone); // the test can fail: the first cull enters the actors in view
+        const std::vector<CulledLeaf> ordinary = scene.cullOrdinarily();
+        const double ordinaryNear = scene.probe.calculatedNear(), ordinaryFar = scene.probe.calculatedFar();
+        if (&camera == &cameras[2])
+        {
+            EXPECT_LT(ordinaryNear, 0.0); // the test can fail: a box across the eye's plane
+        }
+        for (int frame = 0; frame < 4; ++frame)
+        {
+            SCOPED_TRACE("frame " + std::to_string(frame));
+            const std::vector<CulledLeaf> asOne = scene.probe.cull(++scene.frame);
+            expectSameLeaves(asOne, ordinary);
+            expectSameBits(scene.probe.calculatedNear(), ordinaryNear);
+            expectSameBits(scene.probe.calculatedFar(), ordinaryFar);
+            if (frame > 0)
+            {
+                EXPECT_EQ(scene.matricesTaken(), enteringNone); // replayed before entering
+            }
+        }
+    }
+}
+
+TEST(CullPlan, MovingActorsWithNearAndFarFromBoundingVolumesGiveTheOrdinaryGraphAndNearAndFarFrameAfterFrame)
+{
+    // Near and far computed from bounding volumes, an actor that moved, seen with the same plan and view but for its
+    // own model-view matrix, makes its last cull's calls again with its new matrices and depths, and near and far
+    // gathered from its drawables with them, where it drops the same drawables as that cull (outside the frustum,
+    // behind the eye). Poses, a figure's place and the camera change from frame to frame: the camera backing away
+    // through the small-feature threshold and coming back, then the eye walking along x through the figures, so
+    // that drawables pass behind it, one by one, across its plane.
+    const unsigned enteringNone = matricesTakenEnteringNoActor();
+    Scene scene;
+    std::vector<EyeAndCentre> cameras;
+    for (const double distance : {6.0, 6.0, 6.5, 7.0, 7.0, 30.0, 60.0, 120.0, 60.0, 7.0, 6.0, 6.0, 5.0, 4.0})
+        cameras.push_back({{1.1, -distance, 1.5}, {1.1, 0.0, 0.9}});
+    for (int step = 0; step < 24; ++step)
+    {
+        const double x = -0.6 + 0.1 * step;
+        cameras.push_back({{x, 0.2, 1.1}, {x + 2.0, 0.2, 1.1}});
+    }
+    std::size_t unentered = 0;
+    std::set<std::size_t> counts;
+    for (std::size_t frame = 0; frame < cameras.size(); ++frame)
+    {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        scene.probe.lookAt(cameras[frame].eye, cameras[frame].centre);
+        for (std::size_t a = 0; a < scene.actors.size(); ++a)
+        {
+            if ((frame + a) % 3 == 0) continue; // one figure in three still
+            scene.actors[a]->setDof("l_elbow.rx", -0.1 * double(frame % 12));
+            scene.actors[a]->setDof("r_knee.rx", 0.05 * double((frame + a) % 12));
+            if (frame % 4 == 1) scene.actors[a]->setPreTranslation(osg::Vec3d(1.1 * a, 0.2 * a + 0.01 * frame, 0.0));
+            scene.actors[a]->update(nullptr);
+        }
+        unsigned entered = 0;
+        counts.insert(scene.cullExpectingTheOrdinaryGraph(&entered).size());
+        unentered += entered == enteringNone;
+    }
+    EXPECT_GT(counts.size(), 4u); // the test can fail: small features, and drawables behind the eye
+    // The test can fail: the calls reshaped before entering the actors (every frame of the camera's way there and
+    // back but where small features or drops change; as the eye walks, where no drawable passes behind it).
+    EXPECT_GT(unentered, cameras.size() / 3);
+}
+
+TEST(CullPlan, NearAndFarFromPrimitivesAreAskedOfTheVisitorInsideTheActor)
+{
+    // From primitives, the visitor reads its culling set (the actor's, once entered) for each drawable's near and
+    // far: the actor is entered and its cull asks the visitor for each drawable, still or moving, as before near and
+    // far from bounding volumes were gathered. The leaves are the ordinary traversal's. (The near distance is not:
+    // the actor's culling set, not the joint's, decides which drawables' primitives are searched; it was so before.)
+    const unsigned enteringNone = matricesTakenEnteringNoActor();
+    for (const osg::CullSettings::ComputeNearFarMode mode :
+         {osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES, osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES})
+    {
+        SCOPED_TRACE(mode == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES ? "near from primitives"
+                                                                               : "near and far from primitives");
+        Scene scene;
+        scene.computeNearFar(mode);
+        for (int frame = 0; frame < 6; ++frame)
+        {
+            SCOPED_TRACE("frame " + std::to_string(frame));
+            if (frame >= 3)
+            {
+                scene.first().setDof("l_elbow.rx", -0.1 * frame);
+                scene.first().update(nullptr);
+            }
+            const std::vector<CulledLeaf> asOne = scene.probe.cull(++scene.frame);
+            EXPECT_GT(scene.matricesTaken(), enteringNone); // the test can fail: the actors are entered
+            expectSameLeaves(asOne, scene.cullOrdinarily());
+        }
+    }
+}
+
 TEST(CullPlan, AJointMatrixSetByHandIsSeen)
 {
     Scene scene;
@@ -296,8 +454,8 @@ TEST(CullPlan, AnActorsOwnMatrixSetByHandIsSeenWhateverComputesItsBound)
 {
     // An unchanged actor's replay takes its matrix to be the one of its kept calls while its bound has not been
     // recomputed (every setter of a MatrixTransform's matrix dirties it); a bound callback recomputes it without the
-    // actor knowing, so there the matrix itself is compared. Near and far not computed: the visitor does not enter
-    // such an actor (ActorNode::accept()); computed: it does, and the actor's cull finds its kept calls.
+    // actor knowing, so there the matrix itself is compared. Near and far computed from bounding volumes or not, the
+    // visitor does not enter such an actor (ActorNode::accept()).
     for (const bool callback : {false, true})
         for (const bool computeNearFar : {false, true})
         {
@@ -354,28 +512,32 @@ TEST(CullPlan, AnActorThatMovedWhileItsParentMovedIsNotReplayedFromWhereItWasBef
     // A moving actor's reshaped calls (made before the visitor enters it) are kept with where the visitor entered it
     // then: when its parent moves back and the actor stands still, the replay must not take the entry of the calls
     // before those for theirs.
-    Scene scene;
-    scene.computeNearFar(false);
-    osg::MatrixTransform* const parent = scene.placeUnderTransform(1);
-    ActorNode& actor = *scene.actors[1];
-    const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
-    scene.cullExpectingTheOrdinaryGraph();
-    scene.probe.cull(++scene.frame);
-    scene.probe.cull(++scene.frame); // replayed, the entry kept
+    for (const bool computeNearFar : {false, true})
+    {
+        SCOPED_TRACE(computeNearFar ? "near and far computed" : "near and far not computed");
+        Scene scene;
+        scene.computeNearFar(computeNearFar);
+        osg::MatrixTransform* const parent = scene.placeUnderTransform(1);
+        ActorNode& actor = *scene.actors[1];
+        const osg::Drawable* head = actor.getSkeletonNode("head")->getChild(0)->asGeode()->getDrawable(0);
+        scene.cullExpectingTheOrdinaryGraph();
+        scene.probe.cull(++scene.frame);
+        scene.probe.cull(++scene.frame); // replayed, the entry kept
 
-    parent->setMatrix(osg::Matrix::translate(0.0, 0.0, 0.3));
-    actor.setDof("l_elbow.rx", -0.4);
-    actor.update(nullptr);
-    scene.probe.cull(++scene.frame); // moved: the kept calls reshaped
+        parent->setMatrix(osg::Matrix::translate(0.0, 0.0, 0.3));
+        actor.setDof("l_elbow.rx", -0.4);
+        actor.update(nullptr);
+        scene.probe.cull(++scene.frame); // moved: the kept calls reshaped
 
-    parent->setMatrix(osg::Matrix::identity());
-    const std::vector<CulledLeaf> back = scene.probe.cull(++scene.frame);
-    const std::vector<CulledLeaf> ordinary = scene.cullOrdinarily();
-    const CulledLeaf* backHead = find(back, head);
-    const CulledLeaf* ordinaryHead = find(ordinary, head);
-    ASSERT_TRUE(backHead && ordinaryHead);
-    EXPECT_TRUE(*backHead == *ordinaryHead);
-    expectSameLeaves(back, ordinary);
+        parent->setMatrix(osg::Matrix::identity());
+        const std::vector<CulledLeaf> back = scene.probe.cull(++scene.frame);
+        const std::vector<CulledLeaf> ordinary = scene.cullOrdinarily();
+        const CulledLeaf* backHead = find(back, head);
+        const CulledLeaf* ordinaryHead = find(ordinary, head);
+        ASSERT_TRUE(backHead && ordinaryHead);
+        EXPECT_TRUE(*backHead == *ordinaryHead);
+        expectSameLeaves(back, ordinary);
+    }
 }
 
 TEST(CullPlan, ChildrenAddedRemovedOrReplacedBelowJointsAndGeodesAreSeen)
