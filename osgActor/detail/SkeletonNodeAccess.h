@@ -8,6 +8,10 @@
 
 #include <osgActor/SkeletonNode>
 #include <osgActor/detail/CullArithmetic.h>
+#include <osgActor/detail/PlacedSkeletonNode.h>
+
+#include <algorithm>
+#include <typeinfo>
 
 namespace osgActor {
 namespace detail {
@@ -80,6 +84,20 @@ struct SkeletonNodeAccess
         node.getBound();
         return {node._subtreeRigid && !node.getComputeBoundingSphereCallback(),
                 translationReach(node._matrix.ptr()) + node._reachBelow};
+    }
+
+    /** Adds a child's subtree to a shape being noted (SkeletonNode::_subtreeRigid and _reachBelow of its parent):
+      * a skeleton node of the classes an actor's cull plans, in its parent's frame, whose bound is computed; other
+      * children add nothing. */
+    static void noteChildShape(const osg::Transform& child, bool& rigid, double& reach)
+    {
+        // The classes first; a type that is not the one compared with is told by its name.
+        const std::type_info& type = typeid(child);
+        if (type != typeid(PlacedSkeletonNode) && type != typeid(SkeletonNode)) return;
+        const SkeletonNode& joint = static_cast<const SkeletonNode&>(child);
+        if (joint._referenceFrame != osg::Transform::RELATIVE_RF) return;
+        rigid = rigid && joint._subtreeRigid && !joint.getComputeBoundingSphereCallback();
+        reach = std::max(reach, translationReach(joint._matrix.ptr()) + joint._reachBelow);
     }
 
 private:
