@@ -26,6 +26,29 @@ struct SkeletonNodeAccess
       * copying it, and each copy of an osg::ref_ptr touches the child it points to. */
     static void reserveChildren(SkeletonNode& node, unsigned numChildren) { node._children.reserve(numChildren); }
 
+    /** Puts child, a skeleton node just made (no parent, no child, no callback, culling on, not an osg::OccluderNode),
+      * at the end of parent's children: what osg::Group::insertChild() does for such a child, whose counts of
+      * children needing update or event traversals, with culling disabled or with occluders it would leave as they
+      * are, and which no other thread can see yet. Group::insertChild() finds that out by asking the child, its
+      * occluders by a dynamic_cast that walks the class's bases, comparing names: as much work as the rest of the
+      * node's making. A node in any other state is added by insertChild() as usual. */
+    static void appendNewChild(SkeletonNode& parent, SkeletonNode& child)
+    {
+        if (!child._parents.empty() || !child._children.empty() || child.getUpdateCallback() ||
+            child.getNumChildrenRequiringUpdateTraversal() > 0 || child.getEventCallback() ||
+            child.getNumChildrenRequiringEventTraversal() > 0 || !child.getCullingActive() ||
+            child.getNumChildrenWithCullingDisabled() > 0 || child.getNumChildrenWithOccluderNodes() > 0 ||
+            typeid(child) != typeid(PlacedSkeletonNode))
+        {
+            parent.osg::Group::insertChild(parent.getNumChildren(), &child);
+            return;
+        }
+        parent._children.push_back(&child);
+        child._parents.push_back(&parent);
+        parent.childInserted(static_cast<unsigned>(parent._children.size() - 1));
+        parent.dirtyBound();
+    }
+
     /** Marks the node's bound dirty without walking to the parents; returns whether it had been computed (false:
       * it, and so its ancestors', were dirty already). */
     static bool markBoundDirty(SkeletonNode& node)
