@@ -278,6 +278,8 @@ std::vector<double*> ActorNode::buildSkeletonNodes(const ActorDefinition& def)
     std::vector<double*> locals;
     locals.reserve(numJoints);
     _skeletonNodes.reserve(numJoints);
+    // The nodes side by side in one block, in joint order: one allocation, not one per node.
+    const detail::PlacedSkeletonNode::Batch batch(numJoints);
     for (unsigned j = 0; j < numJoints; ++j)
     {
         osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def.getJointName(j));
