@@ -278,6 +278,8 @@ std::vector<double*> ActorNode::buildSkeletonNodes(const ActorDefinition& def)
     std::vector<double*> locals;
     locals.reserve(numJoints);
     _skeletonNodes.reserve(numJoints);
+    // The nodes side by side in one block, in joint order: one allocation, not one per node.
+    const detail::PlacedSkeletonNode::Batch batch(numJoints);
     for (unsigned j = 0; j < numJoints; ++j)
     {
         osg::ref_ptr<SkeletonNode> node = new detail::PlacedSkeletonNode(j, def.getJointName(j));
@@ -290,11 +292,10 @@ std::vector<double*> ActorNode::buildSkeletonNodes(const ActorDefinition& def)
         SkeletonNodeAccess::matrixWritten(*node);
         locals.push_back(matrix);
         const int parent = def.getParent(j);
-        // osg::Group's own addChild(): the skeleton node's would report each edit up its chain to this actor, a walk
-        // as deep as the joint; the plan is dirtied once below.
-        osg::Group& group = parent == kNoParent ? static_cast<osg::Group&>(*this)
-                                                : *_skeletonNodes[static_cast<unsigned>(parent)];
-        group.osg::Group::addChild(node.get());
+        // Not the skeleton node's addChild(): it would report each edit up its chain to this actor, a walk as deep
+        // as the joint; the plan is dirtied once below.
+        if (parent == kNoParent) osg::Group::addChild(node.get());
+        else SkeletonNodeAccess::appendNewChild(*_skeletonNodes[static_cast<unsigned>(parent)], *node);
         _skeletonNodes.push_back(node);
     }
     dirtyCullPlan();

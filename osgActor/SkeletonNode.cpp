@@ -3,6 +3,7 @@
 #include <osgActor/detail/AffineBound.h>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
+#include <osgActor/detail/SkeletonNodeAccess.h>
 #include <osgActor/core/detail/HotPath.h>
 
 #include <osgUtil/IntersectionVisitor>
@@ -106,17 +107,22 @@ osg::BoundingSphere SkeletonNode::computeBound() const
     }
     // The joint turns about its own origin, so a ball about that origin that holds every child's bound holds it in
     // any rotation: its radius is the farthest reach of a child's sphere. Children are taken as osg::Group takes
-    // them: those with an absolute reference frame, and empty ones, do not count.
+    // them: those with an absolute reference frame, and empty ones, do not count. The subtree's shape is noted in
+    // the same visit, while the child is in cache: a wide joint's children do not stay there for a second pass.
     double reach = -1.0;
+    const bool rigid = isRigidMatrix(_matrix.ptr());
+    bool subtreeRigid = rigid;
+    double reachBelow = 0.0;
     for (const osg::ref_ptr<osg::Node>& child : _children)
     {
         const osg::Transform* transform = child->asTransform();
         if (transform && transform->getReferenceFrame() != RELATIVE_RF) continue;
         const osg::BoundingSphere& bound = child->getBound();
         if (bound.valid()) reach = std::max(reach, osg::Vec3d(bound.center()).length() + bound.radius());
+        if (transform) detail::SkeletonNodeAccess::noteChildShape(*transform, subtreeRigid, reachBelow);
     }
-    const bool rigid = isRigidMatrix(_matrix.ptr());
-    noteSubtreeShape(rigid);
+    _subtreeRigid = subtreeRigid;
+    _reachBelow = reachBelow;
     // About the centre the matrix shows; if that is not the joint's (a matrix set by hand), the actor's next
     // write, which puts it back, must make a new ball; so too where the matrix is not rigid (a scale set by hand),
     // which the actor's write makes rigid again: the ball shrinks back, and the subtree's shape is noted anew.
@@ -141,16 +147,9 @@ void SkeletonNode::noteSubtreeShape(bool rigid) const
     double reach = 0.0;
     for (const osg::ref_ptr<osg::Node>& child : _children)
     {
-        // Transforms first (geodes, most children, answer at once), then the classes; a type that is not the one
-        // compared with is told by its name.
-        const osg::Transform* transform = child->asTransform();
-        if (!transform) continue;
-        const std::type_info& type = typeid(*transform);
-        if (type != typeid(detail::PlacedSkeletonNode) && type != typeid(SkeletonNode)) continue;
-        const SkeletonNode& joint = static_cast<const SkeletonNode&>(*transform);
-        if (joint._referenceFrame != RELATIVE_RF) continue;
-        rigid = rigid && joint._subtreeRigid && !joint.getComputeBoundingSphereCallback();
-        reach = std::max(reach, detail::translationReach(joint._matrix.ptr()) + joint._reachBelow);
+        // Transforms first (geodes, most children, answer at once).
+        if (const osg::Transform* transform = child->asTransform())
+            detail::SkeletonNodeAccess::noteChildShape(*transform, rigid, reach);
     }
     _subtreeRigid = rigid;
     _reachBelow = reach;

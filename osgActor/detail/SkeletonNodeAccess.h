@@ -8,6 +8,10 @@
 
 #include <osgActor/SkeletonNode>
 #include <osgActor/detail/CullArithmetic.h>
+#include <osgActor/detail/PlacedSkeletonNode.h>
+
+#include <algorithm>
+#include <typeinfo>
 
 namespace osgActor {
 namespace detail {
@@ -21,6 +25,29 @@ struct SkeletonNodeAccess
     /** Makes room for the node's children before they are added: adding them one by one would grow the list by
       * copying it, and each copy of an osg::ref_ptr touches the child it points to. */
     static void reserveChildren(SkeletonNode& node, unsigned numChildren) { node._children.reserve(numChildren); }
+
+    /** Puts child, a skeleton node just made (no parent, no child, no callback, culling on, not an osg::OccluderNode),
+      * at the end of parent's children: what osg::Group::insertChild() does for such a child, whose counts of
+      * children needing update or event traversals, with culling disabled or with occluders it would leave as they
+      * are, and which no other thread can see yet. Group::insertChild() finds that out by asking the child, its
+      * occluders by a dynamic_cast that walks the class's bases, comparing names: as much work as the rest of the
+      * node's making. A node in any other state is added by insertChild() as usual. */
+    static void appendNewChild(SkeletonNode& parent, SkeletonNode& child)
+    {
+        if (!child._parents.empty() || !child._children.empty() || child.getUpdateCallback() ||
+            child.getNumChildrenRequiringUpdateTraversal() > 0 || child.getEventCallback() ||
+            child.getNumChildrenRequiringEventTraversal() > 0 || !child.getCullingActive() ||
+            child.getNumChildrenWithCullingDisabled() > 0 || child.getNumChildrenWithOccluderNodes() > 0 ||
+            typeid(child) != typeid(PlacedSkeletonNode))
+        {
+            parent.osg::Group::insertChild(parent.getNumChildren(), &child);
+            return;
+        }
+        parent._children.push_back(&child);
+        child._parents.push_back(&parent);
+        parent.childInserted(static_cast<unsigned>(parent._children.size() - 1));
+        parent.dirtyBound();
+    }
 
     /** Marks the node's bound dirty without walking to the parents; returns whether it had been computed (false:
       * it, and so its ancestors', were dirty already). */
@@ -80,6 +107,20 @@ struct SkeletonNodeAccess
         node.getBound();
         return {node._subtreeRigid && !node.getComputeBoundingSphereCallback(),
                 translationReach(node._matrix.ptr()) + node._reachBelow};
+    }
+
+    /** Adds a child's subtree to a shape being noted (SkeletonNode::_subtreeRigid and _reachBelow of its parent):
+      * a skeleton node of the classes an actor's cull plans, in its parent's frame, whose bound is computed; other
+      * children add nothing. */
+    static void noteChildShape(const osg::Transform& child, bool& rigid, double& reach)
+    {
+        // The classes first; a type that is not the one compared with is told by its name.
+        const std::type_info& type = typeid(child);
+        if (type != typeid(PlacedSkeletonNode) && type != typeid(SkeletonNode)) return;
+        const SkeletonNode& joint = static_cast<const SkeletonNode&>(child);
+        if (joint._referenceFrame != osg::Transform::RELATIVE_RF) return;
+        rigid = rigid && joint._subtreeRigid && !joint.getComputeBoundingSphereCallback();
+        reach = std::max(reach, translationReach(joint._matrix.ptr()) + joint._reachBelow);
     }
 
 private:

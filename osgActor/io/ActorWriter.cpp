@@ -179,9 +179,6 @@ void writeIkChain(SyntaxWriter& w, const IkChainSpec& spec)
     w.end();
 }
 
-/** Joints nested in each other's blocks at most. */
-constexpr unsigned kMaxNesting = 100;
-
 /** Writes joints nested in their parents. Its memory is a few numbers per joint (which joints are written, each
   * joint's place by name, each joint's children), whatever the joints hold. */
 class JointTreeWriter
@@ -220,10 +217,10 @@ private:
             if (joint.spec.dofs[d].active) writeDof(w, static_cast<Dof>(d), joint.spec.dofs[d], joint.values[d]);
         if (joint.hidden) writeFlag(w, "hidden");
         for (const GeometryDescription& g : joint.geometry) writeGeometry(w, g);
-        // Below kMaxNesting, children are written at the actor's level with a 'parent' statement instead: the reader
-        // refuses blocks nested 200 deep, and a chain of thousands of joints (a 'parent' chain in a .actor file, an
-        // ASF hierarchy) would overflow the stack here.
-        if (depth + 1 < kMaxNesting)
+        // Below kMaxWrittenJointNesting, children are written at the actor's level with a 'parent' statement
+        // instead: the reader refuses blocks nested 200 deep, a chain of thousands of joints (a 'parent' chain in a
+        // .actor file, an ASF hierarchy) would overflow the stack here, and each level indents every line below it.
+        if (depth + 1 < kMaxWrittenJointNesting)
             for (unsigned child : _children.of(static_cast<unsigned>(j)))
                 if (!_written[child]) writeJoint(child, false, depth + 1);
         w.end();

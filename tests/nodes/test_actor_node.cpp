@@ -98,6 +98,43 @@ TEST(ActorNode, BuildsOneSkeletonNodePerJointNestedLikeTheBody)
     EXPECT_NE(dynamic_cast<ActorUpdateCallback*>(actor->getUpdateCallback()), nullptr);
 }
 
+TEST(ActorNode, ItsSkeletonNodesCountWhatIsBelowThemAsOsgGroupsDo)
+{
+    // The build links each joint below its parent without osg::Group::insertChild(): the links must still carry
+    // what OSG counts up the parents, as a callback or a disabled culling set on the deepest joint after the build.
+    osg::ref_ptr<ActorNode> actor = new ActorNode(makePlanarArm());
+    for (unsigned j = 0; j < 4; ++j)
+    {
+        const SkeletonNode& node = *actor->getSkeletonNode(j);
+        EXPECT_EQ(node.getNumChildrenRequiringUpdateTraversal(), 0u) << j;
+        EXPECT_EQ(node.getNumChildrenRequiringEventTraversal(), 0u) << j;
+        EXPECT_EQ(node.getNumChildrenWithCullingDisabled(), 0u) << j;
+        EXPECT_EQ(node.getNumChildrenWithOccluderNodes(), 0u) << j;
+    }
+    struct Count : osg::NodeCallback
+    {
+        unsigned calls = 0;
+        void operator()(osg::Node* node, osg::NodeVisitor* nv) override
+        {
+            ++calls;
+            traverse(node, nv);
+        }
+    };
+    osg::ref_ptr<Count> count = new Count;
+    SkeletonNode& tip = *actor->getSkeletonNode(3u);
+    tip.setUpdateCallback(count.get());
+    tip.setCullingActive(false);
+    for (unsigned j = 0; j < 3; ++j)
+    {
+        EXPECT_EQ(actor->getSkeletonNode(j)->getNumChildrenRequiringUpdateTraversal(), 1u) << j;
+        EXPECT_EQ(actor->getSkeletonNode(j)->getNumChildrenWithCullingDisabled(), 1u) << j;
+    }
+    runUpdate(*actor, 1);
+    EXPECT_EQ(count->calls, 1u);
+    tip.setUpdateCallback(nullptr);
+    EXPECT_EQ(actor->getSkeletonNode(0u)->getNumChildrenRequiringUpdateTraversal(), 0u);
+}
+
 namespace {
 
 /** A user's actor class: the shared callback must still find the ActorNode in it. */
