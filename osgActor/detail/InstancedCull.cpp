@@ -76,12 +76,14 @@ float* InstancedFrame::growTexels(unsigned texels)
     return out;
 }
 
-float* InstancedFrame::splitBufferTexels(unsigned i, unsigned texels)
+void InstancedFrame::setWindow(unsigned i, unsigned first, unsigned texels)
 {
     while (_buffers.size() <= i) addBuffer();
-    osg::Image& image = *_buffers[i].texels;
-    if (static_cast<unsigned>(image.s()) < texels) image.allocateImage(static_cast<int>(texels), 1, 1, GL_RGBA, GL_FLOAT);
-    return reinterpret_cast<float*>(image.data());
+    unsigned char* data = _buffers[0].texels->data() + std::size_t(first) * 4 * sizeof(float);
+    // The window's image does not own its texels: buffer 0's outlive it while the frame's draws are in the render
+    // graph (the pool reserves them only for a free frame).
+    _buffers[i].texels->setImage(static_cast<int>(texels), 1, 1, GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT, data,
+                                 osg::Image::NO_DELETE);
 }
 
 void InstancedFrame::resizeGLObjectBuffers(unsigned maxSize)
@@ -749,35 +751,30 @@ void InstancedCull::emitSplit(InstancedFrame& frame, unsigned texels)
                    << "): drawn from several buffers, a batch's instances over several draws" << std::endl;
         _state._splitNoticed = true;
     }
-    // The batches' instances, in batch order, filled into buffers 1, 2, ... each within the limit; a batch that does
-    // not fit in what is left of a buffer is drawn in runs, a run per buffer. Every instance fits one buffer
-    // (canInstanceSkins()).
-    unsigned remaining = 0;
-    for (const InstancedCullState::Batch& batch : _state._batches) remaining += batch.count * batch.texels;
-    const float* from = frame.getTexels();
-    unsigned buffer = 0, used = _texelLimit, drawIndex = 0;
-    float* into = nullptr;
+    // The batches' instances drawn where the cull wrote them, from windows of buffer 0 within the limit (buffers 1,
+    // 2, ...), in batch order: a run of a batch's instances from the window that holds it whole, a new window from
+    // the first instance the last one does not hold. Every instance fits one window (canInstanceSkins()). Where the
+    // batches lie one after the other (every frame but one whose crowd changed) the windows follow one another, the
+    // runs and their bases those of the same instances packed into buffers of the limit.
+    unsigned buffer = 0, drawIndex = 0;
+    unsigned windowStart = 0;
     for (const InstancedCullState::Batch& batch : _state._batches)
     {
         if (batch.texels > _texelLimit) continue; // no instance: canInstanceSkins() drew its actors ordinarily
         for (unsigned first = 0; first < batch.count;)
         {
-            if ((_texelLimit - used) / batch.texels == 0)
+            const unsigned at = batch.base + first * batch.texels;
+            if (buffer == 0 || at < windowStart || at - windowStart > _texelLimit - batch.texels)
             {
-                // The next buffer, as large as what is left or the limit.
-                into = frame.splitBufferTexels(++buffer, std::min(remaining, _texelLimit));
-                used = 0;
+                // The next window, from this instance: as large as what is left or the limit.
+                windowStart = at;
+                frame.setWindow(++buffer, windowStart, std::min(texels - windowStart, _texelLimit));
             }
-            const unsigned run = std::min(batch.count - first, (_texelLimit - used) / batch.texels);
-            const std::size_t start = 4 * (std::size_t(batch.base) + std::size_t(first) * batch.texels);
-            std::copy_n(from + start, 4 * std::size_t(run) * batch.texels, into + 4 * std::size_t(used));
-            emitDraw(batch, frame, drawIndex++, buffer, used, run);
-            used += run * batch.texels;
-            remaining -= run * batch.texels;
+            const unsigned run = std::min(batch.count - first, (_texelLimit - (at - windowStart)) / batch.texels);
+            emitDraw(batch, frame, drawIndex++, buffer, at - windowStart, run);
             first += run;
         }
     }
-    for (unsigned i = 1; i <= buffer; ++i) frame.dirty(i);
     _state._statistics.buffers = buffer;
 }
 

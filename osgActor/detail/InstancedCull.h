@@ -47,7 +47,8 @@ namespace detail {
 
 /** The texture buffers of one frame's instance data and the draws that read them. Buffer 0 is the one the cull
   * writes; a frame whose data is more than one buffer may hold (InstanceBufferLimit) is drawn from buffers 1 and on,
-  * each within the limit, the instances copied there from buffer 0. */
+  * each a window of buffer 0's texels within the limit (its image points into buffer 0's), so that no instance is
+  * copied whatever the limit. */
 class InstancedFrame : public osg::Referenced
 {
 public:
@@ -59,11 +60,9 @@ public:
     float* reserveTexels(unsigned texels);
     /** The same, keeping what was written. */
     float* growTexels(unsigned texels);
-    /** What the cull wrote in buffer 0. */
-    const float* getTexels() const { return reinterpret_cast<const float*>(_buffers[0].texels->data()); }
-    /** Buffer i (1 and on), made on first use, with room for texels texels (grown to exactly that, not doubled: a
-      * buffer within the limit). */
-    float* splitBufferTexels(unsigned i, unsigned texels);
+    /** Buffer i (1 and on), made on first use, made the window of texels texels of buffer 0 from its texel first
+      * (within buffer 0's room), marked for upload. Valid until buffer 0 is reserved or grown again. */
+    void setWindow(unsigned i, unsigned first, unsigned texels);
     /** The draw for batch i, made on first use. */
     InstancedDraw* draw(unsigned i);
     /** Marks buffer i's texels written for upload. */
@@ -319,7 +318,8 @@ private:
     /** One leaf per batch, with this frame's texture buffer; where the frame's data is more than a buffer holds, one
       * leaf per run of a batch's instances within one of the frame's split buffers. */
     void emitBatches();
-    /** Copies the batches' instances from buffer 0 into buffers within the limit and emits a leaf per run. */
+    /** Makes windows of buffer 0 within the limit (buffers 1 and on) and emits a leaf per run of a batch's
+      * instances within one. */
     void emitSplit(InstancedFrame& frame, unsigned texels);
     /** Sets up the draw of count instances of a batch from texel base of buffer, and emits its leaf. */
     void emitDraw(const InstancedCullState::Batch& batch, InstancedFrame& frame, unsigned drawIndex, unsigned buffer,
