@@ -576,8 +576,9 @@ OSGACTOR_HOT_PATH void InstancedCull::writePlainInstances(const InstancedCullSta
         const osg::Matrixd& modelView = modelViews[instance.frame];
         const osg::BoundingBox& box = instance.drawable->getBoundingBox();
         if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) continue;
+        // Where the batch's next instance goes: its region has room for all of them (addPlainInstances() checked).
         InstancedCullState::Batch& batch = batches[instance.batch];
-        writeInstanceMatrix(modelView, roomInRegion(batch, 1, texels));
+        writeInstanceMatrix(modelView, texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count));
         ++batch.count;
     }
 }
