@@ -83,8 +83,10 @@ void InstancedFrame::setWindow(unsigned i, unsigned first, unsigned texels)
     unsigned char* data = _buffers[0].texels->data() + std::size_t(first) * 4 * sizeof(float);
     osg::Image& window = *_buffers[i].texels;
     if (window.data() == data && static_cast<unsigned>(window.s()) == texels) return; // as uploaded, if not dirtied
-    // The window's image does not own its texels: buffer 0's outlive it while the frame's draws are in the render
-    // graph (the pool reserves them only for a free frame).
+    // The window's image does not own its texels: buffer 0's image, which the window holds (a render graph may hold
+    // the window's state set after the frame is gone), keeps them while the frame's draws are in the render graph
+    // (the pool reserves them anew only for a free frame).
+    if (window.getUserData() != _buffers[0].texels.get()) window.setUserData(_buffers[0].texels.get());
     window.setImage(static_cast<int>(texels), 1, 1, GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT, data, osg::Image::NO_DELETE);
 }
 
