@@ -288,16 +288,31 @@ private:
         std::uint64_t serial = 0;
         osg::ref_ptr<const ActorCullPlan> plan;
         const void* verdict = nullptr;
-        // The actor's instances of that cull, each its batch and its matrix (16 floats), kept where it had not
-        // changed since the cull before, and added again while nothing they depend on changes (the counters, the
-        // actor's model-view matrix and the rest of the key, the view's, which the group's cull state numbers): an
-        // idle actor before a still camera.
+        // The actor's instances of that cull, in runs of one batch, each instance's matrix (16 floats), kept where
+        // it had not changed since the cull before, and added again while nothing they depend on changes (the
+        // counters, the actor's model-view matrix and the rest of the key, the view's, which the group's cull state
+        // numbers): an idle actor before a still camera.
         Versions versions;
         bool kept = false;
         std::uint64_t view = 0;
+        /** The number the group's cull state gave the model-view matrix it was entered with (the actor's parent's)
+          * when actorModelView was composed: while it and the actor's bound (which every setter of the actor's matrix
+          * dirties) stay, actorModelView is the actor's model-view matrix, not composed again. */
+        std::uint64_t entry = 0;
         osg::Matrixd actorModelView;
-        std::vector<unsigned> batches;
+        /** A run of instances of one batch, and the texel of the frame's buffer it was last added at (or ~0u). */
+        struct Run
+        {
+            unsigned batch;
+            unsigned count;
+            unsigned at;
+        };
+        std::vector<Run> runs;
         std::vector<float> matrices;
+        /** The frame the runs were last added to, and what its buffer held then (InstancedFrame::contents()): while
+          * the frame's next cull is the one that finds them at the same texels, they are there already. */
+        const void* frame = nullptr;
+        std::uint64_t contents = 0;
     };
     InstancedVerdict _instancedVerdict;
 

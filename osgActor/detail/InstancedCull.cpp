@@ -61,6 +61,7 @@ float* InstancedFrame::reserveTexels(unsigned texels)
         unsigned size = static_cast<unsigned>(image.s());
         while (size < texels) size *= 2;
         image.allocateImage(static_cast<int>(size), 1, 1, GL_RGBA, GL_FLOAT);
+        moved();
     }
     return reinterpret_cast<float*>(image.data());
 }
@@ -76,12 +77,22 @@ float* InstancedFrame::growTexels(unsigned texels)
     return out;
 }
 
-float* InstancedFrame::splitBufferTexels(unsigned i, unsigned texels)
+void InstancedFrame::setWindow(unsigned i, unsigned first, unsigned texels)
 {
     while (_buffers.size() <= i) addBuffer();
-    osg::Image& image = *_buffers[i].texels;
-    if (static_cast<unsigned>(image.s()) < texels) image.allocateImage(static_cast<int>(texels), 1, 1, GL_RGBA, GL_FLOAT);
-    return reinterpret_cast<float*>(image.data());
+    unsigned char* data = _buffers[0].texels->data() + std::size_t(first) * 4 * sizeof(float);
+    osg::Image& window = *_buffers[i].texels;
+    if (window.data() == data && static_cast<unsigned>(window.s()) == texels) return; // as uploaded, if not dirtied
+    // The window's image does not own its texels: buffer 0's image, which the window holds (a render graph may hold
+    // the window's state set after the frame is gone), keeps them while the frame's draws are in the render graph
+    // (the pool reserves them anew only for a free frame).
+    if (window.getUserData() != _buffers[0].texels.get()) window.setUserData(_buffers[0].texels.get());
+    window.setImage(static_cast<int>(texels), 1, 1, GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT, data, osg::Image::NO_DELETE);
+}
+
+void InstancedFrame::dirtyAll()
+{
+    for (const Buffer& buffer : _buffers) buffer.texels->dirty();
 }
 
 void InstancedFrame::resizeGLObjectBuffers(unsigned maxSize)
@@ -184,13 +195,19 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
       _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false),
-      _texelLimit(state._limit->texels()), _profile(skinningProfileOf(cv.getState())), _view(cv), _recording(nullptr)
+      _wroteTexels(false), _texelLimit(state._limit->texels()), _profile(skinningProfileOf(cv.getState())), _view(cv),
+      _recording(nullptr)
 {
     const ActorCullState::Key viewKey = ActorCullState::keyOf(_view, osg::Matrixd::identity());
     if (_state._view == 0 || !(viewKey == _state._viewKey))
     {
         _state._viewKey = viewKey;
         ++_state._view;
+    }
+    if (_state._entry == 0 || !sameBits(*cv.getModelViewMatrix(), _state._entryModelView))
+    {
+        _state._entryModelView = *cv.getModelViewMatrix();
+        ++_state._entry;
     }
     _state._statistics = InstancedCullState::Statistics();
     _state._statistics.texelLimit = _texelLimit;
@@ -228,7 +245,7 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
     emitBatches();
 }
 
-void InstancedCull::prefetchKeptAhead(const osg::Node& node, unsigned ahead)
+void InstancedCull::prefetchKeptAhead(const osg::Node& node, unsigned ahead) const
 {
     // After the cull state's own members (ahead 4, ActorNode::prefetchCullAhead()): its kept instances' lines, then
     // what they hold, read only while no other thread holds the state.
@@ -243,8 +260,8 @@ void InstancedCull::prefetchKeptAhead(const osg::Node& node, unsigned ahead)
     if (!state.tryAcquire()) return;
     if (kept.kept)
     {
-        prefetchForRead(kept.batches.data(), kept.batches.size() * sizeof(unsigned));
-        prefetchForRead(kept.matrices.data(), kept.matrices.size() * sizeof(float));
+        prefetchForRead(kept.runs.data(), kept.runs.size() * sizeof(kept.runs[0]));
+        if (!keptInFrame(kept)) prefetchForRead(kept.matrices.data(), kept.matrices.size() * sizeof(float));
     }
     state.release();
 }
@@ -278,8 +295,8 @@ void InstancedCull::cullChild(ActorNode& actor)
         const bool replayable = mayReplay(kept, versions);
         if (replayable)
         {
-            prefetchForRead(kept.batches.data(), kept.batches.size() * sizeof(unsigned));
-            prefetchForRead(kept.matrices.data(), kept.matrices.size() * sizeof(float));
+            prefetchForRead(kept.runs.data(), kept.runs.size() * sizeof(kept.runs[0]));
+            if (!keptInFrame(kept)) prefetchForRead(kept.matrices.data(), kept.matrices.size() * sizeof(float));
         }
         const ActorCullPlan& plan = actorState.currentPlan(actor, versions.plan, !replayable);
         // The verdict the actor kept from this group's last cull, if made for the same plan; looked up otherwise.
@@ -440,9 +457,13 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     const std::size_t numFrames = joints.size() + 1;
     std::vector<osg::Matrixd>& modelViews = _state._modelViews;
     modelViews.resize(numFrames);
-    _state._pixelSizeVectors.reset(numFrames);
-    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's).
-    composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());
+    // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's), or
+    // the one kept where neither changed.
+    const bool entryKept = keptEntry(actor, kept, versions);
+    if (entryKept)
+        modelViews[0] = kept.actorModelView;
+    else
+        composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());
     if (actor.getUpdatePolicy().onlyWhenSeen)
     {
         // The update policy notes the view with the actor's frame on the visitor's stack, as its own cull does.
@@ -453,10 +474,11 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     // An actor with skinned meshes is culled anew at every cull: its palettes are kept by its meshes, not here.
     if (verdict.skinBatches.empty())
     {
-        if (replayKept(kept, versions)) return;
+        if (replayKept(kept, versions, entryKept)) return;
     }
     else
         kept.kept = false;
+    _state._pixelSizeVectors.reset(numFrames);
     // Each joint's frame, parents first, as ActorCull composes them.
     plan.composeModelViews(modelViews.data());
     if (!addPlainInstances(verdict)) cullSteps(verdict);
@@ -541,6 +563,7 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
     // visitor drops it), the others' matrices written in step order, so each batch's instances are in the order the
     // steps would give them.
     writePlainInstances(verdict, _state._modelViews.data(), batches.data(), _state._texels);
+    _wroteTexels = true;
     return true;
 }
 
@@ -555,13 +578,24 @@ OSGACTOR_HOT_PATH void InstancedCull::writePlainInstances(const InstancedCullSta
         const osg::Matrixd& modelView = modelViews[instance.frame];
         const osg::BoundingBox& box = instance.drawable->getBoundingBox();
         if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) continue;
+        // Where the batch's next instance goes: its region has room for all of them (addPlainInstances() checked).
         InstancedCullState::Batch& batch = batches[instance.batch];
-        writeInstanceMatrix(modelView, roomInRegion(batch, 1, texels));
+        writeInstanceMatrix(modelView, texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count));
         ++batch.count;
     }
 }
 
-bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions)
+bool InstancedCull::keptEntry(const ActorNode& actor, const ActorCullState::InstancedVerdict& kept,
+                              const ActorCullState::Versions& versions) const
+{
+    // The actor's bound has not been recomputed since the kept matrix was composed (the counters count its
+    // recomputations, and kept instances are dropped when they change), so neither has its matrix, whose every setter
+    // dirties it, unless a callback computes its bound instead; the group's was entered with the same matrix.
+    return mayReplay(kept, versions) && kept.entry == _state._entry && !actor.getComputeBoundingSphereCallback();
+}
+
+bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions,
+                               bool entryKept)
 {
     // Near and far computed from what is drawn would need each drawable's box again: kept only without them.
     const bool unchanged = kept.versions == versions && !_computeNearFar;
@@ -572,40 +606,48 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
         return false;
     }
     const osg::Matrixd& actorModelView = _state._modelViews[0];
-    if (mayReplay(kept, versions) &&
-        sameBits(kept.actorModelView, actorModelView))
+    if (mayReplay(kept, versions) && (entryKept || sameBits(kept.actorModelView, actorModelView)))
     {
-        // Run by run of instances of one batch (an actor's parts of one drawable follow one another): one copy where
-        // the batch's region has room for the run, one instance at a time where it may not.
+        kept.entry = _state._entry;
+        // Run by run of instances of one batch (an actor's parts of one drawable follow one another): none written
+        // where the run is found where this frame's last cull added it; one copy where the batch's region has room
+        // for it; one instance at a time where it may not.
+        const bool inFrame = keptInFrame(kept);
         const float* matrix = kept.matrices.data();
-        const unsigned* batches = kept.batches.data();
-        const std::size_t count = kept.batches.size();
-        for (std::size_t i = 0; i < count;)
+        for (ActorCullState::InstancedVerdict::Run& run : kept.runs)
         {
-            const unsigned batch = batches[i];
-            std::size_t end = i + 1;
-            while (end < count && batches[end] == batch) ++end;
-            const unsigned run = static_cast<unsigned>(end - i);
-            InstancedCullState::Batch& into = _state._batches[batch];
-            if (float* out = roomInRegion(into, run))
+            InstancedCullState::Batch& into = _state._batches[run.batch];
+            if (float* out = roomInRegion(into, run.count))
             {
-                std::memcpy(out, matrix, 16 * sizeof(float) * run);
-                into.count += run;
-                matrix += 16 * std::size_t(run);
+                const unsigned at = into.base + into.count * into.texels;
+                if (!inFrame || run.at != at)
+                {
+                    std::memcpy(out, matrix, 16 * sizeof(float) * run.count);
+                    run.at = at;
+                    _wroteTexels = true;
+                }
+                into.count += run.count;
+                matrix += 16 * std::size_t(run.count);
             }
             else
-                for (unsigned k = 0; k < run; ++k, matrix += 16)
-                    std::memcpy(nextInstance(batch), matrix, 16 * sizeof(float));
-            i = end;
+            {
+                for (unsigned k = 0; k < run.count; ++k, matrix += 16)
+                    std::memcpy(nextInstance(run.batch), matrix, 16 * sizeof(float));
+                run.at = ~0u;
+            }
         }
+        kept.frame = _state._frame;
+        kept.contents = _state._frame ? _state._frame->contents() : 0;
         return true;
     }
     // Unchanged since the cull before, but not kept, or kept for another view: culled now, and kept.
     kept.kept = true;
     kept.view = _state._view;
+    kept.entry = _state._entry;
     kept.actorModelView = actorModelView;
-    kept.batches.clear();
+    kept.runs.clear();
     kept.matrices.clear();
+    kept.frame = nullptr;
     _recording = &kept;
     return false;
 }
@@ -628,7 +670,11 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch)
     writeInstanceMatrix(modelView, out);
     if (_recording)
     {
-        _recording->batches.push_back(batch);
+        std::vector<ActorCullState::InstancedVerdict::Run>& runs = _recording->runs;
+        if (!runs.empty() && runs.back().batch == batch)
+            ++runs.back().count;
+        else
+            runs.push_back({batch, 1u, ~0u});
         _recording->matrices.insert(_recording->matrices.end(), out, out + 16);
     }
 }
@@ -645,6 +691,7 @@ float* InstancedCull::nextInstance(unsigned batch)
         _overflowed = true;
     }
     ++into.count;
+    _wroteTexels = true;
     return out;
 }
 
@@ -672,8 +719,13 @@ void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
 InstancedFrame* InstancedCull::acquireFrame(unsigned textureUnit)
 {
     for (const osg::ref_ptr<InstancedFrame>& frame : _state._frames)
-        if (frame->isFree()) return frame.get();
+        if (frame->isFree())
+        {
+            frame->taken();
+            return frame.get();
+        }
     _state._frames.push_back(new InstancedFrame(_programState, textureUnit, _state._limit.get()));
+    _state._frames.back()->taken();
     return _state._frames.back().get();
 }
 
@@ -703,6 +755,10 @@ void InstancedCull::gatherOverflow(unsigned textureUnit)
     }
     if (!_state._frame) _state._frame = acquireFrame(textureUnit);
     float* texels = _state._frame->growTexels(end + moved);
+    // The batches the draws read moved: no instance is taken for in place at the next cull (their first texels
+    // are kept, but the next cull need not rely on it).
+    _state._frame->moved();
+    _wroteTexels = true;
     for (InstancedCullState::Batch& batch : _state._batches)
     {
         if (batch.overflow.empty()) continue;
@@ -734,7 +790,7 @@ void InstancedCull::emitBatches()
     unsigned drawIndex = 0;
     for (const InstancedCullState::Batch& batch : _state._batches)
         if (batch.count) emitDraw(batch, frame, drawIndex++, 0, batch.base, batch.count);
-    frame.dirty(0);
+    if (_wroteTexels) frame.dirtyAll();
     _state._statistics.buffers = 1;
 }
 
@@ -749,35 +805,32 @@ void InstancedCull::emitSplit(InstancedFrame& frame, unsigned texels)
                    << "): drawn from several buffers, a batch's instances over several draws" << std::endl;
         _state._splitNoticed = true;
     }
-    // The batches' instances, in batch order, filled into buffers 1, 2, ... each within the limit; a batch that does
-    // not fit in what is left of a buffer is drawn in runs, a run per buffer. Every instance fits one buffer
-    // (canInstanceSkins()).
-    unsigned remaining = 0;
-    for (const InstancedCullState::Batch& batch : _state._batches) remaining += batch.count * batch.texels;
-    const float* from = frame.getTexels();
-    unsigned buffer = 0, used = _texelLimit, drawIndex = 0;
-    float* into = nullptr;
+    // The batches' instances drawn where the cull wrote them, from windows of buffer 0 within the limit (buffers 1,
+    // 2, ...), in batch order: a run of a batch's instances from the window that holds it whole, a new window from
+    // the first instance the last one does not hold. Every instance fits one window (canInstanceSkins()). Where the
+    // batches lie one after the other (every frame but one whose crowd changed) the windows follow one another, the
+    // runs and their bases those of the same instances packed into buffers of the limit.
+    unsigned buffer = 0, drawIndex = 0;
+    unsigned windowStart = 0;
     for (const InstancedCullState::Batch& batch : _state._batches)
     {
         if (batch.texels > _texelLimit) continue; // no instance: canInstanceSkins() drew its actors ordinarily
         for (unsigned first = 0; first < batch.count;)
         {
-            if ((_texelLimit - used) / batch.texels == 0)
+            const unsigned at = batch.base + first * batch.texels;
+            if (buffer == 0 || at < windowStart || at - windowStart > _texelLimit - batch.texels)
             {
-                // The next buffer, as large as what is left or the limit.
-                into = frame.splitBufferTexels(++buffer, std::min(remaining, _texelLimit));
-                used = 0;
+                // The next window, from this instance: as large as what is left or the limit.
+                windowStart = at;
+                frame.setWindow(++buffer, windowStart, std::min(texels - windowStart, _texelLimit));
             }
-            const unsigned run = std::min(batch.count - first, (_texelLimit - used) / batch.texels);
-            const std::size_t start = 4 * (std::size_t(batch.base) + std::size_t(first) * batch.texels);
-            std::copy_n(from + start, 4 * std::size_t(run) * batch.texels, into + 4 * std::size_t(used));
-            emitDraw(batch, frame, drawIndex++, buffer, used, run);
-            used += run * batch.texels;
-            remaining -= run * batch.texels;
+            const unsigned run = std::min(batch.count - first, (_texelLimit - (at - windowStart)) / batch.texels);
+            emitDraw(batch, frame, drawIndex++, buffer, at - windowStart, run);
             first += run;
         }
     }
-    for (unsigned i = 1; i <= buffer; ++i) frame.dirty(i);
+    // Every buffer, those not drawn from this frame too: what they show of buffer 0 changed.
+    if (_wroteTexels) frame.dirtyAll();
     _state._statistics.buffers = buffer;
 }
 

@@ -17,6 +17,13 @@
 // The matrices of a frame live in an InstancedFrame taken from a pool: one the render graph no longer holds (every
 // draw of it held by the pool alone), so that with osgViewer drawing on another thread the cull of the next frame
 // never writes what the draw of this one reads (each frame its own texture buffer).
+//
+// An actor that did not change since the cull before (its counters, its model-view matrix, the view) adds the
+// instances it kept (ActorCullState::InstancedVerdict) rather than being culled again; where the frame's buffer still
+// holds them at the texels this cull gives them (the frame's last cull added them there, InstancedFrame::contents()),
+// nothing is written, and a frame whose cull wrote nothing is not marked for upload: a still crowd before a still
+// camera, culled again into the frame it was culled into last (a viewer that draws each frame before the next cull),
+// writes and uploads nothing.
 #ifndef OSGACTOR_DETAIL_INSTANCEDCULL_H
 #define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
 
@@ -47,7 +54,8 @@ namespace detail {
 
 /** The texture buffers of one frame's instance data and the draws that read them. Buffer 0 is the one the cull
   * writes; a frame whose data is more than one buffer may hold (InstanceBufferLimit) is drawn from buffers 1 and on,
-  * each within the limit, the instances copied there from buffer 0. */
+  * each a window of buffer 0's texels within the limit (its image points into buffer 0's), so that no instance is
+  * copied whatever the limit. */
 class InstancedFrame : public osg::Referenced
 {
 public:
@@ -59,15 +67,20 @@ public:
     float* reserveTexels(unsigned texels);
     /** The same, keeping what was written. */
     float* growTexels(unsigned texels);
-    /** What the cull wrote in buffer 0. */
-    const float* getTexels() const { return reinterpret_cast<const float*>(_buffers[0].texels->data()); }
-    /** Buffer i (1 and on), made on first use, with room for texels texels (grown to exactly that, not doubled: a
-      * buffer within the limit). */
-    float* splitBufferTexels(unsigned i, unsigned texels);
+    /** Buffer i (1 and on), made on first use, made the window of texels texels of buffer 0 from its texel first
+      * (within buffer 0's room), marked for upload where it was another. Valid until buffer 0 is reserved or grown
+      * again. */
+    void setWindow(unsigned i, unsigned first, unsigned texels);
     /** The draw for batch i, made on first use. */
     InstancedDraw* draw(unsigned i);
-    /** Marks buffer i's texels written for upload. */
-    void dirty(unsigned i = 0) { _buffers[i].texels->dirty(); }
+    /** Marks every buffer's texels (buffer 0's and the windows', in use or not) written, for upload. */
+    void dirtyAll();
+    /** A number for what buffer 0 holds: a new one for each cull that takes the frame (taken()), and wherever what
+      * was written moves or is lost (its texels reserved anew, a batch moved). Texels written while it was n are
+      * there still while it is n + 1, where the cull finds them at the same place. */
+    std::uint64_t contents() const { return _contents; }
+    void taken() { ++_contents; }
+    void moved() { ++_contents; }
     /** Buffer i and the rigid parts' program. */
     osg::StateSet* getStateSet(unsigned i = 0) const { return _buffers[i].stateSet.get(); }
     /** Buffer i alone, for the skinned meshes' draws, under their own programs. */
@@ -94,6 +107,7 @@ private:
     osg::ref_ptr<InstanceBufferLimit> _limit;
     std::vector<Buffer> _buffers;
     std::vector<osg::ref_ptr<InstancedDraw>> _draws;
+    std::uint64_t _contents = 0;
 };
 
 /** What an InstancedActorGroup keeps from one cull to the next: the pool of frames and the cull's working space. One
@@ -225,6 +239,10 @@ private:
       * its number, which changes with it. */
     ActorCullState::Key _viewKey;
     std::uint64_t _view = 0;
+    /** The model-view matrix the visitor entered the group with at the last cull, and its number, which changes
+      * with it (ActorCullState::InstancedVerdict::entry). */
+    osg::Matrixd _entryModelView;
+    std::uint64_t _entry = 0;
 };
 
 class InstancedCull
@@ -289,9 +307,19 @@ private:
     }
     /** The kept instances of the actor `ahead` actors after the one culled now, asked for (ActorNode's look-ahead
       * stages). */
-    static void prefetchKeptAhead(const osg::Node& node, unsigned ahead);
-    /** Adds the kept instances of an actor that did not change, if they hold for this cull. */
-    bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions);
+    void prefetchKeptAhead(const osg::Node& node, unsigned ahead) const;
+    /** Adds the kept instances of an actor that did not change, if they hold for this cull (the actor's model-view
+      * matrix in _modelViews[0], the kept one where entryKept). */
+    bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions, bool entryKept);
+    /** Whether the kept instances lie in this cull's buffer where the last cull of its frame added them. */
+    bool keptInFrame(const ActorCullState::InstancedVerdict& kept) const
+    {
+        return _state._frame && kept.frame == _state._frame && kept.contents + 1 == _state._frame->contents();
+    }
+    /** Whether kept.actorModelView is the actor's model-view matrix now, not composed again (its bound counted in
+      * versions). */
+    bool keptEntry(const ActorNode& actor, const ActorCullState::InstancedVerdict& kept,
+                   const ActorCullState::Versions& versions) const;
     bool isMasked(osg::Node::NodeMask mask) const { return isMaskedOut(_traversalMask, _maskOverride, mask); }
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
     /** The pixel-size vector of the actor's own frame. */
@@ -319,7 +347,8 @@ private:
     /** One leaf per batch, with this frame's texture buffer; where the frame's data is more than a buffer holds, one
       * leaf per run of a batch's instances within one of the frame's split buffers. */
     void emitBatches();
-    /** Copies the batches' instances from buffer 0 into buffers within the limit and emits a leaf per run. */
+    /** Makes windows of buffer 0 within the limit (buffers 1 and on) and emits a leaf per run of a batch's
+      * instances within one. */
     void emitSplit(InstancedFrame& frame, unsigned texels);
     /** Sets up the draw of count instances of a batch from texel base of buffer, and emits its leaf. */
     void emitDraw(const InstancedCullState::Batch& batch, InstancedFrame& frame, unsigned drawIndex, unsigned buffer,
@@ -339,6 +368,8 @@ private:
     bool _frustumCulling;
     float _smallFeaturePixelSize;
     bool _overflowed;
+    /** Whether this cull wrote any texel of the frame's buffer (if not, the buffers are uploaded as they were). */
+    bool _wroteTexels;
     /** The texels one buffer may hold this cull. */
     const unsigned _texelLimit;
     /** The skinned meshes' program and geometry profile, as the state the visitor culls for has it. */

@@ -74,9 +74,23 @@ struct Scene
     CullProbe ordinaryProbe{plain.get()};
     unsigned frame = 0;
 
-    Scene()
+    /** clones: the four are clones of one figure (they share its parts, so their instances share batches). */
+    explicit Scene(bool clones = false)
     {
         actors = addPosedRow(*plain, 4);
+        if (clones)
+        {
+            osg::ref_ptr<ActorNode> figure = makeTestFigure();
+            for (unsigned a = 0; a < actors.size(); ++a)
+            {
+                osg::ref_ptr<ActorNode> clone = osg::clone(figure.get(), osg::CopyOp::SHALLOW_COPY);
+                clone->setPreTranslation(actors[a]->getPreTranslation());
+                poseCrowdMember(*clone, a);
+                clone->update(nullptr);
+                plain->setChild(a, clone.get());
+                actors[a] = clone;
+            }
+        }
         for (const osg::ref_ptr<ActorNode>& actor : actors) instanced->addChild(actor.get());
         for (CullProbe* probe : {&instancedProbe, &ordinaryProbe})
             probe->sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
@@ -186,4 +200,46 @@ TEST(InstancedReplay, ACrowdMovingEveryFrameGivesTheOrdinaryInstancesWhateverThe
     EXPECT_GT(counts.size(), 3u); // the test can fail: parts were culled as small features on the way
     scene.lookFrom(osg::Vec3d(1.6, -7.0, 1.2));
     for (int end = frame + 2; frame < end; ++frame) expectOrdinary(frame, "near again");
+}
+
+TEST(InstancedReplay, ACrowdOverSeveralSmallBuffersGivesTheOrdinaryInstancesStillMovingAndShrinking)
+{
+    // Buffers of 7 instances: the frame's instances are drawn from windows of the buffer the cull wrote, a batch's
+    // instances in runs. Still actors keep their instances where the last cull added them (written once); a pose
+    // changed, or actors masked out and back (the batches' regions move), write them again where they now go.
+    Scene scene(true);
+    scene.instanced->setMaxTexelsPerBuffer(4 * 7);
+    const std::vector<Instance> ordinary = scene.cullOrdinarily();
+    ASSERT_EQ(ordinary.size(), 4u * 18u);
+    for (int frame = 0; frame < 4; ++frame)
+    {
+        EXPECT_EQ(scene.cullInstanced(), ordinary) << "still, frame " << frame;
+        EXPECT_EQ(scene.instanced->getStatistics().texelLimit, 4u * 7u);
+        EXPECT_GE(scene.instanced->getStatistics().buffers, (4u * 18u + 6u) / 7u);
+    }
+    scene.actors[2]->setDof("l_shoulder.ry", -1.5);
+    scene.actors[2]->update(nullptr);
+    const std::vector<Instance> posed = scene.cullOrdinarily();
+    ASSERT_NE(posed, ordinary);
+    for (int frame = 0; frame < 3; ++frame) EXPECT_EQ(scene.cullInstanced(), posed) << "posed, frame " << frame;
+    scene.actors[1]->setNodeMask(0u);
+    const std::vector<Instance> three = scene.cullOrdinarily();
+    ASSERT_EQ(three.size(), 3u * 18u);
+    for (int frame = 0; frame < 3; ++frame) EXPECT_EQ(scene.cullInstanced(), three) << "three, frame " << frame;
+    scene.actors[1]->setNodeMask(~0u);
+    for (int frame = 0; frame < 3; ++frame) EXPECT_EQ(scene.cullInstanced(), posed) << "four again, frame " << frame;
+    // The first actor away for one frame: the second's instances are written at its texels meanwhile, so where it
+    // comes back to them, its own are written again.
+    scene.actors[0]->setNodeMask(0u);
+    const std::vector<Instance> away = scene.cullOrdinarily();
+    scene.actors[0]->setNodeMask(~0u);
+    for (int frame = 0; frame < 3; ++frame) scene.cullInstanced(); // kept where they were added
+    scene.actors[0]->setNodeMask(0u);
+    EXPECT_EQ(scene.cullInstanced(), away);
+    scene.actors[0]->setNodeMask(~0u);
+    for (int frame = 0; frame < 3; ++frame) EXPECT_EQ(scene.cullInstanced(), posed) << "back, frame " << frame;
+    // Without the cap, one buffer: the instances the same.
+    scene.instanced->setMaxTexelsPerBuffer(0);
+    for (int frame = 0; frame < 2; ++frame) EXPECT_EQ(scene.cullInstanced(), posed) << "one buffer, frame " << frame;
+    EXPECT_EQ(scene.instanced->getStatistics().buffers, 1u);
 }

@@ -219,6 +219,43 @@ TEST_F(InstancedImages, AStillCrowdDrawnAgainGivesTheSameBytesFrameAfterFrame)
     }
 }
 
+TEST_F(InstancedImages, ACrowdOverSeveralSmallBuffersIsTheOrdinaryImageStillMovingAndShrinking)
+{
+    // Buffers of 5 instances: the frame is drawn from windows of the buffer the cull wrote, a batch's instances in
+    // runs. Near and far not computed (the projection's own, about the crowd), so that a still actor adds the
+    // instances it kept: where they were added last they are not written, and a frame with nothing written is not
+    // uploaded again; a pose changed, or actors masked out and back (the instances move), write them again, and every
+    // buffer shows what they now hold.
+    osg::Camera& camera = *renderer->getCamera();
+    camera.setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
+    double fovy = 0.0, aspect = 0.0, zNear = 0.0, zFar = 0.0;
+    camera.getProjectionMatrixAsPerspective(fovy, aspect, zNear, zFar);
+    camera.setProjectionMatrixAsPerspective(fovy, aspect, 0.5, 40.0);
+    drawOrdinaryPathWithTheSameShader();
+    group->setMaxTexelsPerBuffer(4 * 5);
+    for (int frame = 0; frame < 3; ++frame) expectTheSameBytes();
+    const InstancedActorGroup::Statistics statistics = group->getStatistics();
+    EXPECT_EQ(statistics.texelLimit, 20u);
+    // Actors 0 to 6 but 3 (a hidden arm), every part: nothing is tested against the frustum below an actor.
+    EXPECT_EQ(statistics.actorsInstanced, 6u);
+    EXPECT_EQ(statistics.instances, 6u * numParts(*prototype));
+    EXPECT_GE(statistics.buffers, (statistics.instances + 4u) / 5u);
+    actors[2]->setDof("l_shoulder.ry", -1.5);
+    actors[2]->setDof("l_elbow.rx", -1.2);
+    for (int frame = 0; frame < 3; ++frame) expectTheSameBytes();
+    actors[1]->setNodeMask(0u);
+    actors[4]->setNodeMask(0u);
+    for (int frame = 0; frame < 3; ++frame) expectTheSameBytes();
+    EXPECT_EQ(group->getStatistics().instances, 4u * numParts(*prototype));
+    // Moved while two are away, then all back.
+    actors[5]->setDof("r_shoulder.ry", 1.2);
+    for (int frame = 0; frame < 2; ++frame) expectTheSameBytes();
+    actors[1]->setNodeMask(~0u);
+    actors[4]->setNodeMask(~0u);
+    for (int frame = 0; frame < 3; ++frame) expectTheSameBytes();
+    EXPECT_EQ(group->getStatistics().instances, 6u * numParts(*prototype));
+}
+
 TEST_F(InstancedImages, ACrowdGrowingBetweenFramesIsDrawnWhole)
 {
     // One figure first (18 instances), then four (72): the frame's buffer of matrices, made for the first, grows.
