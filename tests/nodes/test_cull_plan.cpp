@@ -448,7 +448,10 @@ TEST(CullPlan, NearAndFarFromPrimitivesFollowTheVisitorsPlanesPastCullingOffAndO
     // it: where the drawable's culling is off, those the test before it left (the drawable before it in the geode,
     // whose own culling is then off too: the sets' masks reset), and the tests an ordinary subtree below a joint
     // makes in the joint's culling set count for what follows it. The head's geode gets a second drawable with its
-    // culling off, the chest a plain group (the ordinary traversal's) with a box in it, ahead of the head.
+    // culling off (a ball ahead of the face, the nearest drawable), the chest a plain group (the ordinary
+    // traversal's) with a box in it, then a drawable of its own with its culling off (the ordinary traversal's too,
+    // which reads what the group's tests left: a ball behind the back, the farthest), ahead of the head. Balls, not
+    // boxes: a box's nearest triangle is its box's corner, planes or none.
     const EyeAndCentre cameras[] = {{{1.1, -6.0, 1.5}, {1.1, 0.0, 0.9}},
                                     {{1.1, -1.6, 1.2}, {1.1, 0.0, 1.0}},
                                     {{0.2, -1.0, 1.5}, {1.6, 0.0, 0.7}},
@@ -465,7 +468,7 @@ TEST(CullPlan, NearAndFarFromPrimitivesFollowTheVisitorsPlanesPastCullingOffAndO
             for (osg::ref_ptr<ActorNode>& actor : scene.actors)
             {
                 osg::ref_ptr<osg::ShapeDrawable> hat =
-                    new osg::ShapeDrawable(new osg::Box(osg::Vec3(0.0f, 0.0f, 0.3f), 0.3f, 0.3f, 0.1f));
+                    new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(0.0f, -0.8f, 0.3f), 0.12f));
                 hat->setCullingActive(false);
                 actor->getSkeletonNode("head")->getChild(0)->asGeode()->addDrawable(hat.get());
                 osg::ref_ptr<osg::Group> group = new osg::Group;
@@ -473,6 +476,10 @@ TEST(CullPlan, NearAndFarFromPrimitivesFollowTheVisitorsPlanesPastCullingOffAndO
                 badge->addDrawable(new osg::ShapeDrawable(new osg::Box(osg::Vec3(0.1f, -0.1f, 0.1f), 0.1f)));
                 group->addChild(badge.get());
                 actor->getSkeletonNode("chest")->insertChild(0, group.get());
+                osg::ref_ptr<osg::ShapeDrawable> tie =
+                    new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(0.0f, 0.7f, -0.1f), 0.1f));
+                tie->setCullingActive(false);
+                actor->getSkeletonNode("chest")->insertChild(1, tie.get());
             }
             scene.computeNearFar(mode);
             scene.probe.lookAt(camera.eye, camera.centre);
