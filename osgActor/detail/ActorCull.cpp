@@ -209,6 +209,7 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
         return;
     }
     _nearFarByVisitor = view.computeNearFar() && !_state._preparedDepthsByBounds;
+    _planesTracked = _nearFarByVisitor && nearFarFromPrimitives(cv);
     _modelViews = _state._preparedModelViews.get();
     if (_state._preparedReshape)
         replayReshaped();
@@ -242,7 +243,9 @@ void ActorCull::keepCalls(const ActorCullState::Versions& versions, const osg::G
     // What the reshaped calls compare their drops with.
     _state._keptDropped = _state._preparedDropped;
     if (_state._keptDropped) _state._keptCulled = _state._stepCulled;
-    _state._replayable = true;
+    // Near and far from primitives, the calls are made afresh each cull: the visitor's frustum tests are followed
+    // as they are made (the planes each drawable's search is given), which a replay would not do.
+    _state._replayable = !_planesTracked;
     noteEntry(actor, entry);
 }
 
@@ -638,6 +641,9 @@ void ActorCull::cull()
 {
     _state._keptLeaves.clear();
     _state._callsReshapable = true; // until found otherwise
+    _untestedUntil = 0;
+    if (_planesTracked && _state._jointFrustums.size() < _plan->getJoints().size() + 1)
+        _state._jointFrustums.resize(_plan->getJoints().size() + 1);
     const Step* steps = _plan->getSteps().data();
     const std::size_t numSteps = _plan->getSteps().size();
     const unsigned char* culled = _state._stepCulled.data();
@@ -648,6 +654,7 @@ void ActorCull::cull()
         {
         case ActorCullPlan::JOINT:
         case ActorCullPlan::GEODE:
+            if (_planesTracked) enterFrustum(step, i);
             if (culled[i])
             {
                 i = step.end;
@@ -663,6 +670,7 @@ void ActorCull::cull()
             break;
         case ActorCullPlan::END_JOINT:
         case ActorCullPlan::END_GEODE:
+            if (_planesTracked) leaveFrustum(step, i);
             if (step.stateSet) unwantState();
             if (step.pathNeeded)
             {
@@ -671,8 +679,11 @@ void ActorCull::cull()
             }
             break;
         case ActorCullPlan::DRAWABLE:
-            if (!culled[i]) addDrawable(step, static_cast<unsigned>(i));
+        {
+            const osg::Polytope::ClippingMask planes = _planesTracked ? testDrawableBox(step, i) : 0;
+            if (!culled[i]) addDrawable(step, static_cast<unsigned>(i), planes);
             break;
+        }
         case ActorCullPlan::ORDINARY: traverseOrdinarily(step); break;
         }
         ++i;
@@ -681,18 +692,23 @@ void ActorCull::cull()
     keepLeafSources();
 }
 
-void ActorCull::addDrawable(const Step& step, unsigned stepIndex)
+void ActorCull::addDrawable(const Step& step, unsigned stepIndex, osg::Polytope::ClippingMask planes)
 {
     // What CullVisitor::apply(osg::Drawable&) does for a drawable without a cull callback, from what prepare()
     // decided.
     osg::Drawable& drawable = *step.node->asDrawable();
     const unsigned frame = static_cast<unsigned>(step.joint + 1);
     const osg::Matrixd& modelView = _modelViews->matrices[frame];
-    if (_nearFarByVisitor && drawable.getBoundingBox().valid())
+    if (_planesTracked && drawable.getBoundingBox().valid())
+    {
+        if (!updateNearFarWithPlanes(modelView, drawable, frame, planes)) return;
+    }
+    else if (_nearFarByVisitor && drawable.getBoundingBox().valid())
     {
         // The visitor takes the box's nearest and farthest corners along the view in the frame of the matrix it last
         // pushed, which here is the actor's, not the joint's: its billboard form finds them from the matrix given,
-        // with the same arithmetic pushModelViewMatrix() uses, so the planes are those of the ordinary traversal.
+        // with the same arithmetic pushModelViewMatrix() uses, so the corners are those of the ordinary traversal
+        // (from bounding volumes nothing else is read; from primitives, updateNearFarWithPlanes() above).
         if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
         call(Call::NEAR_FAR, &drawable, nullptr, 0.0f, &modelView);
     }
@@ -747,8 +763,107 @@ void ActorCull::traverseOrdinarily(const Step& step)
     osg::RefMatrix* matrix = step.joint < 0 ? nullptr : leafMatrix(static_cast<unsigned>(step.joint + 1));
     call(Call::TRAVERSE, step.node, matrix);
     if (matrix) _cv.pushModelViewMatrix(matrix, osg::Transform::RELATIVE_RF);
-    step.node->accept(_cv);
+    if (!matrix || !_planesTracked)
+        step.node->accept(_cv);
+    else
+    {
+        // The visitor would traverse the subtree in the joint's culling set, with the masks it holds there: the
+        // set just pushed (the same planes) is given them, and its tests' result taken back.
+        osg::Polytope& pushed = _cv.getCurrentCullingSet().getFrustum();
+        osg::Polytope& tracked = frameFrustum(static_cast<unsigned>(step.joint + 1));
+        pushed.setResultMask(tracked.getCurrentMask());
+        pushed.pushCurrentMask();
+        pushed.setResultMask(tracked.getResultMask());
+        step.node->accept(_cv);
+        tracked.setResultMask(pushed.getResultMask());
+        pushed.popCurrentMask();
+    }
     if (matrix) _cv.popModelViewMatrix();
+}
+
+void ActorCull::enterFrustum(const Step& step, std::size_t stepIndex)
+{
+    // CullVisitor::apply(osg::Transform&) and apply(osg::Geode&): isCulled(node) in the frame the node is in, then,
+    // going on, pushCurrentMask() there and (a transform) a culling set of its own.
+    if (stepIndex < _untestedUntil || isMaskedOut(_cv.getTraversalMask(), _cv.getNodeMaskOverride(), step.mask))
+        return;
+    const unsigned frame = step.kind == ActorCullPlan::JOINT
+                               ? static_cast<unsigned>(_plan->getJoints()[step.joint].parent + 1)
+                               : static_cast<unsigned>(step.joint + 1);
+    osg::Polytope& frustum = frameFrustum(frame);
+    const osg::BoundingSphere& bound = step.node->getBound();
+    if (step.cullingActive && bound.valid())
+    {
+        if ((_cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) &&
+            !frustum.contains(bound))
+        {
+            _untestedUntil = step.end;
+            return;
+        }
+    }
+    else
+        frustum.setResultMask(frustum.getCurrentMask()); // CullingSet::resetCullingMask()
+    if (_state._stepCulled[stepIndex]) return; // a small feature: not entered
+    frustum.pushCurrentMask();
+    if (step.kind != ActorCullPlan::JOINT) return;
+    // CullStack::pushCullingSet(): the projection's frustum moved into the joint's frame.
+    osg::Polytope& joint = _state._jointFrustums[step.joint + 1];
+    joint.setAndTransformProvidingInverse(_cv.getProjectionCullingStack().back().getFrustum(),
+                                          _modelViews->matrices[step.joint + 1]);
+}
+
+void ActorCull::leaveFrustum(const Step& step, std::size_t stepIndex)
+{
+    if (stepIndex < _untestedUntil || isMaskedOut(_cv.getTraversalMask(), _cv.getNodeMaskOverride(), step.mask))
+        return;
+    const unsigned frame = step.kind == ActorCullPlan::END_JOINT
+                               ? static_cast<unsigned>(_plan->getJoints()[step.joint].parent + 1)
+                               : static_cast<unsigned>(step.joint + 1);
+    frameFrustum(frame).popCurrentMask();
+}
+
+osg::Polytope::ClippingMask ActorCull::testDrawableBox(const Step& step, std::size_t stepIndex)
+{
+    // CullVisitor::apply(osg::Drawable&): drawable.isCullingActive() && isCulled(box), in the drawable's frame.
+    osg::Polytope& frustum = frameFrustum(static_cast<unsigned>(step.joint + 1));
+    if (stepIndex >= _untestedUntil && !isMaskedOut(_cv.getTraversalMask(), _cv.getNodeMaskOverride(), step.mask))
+    {
+        const osg::BoundingBox& box = static_cast<const osg::Drawable*>(step.node)->getBoundingBox();
+        if (step.cullingActive && box.valid() &&
+            (_cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING))
+            frustum.contains(box);
+    }
+    return frustum.getResultMask();
+}
+
+bool ActorCull::updateNearFarWithPlanes(const osg::Matrixd& modelView, osg::Drawable& drawable, unsigned frame,
+                                        osg::Polytope::ClippingMask planes)
+{
+    osg::Polytope& current = _cv.getCurrentCullingSet().getFrustum();
+    osg::Polytope& projection = _cv.getProjectionCullingStack().back().getFrustum();
+    osg::Polytope::ClippingMask& projectionMask = projection.getCurrentMask();
+    const osg::Polytope::ClippingMask currentResult = current.getResultMask();
+    const osg::Polytope::ClippingMask projectionActive = projectionMask;
+    // The frame's planes are the projection's active ones, in their order: as many (a culling set copied and moved,
+    // each plane where it was) or only those (CullingSet::set(), which keeps the active planes alone).
+    osg::Polytope::ClippingMask selected = planes;
+    if (frameFrustum(frame).getPlaneList().size() != projection.getPlaneList().size())
+    {
+        selected = 0;
+        osg::Polytope::ClippingMask next = 0x1;
+        for (osg::Polytope::ClippingMask bit = 0x1; bit && bit <= projectionActive; bit <<= 1)
+        {
+            if (!(projectionActive & bit)) continue;
+            if (planes & next) selected |= bit;
+            next <<= 1;
+        }
+    }
+    projectionMask = selected;
+    current.setResultMask(planes);
+    const bool kept = _cv.updateCalculatedNearFar(modelView, drawable, true);
+    current.setResultMask(currentResult);
+    projectionMask = projectionActive;
+    return kept;
 }
 
 void ActorCull::changeToWantedStates()

@@ -23,7 +23,11 @@
 // Near and far from bounding volumes (osgViewer's default) are gathered by prepare() with the visitor's arithmetic
 // (DepthRange, the drawables behind the eye dropped as it drops them) and merged into the visitor's once per actor,
 // which gives its values to the bit (each is a least or greatest value); from primitives, or with an ordinary
-// subtree among the steps, each drawable's are asked of the visitor as it is added.
+// subtree among the steps, each drawable's are asked of the visitor as it is added. From primitives the visitor
+// searches a drawable's triangles against the frustum planes its culling set in the drawable's frame holds active
+// (none: the box's corners count), which its tests of the spheres and boxes in that frame decide: the cull makes
+// those tests on planes moved as the visitor moves them, in its order, and asks for each drawable with its planes,
+// so that near and far are the ordinary traversal's to the bit (such a cull is never replayed).
 //
 // The work is in two parts. prepare() touches no visitor: it checks the plan, computes the model-view matrices and
 // decides what small features, and what lies outside the frustum, are culled, and each drawable's depth, from a
@@ -35,7 +39,8 @@
 // What a cull did to the visitor (state sets pushed and popped, leaves added, subtrees traversed) is kept as a
 // list of calls. When the actor is culled again with nothing it depends on changed (the same plan, no joint
 // matrix written, no bound below recomputed, the same model-view matrix on entry, the same projection, viewport
-// and culling settings: an idle actor before a still camera), the calls are made again with the same leaves and
+// and culling settings: an idle actor before a still camera; near and far not from primitives), the calls are
+// made again with the same leaves and
 // matrices, which were only read since, and the near and far they gave merged again: no joint is read but for the
 // flags the plan compares.
 #ifndef OSGACTOR_DETAIL_ACTORCULL_H
@@ -46,6 +51,7 @@
 #include <osgActor/detail/JointDrawBatch.h>
 
 #include <osg/Matrixd>
+#include <osg/Polytope>
 #include <osgUtil/CullVisitor>
 
 #include <algorithm>
@@ -280,6 +286,9 @@ private:
     FramePixelSizeVectors _pixelSizeVectors;
     std::vector<osg::StateSet*> _wantedStates;
     std::vector<osg::StateSet*> _appliedStates;
+    /** Near and far from primitives: per planned joint, the frustum as the visitor's culling set in its frame holds
+      * it (ActorCull::jointFrustum()); index joint + 1, the actor's own frame being the visitor's set. */
+    std::vector<osg::Polytope> _jointFrustums;
     /** What the last InstancedActorGroup cull to take the actor found for its plan (InstancedCull), so that the
       * next cull of that group finds it without a lookup: the group's cull state (its serial), the plan (held, so
       * that no other plan is made at its address while it is named here), and the verdict. */
@@ -407,8 +416,33 @@ private:
     /** Keeps where the visitor entered the actor (entry, null if not known) for the calls just kept
       * (ActorCullState::_entryModelView). */
     void noteEntry(const osg::Group& actor, const osg::Matrixd* entry);
-    void addDrawable(const Step& step, unsigned stepIndex);
+    void addDrawable(const Step& step, unsigned stepIndex, osg::Polytope::ClippingMask planes);
     void traverseOrdinarily(const Step& step);
+
+    // Near and far from primitives. The visitor queues a drawable whose box may widen them with the planes its
+    // culling set in the drawable's frame holds active where it meets it (Polytope::getResultMask(): those the last
+    // frustum test there found the bound across; none: the box's corners are taken as they are), and searches the
+    // drawable's triangles against those planes. So the tests the visitor makes in each frame (the spheres of
+    // joints and geodes, the drawables' boxes, with their masks pushed and popped) are made here, in the same order,
+    // on polytopes made as its culling sets are, and each drawable's near and far asked with the planes it would
+    // hold.
+    /** The frame's frustum: the visitor's culling set's for the actor's own (frame 0), the one made here below. */
+    osg::Polytope& frameFrustum(unsigned frame)
+    {
+        return frame ? _state._jointFrustums[frame] : _cv.getCurrentCullingSet().getFrustum();
+    }
+    /** A JOINT or GEODE step met (the step's decision not yet applied): the visitor's test of its sphere and, where
+      * the visitor goes on into it, its mask pushed (and a joint's frustum made). */
+    void enterFrustum(const Step& step, std::size_t stepIndex);
+    void leaveFrustum(const Step& step, std::size_t stepIndex);
+    /** A DRAWABLE step met: the visitor's test of its box; the planes then active. */
+    osg::Polytope::ClippingMask testDrawableBox(const Step& step, std::size_t stepIndex);
+    /** CullVisitor::updateCalculatedNearFar() for the drawable with the planes of its frame's frustum given (that
+      * frustum's active-plane bits): its billboard form, which takes the planes from the projection's culling set
+      * (in its current mask) moved into the matrix's frame and queues the drawable when the current culling set
+      * holds any plane active, is asked with both set to these planes for the call. */
+    bool updateNearFarWithPlanes(const osg::Matrixd& modelView, osg::Drawable& drawable, unsigned frame,
+                                 osg::Polytope::ClippingMask planes);
     /** The frame's model-view matrix as the render graph holds it, made at its first use this cull. */
     osg::RefMatrix* leafMatrix(unsigned frame);
 
@@ -455,6 +489,11 @@ private:
     const ActorCullPlan* _plan;
     /** Near and far computed, each drawable's asked of the visitor as it is added (not gathered by prepare()). */
     bool _nearFarByVisitor;
+    /** Near and far from primitives: the visitor's frustum tests followed (frameFrustum()). */
+    bool _planesTracked = false;
+    /** The steps before it are in a subtree whose sphere the visitor found outside the frustum: it tests nothing
+      * there. */
+    std::size_t _untestedUntil = 0;
     JointModelViews* _modelViews;
     /** The batches this actor is filling, by state graph: a drawable goes into its graph's open batch, which is
       * closed when anything else may land in that graph (a drawable that is not batched, an ordinary traversal),

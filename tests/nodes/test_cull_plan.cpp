@@ -397,31 +397,103 @@ TEST(CullPlan, MovingActorsWithNearAndFarFromBoundingVolumesGiveTheOrdinaryGraph
     EXPECT_GT(unentered, cameras.size() / 3);
 }
 
-TEST(CullPlan, NearAndFarFromPrimitivesAreAskedOfTheVisitorInsideTheActor)
+TEST(CullPlan, NearAndFarFromPrimitivesAreTheOrdinaryTraversalsToTheBit)
 {
-    // From primitives, the visitor reads its culling set (the actor's, once entered) for each drawable's near and
-    // far: the actor is entered and its cull asks the visitor for each drawable, still or moving, as before near and
-    // far from bounding volumes were gathered. The leaves are the ordinary traversal's. (The near distance is not:
-    // the actor's culling set, not the joint's, decides which drawables' primitives are searched; it was so before.)
+    // From primitives, the visitor queues a drawable that may widen near or far with the planes its culling set in
+    // the drawable's frame (the joint's) holds active there, those its box was found across (none: the box's
+    // corners count as they are), and searches its triangles against them when the projection is popped. The cull
+    // as one enters the actor and asks the visitor for each drawable with those planes: near and far to the bit of
+    // the ordinary traversal's, the leaves the same, still or moving, for cameras that see every box wholly inside
+    // the frustum, boxes across its sides (triangles clipped), a figure partly out of view, and the eye inside the
+    // middle figure, drawables across the eye's plane.
     const unsigned enteringNone = matricesTakenEnteringNoActor();
+    const EyeAndCentre cameras[] = {{{1.1, -6.0, 1.5}, {1.1, 0.0, 0.9}},
+                                    {{1.1, -1.6, 1.2}, {1.1, 0.0, 1.0}},
+                                    {{0.2, -1.0, 1.5}, {1.6, 0.0, 0.7}},
+                                    {{2.2, -3.0, 1.2}, {3.2, 0.0, 0.9}},
+                                    {{1.12, 0.2, 1.1}, {3.0, 0.2, 1.1}}};
     for (const osg::CullSettings::ComputeNearFarMode mode :
          {osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES, osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES})
     {
         SCOPED_TRACE(mode == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES ? "near from primitives"
                                                                                : "near and far from primitives");
-        Scene scene;
-        scene.computeNearFar(mode);
-        for (int frame = 0; frame < 6; ++frame)
+        for (const EyeAndCentre& camera : cameras)
         {
-            SCOPED_TRACE("frame " + std::to_string(frame));
-            if (frame >= 3)
+            SCOPED_TRACE("eye at x " + std::to_string(camera.eye.x()) + ", y " + std::to_string(camera.eye.y()));
+            Scene scene;
+            scene.computeNearFar(mode);
+            scene.probe.lookAt(camera.eye, camera.centre);
+            for (int frame = 0; frame < 6; ++frame)
             {
-                scene.first().setDof("l_elbow.rx", -0.1 * frame);
-                scene.first().update(nullptr);
+                SCOPED_TRACE("frame " + std::to_string(frame));
+                if (frame >= 3)
+                    for (std::size_t a = 0; a < scene.actors.size(); ++a)
+                    {
+                        scene.actors[a]->setDof("l_elbow.rx", -0.1 * frame);
+                        scene.actors[a]->setDof("r_knee.rx", 0.05 * double(frame + a));
+                        scene.actors[a]->setPreTranslation(osg::Vec3d(1.1 * a, 0.2 * a + 0.01 * frame, 0.0));
+                        scene.actors[a]->update(nullptr);
+                    }
+                unsigned entered = 0;
+                scene.cullExpectingTheOrdinaryGraph(&entered);
+                EXPECT_GT(entered, enteringNone); // the test can fail: the actors are entered
             }
-            const std::vector<CulledLeaf> asOne = scene.probe.cull(++scene.frame);
-            EXPECT_GT(scene.matricesTaken(), enteringNone); // the test can fail: the actors are entered
-            expectSameLeaves(asOne, scene.cullOrdinarily());
+        }
+    }
+}
+
+TEST(CullPlan, NearAndFarFromPrimitivesFollowTheVisitorsPlanesPastCullingOffAndOrdinarySubtrees)
+{
+    // The planes a drawable's search is given are those its frame's culling set holds active when the visitor meets
+    // it: where the drawable's culling is off, those the test before it left (the drawable before it in the geode,
+    // whose own culling is then off too: the sets' masks reset), and the tests an ordinary subtree below a joint
+    // makes in the joint's culling set count for what follows it. The head's geode gets a second drawable with its
+    // culling off (a ball ahead of the face, the nearest drawable), the chest a plain group (the ordinary
+    // traversal's) with a box in it, then a drawable of its own with its culling off (the ordinary traversal's too,
+    // which reads what the group's tests left: a ball behind the back, the farthest), ahead of the head. Balls, not
+    // boxes: a box's nearest triangle is its box's corner, planes or none.
+    const EyeAndCentre cameras[] = {{{1.1, -6.0, 1.5}, {1.1, 0.0, 0.9}},
+                                    {{1.1, -1.6, 1.2}, {1.1, 0.0, 1.0}},
+                                    {{0.2, -1.0, 1.5}, {1.6, 0.0, 0.7}},
+                                    {{1.12, 0.2, 1.1}, {3.0, 0.2, 1.1}}};
+    for (const osg::CullSettings::ComputeNearFarMode mode :
+         {osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES, osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES})
+    {
+        SCOPED_TRACE(mode == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES ? "near from primitives"
+                                                                               : "near and far from primitives");
+        for (const EyeAndCentre& camera : cameras)
+        {
+            SCOPED_TRACE("eye at x " + std::to_string(camera.eye.x()) + ", y " + std::to_string(camera.eye.y()));
+            Scene scene;
+            for (osg::ref_ptr<ActorNode>& actor : scene.actors)
+            {
+                osg::ref_ptr<osg::ShapeDrawable> hat =
+                    new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(0.0f, -0.8f, 0.3f), 0.12f));
+                hat->setCullingActive(false);
+                actor->getSkeletonNode("head")->getChild(0)->asGeode()->addDrawable(hat.get());
+                osg::ref_ptr<osg::Group> group = new osg::Group;
+                osg::ref_ptr<osg::Geode> badge = new osg::Geode;
+                badge->addDrawable(new osg::ShapeDrawable(new osg::Box(osg::Vec3(0.1f, -0.1f, 0.1f), 0.1f)));
+                group->addChild(badge.get());
+                actor->getSkeletonNode("chest")->insertChild(0, group.get());
+                osg::ref_ptr<osg::ShapeDrawable> tie =
+                    new osg::ShapeDrawable(new osg::Sphere(osg::Vec3(0.0f, 0.7f, -0.1f), 0.1f));
+                tie->setCullingActive(false);
+                actor->getSkeletonNode("chest")->insertChild(1, tie.get());
+            }
+            scene.computeNearFar(mode);
+            scene.probe.lookAt(camera.eye, camera.centre);
+            for (int frame = 0; frame < 4; ++frame)
+            {
+                SCOPED_TRACE("frame " + std::to_string(frame));
+                if (frame >= 2)
+                    for (osg::ref_ptr<ActorNode>& actor : scene.actors)
+                    {
+                        actor->setDof("pelvis.rz", 0.1 * frame);
+                        actor->update(nullptr);
+                    }
+                scene.cullExpectingTheOrdinaryGraph();
+            }
         }
     }
 }
