@@ -80,6 +80,7 @@ InstancedActorGroup::Statistics InstancedActorGroup::getStatistics() const
     statistics.actorsInstanced = s.actorsInstanced;
     statistics.actorsOrdinary = s.actorsOrdinary;
     statistics.actorsOutOfView = s.actorsOutOfView;
+    statistics.actorsKept = s.actorsKept;
     statistics.draws = s.draws;
     statistics.instances = s.instances;
     statistics.skinnedDraws = s.skinnedDraws;

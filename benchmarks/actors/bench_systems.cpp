@@ -140,12 +140,14 @@ void registerAll(const Sweep& sweep)
             }
     // Update + cull with osgViewer's default camera: near and far computed from bounding volumes.
     for (int n : sweep.actors)
-        for (System system : {System::OsgActorAll, System::OsgActorIdle, System::OsgAnimation, System::PlainOsg})
+        for (System system : {System::OsgActorAll, System::OsgActorIdle, System::OsgActorAllInstanced,
+                              System::OsgActorIdleInstanced, System::OsgAnimation, System::PlainOsg})
         {
             const std::string name = std::string("update_cull_nearfar/") + kNames[int(system)];
             benchmark::RegisterBenchmark(name.c_str(), [system](benchmark::State& state) {
                 osg::ref_ptr<osg::Group> scene = makeScene(system, static_cast<unsigned>(state.range(0)));
-                runScene(state, *scene, true, system != System::OsgActorIdle,
+                runScene(state, *scene, true,
+                         system != System::OsgActorIdle && system != System::OsgActorIdleInstanced,
                          bench::FrameLoop::NearFar::FromBoundingVolumes);
             })->Arg(n)->Unit(benchmark::kMicrosecond);
         }

@@ -7,8 +7,9 @@
 // (20), then any of "follow" for bounds that follow the pose (the default covers rotations), "cull" for the cull
 // too, "idle" for actors without a controller, "instanced" for the crowd under an InstancedActorGroup (its
 // update_cull/osgActor_all_instanced, or _idle_instanced), "nearfar" for a cull computing near and far from bounding
-// volumes as osgViewer's default camera does (update_cull_nearfar/osgActor_all, or _idle). Divide the counts by
-// actors x frames x 31 joints for figures per joint and frame (docs/performance.md).
+// volumes as osgViewer's default camera does (update_cull_nearfar/osgActor_all, or _idle, _all_instanced,
+// _idle_instanced). Divide the counts by actors x frames x 31 joints for figures per joint and frame
+// (docs/performance.md).
 #include "FrameLoop"
 #include "PeerScenes"
 

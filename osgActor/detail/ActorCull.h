@@ -322,6 +322,10 @@ private:
           * the frame's next cull is the one that finds them at the same texels, they are there already. */
         const void* frame = nullptr;
         std::uint64_t contents = 0;
+        /** With near and far computed from bounding volumes (the view's, which the kept instances' view number
+          * counts), the near and far distances the kept instances' drawables gave (DepthRange), merged into the
+          * visitor's again where they are added again. */
+        DepthRange depths;
     };
     InstancedVerdict _instancedVerdict;
 

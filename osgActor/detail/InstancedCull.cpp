@@ -193,6 +193,7 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _maskOverride(cv.getNodeMaskOverride()),
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
+      _depthsByBounds(cv.getComputeNearFarMode() == osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
       _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false),
       _wroteTexels(false), _texelLimit(state._limit->texels()), _profile(skinningProfileOf(cv.getState())), _view(cv),
@@ -474,14 +475,25 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     // An actor with skinned meshes is culled anew at every cull: its palettes are kept by its meshes, not here.
     if (verdict.skinBatches.empty())
     {
-        if (replayKept(kept, versions, entryKept)) return;
+        if (replayKept(kept, versions, entryKept))
+        {
+            ++_state._statistics.actorsKept;
+            if (_depthsByBounds) kept.depths.mergeInto(_cv);
+            return;
+        }
     }
     else
         kept.kept = false;
     _state._pixelSizeVectors.reset(numFrames);
     // Each joint's frame, parents first, as ActorCull composes them.
     plan.composeModelViews(modelViews.data());
+    _actorDepths = DepthRange();
     if (!addPlainInstances(verdict)) cullSteps(verdict);
+    if (_depthsByBounds)
+    {
+        _actorDepths.mergeInto(_cv);
+        if (_recording) _recording->depths = _actorDepths;
+    }
     _recording = nullptr;
 }
 
@@ -494,9 +506,25 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
     const std::vector<Step>& steps = plan.getSteps();
     unsigned skin = 0;           // the next of the actor's skinned meshes
     std::size_t provenUntil = 0; // the steps before it are below a joint with no small feature below it
+    // With near and far computed each drawable's box is tested against the frustum (addDrawable()), but below a top
+    // step whose sphere lies wholly inside every plane, as ActorCullState::prepareDrawablesByBounds() does: the
+    // visitor tests that sphere so (the planes moved into the actor's frame) and then tests no plane below it.
+    const bool boxesTested = _computeNearFar && _frustumCulling;
+    if (boxesTested)
+    {
+        _state._actorFramePlanes = _cv.getProjectionCullingStack().back().getFrustum().getPlaneList();
+        for (osg::Plane& plane : _state._actorFramePlanes) plane.transformProvidingInverse(_state._modelViews[0]);
+    }
+    std::size_t topEnd = 0; // the end of the top step the steps are below
+    bool insideTop = false; // its sphere wholly inside the frustum
     for (std::size_t i = 0; i < steps.size();)
     {
         const Step& step = steps[i];
+        if (boxesTested && i >= topEnd)
+        {
+            topEnd = step.end ? step.end : i + 1;
+            insideTop = step.cullingActive && isWhollyInside(step.node->getBound(), _state._actorFramePlanes);
+        }
         switch (step.kind)
         {
         case ActorCullPlan::JOINT:
@@ -515,7 +543,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
             break;
         }
         case ActorCullPlan::DRAWABLE:
-            if (!isMasked(step.mask)) addDrawable(step, verdict.batchOfStep[i]);
+            if (!isMasked(step.mask)) addDrawable(step, verdict.batchOfStep[i], insideTop);
             break;
         case ActorCullPlan::ORDINARY:
             // A skinned mesh (the only ORDINARY step of an instanceable plan): its mask now, as its accept() tests it
@@ -597,8 +625,9 @@ bool InstancedCull::keptEntry(const ActorNode& actor, const ActorCullState::Inst
 bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions,
                                bool entryKept)
 {
-    // Near and far computed from what is drawn would need each drawable's box again: kept only without them.
-    const bool unchanged = kept.versions == versions && !_computeNearFar;
+    // Near and far computed from what is drawn would need each drawable's box again: kept only without them, or
+    // from bounding volumes (the kept range merged again).
+    const bool unchanged = kept.versions == versions && (!_computeNearFar || _depthsByBounds);
     kept.versions = versions;
     if (!unchanged)
     {
@@ -652,18 +681,21 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
     return false;
 }
 
-void InstancedCull::addDrawable(const Step& step, unsigned batch)
+void InstancedCull::addDrawable(const Step& step, unsigned batch, bool insideTop)
 {
     const osg::Geometry& drawable = *static_cast<const osg::Geometry*>(step.node->asDrawable());
     const osg::Matrixd& modelView = _state._modelViews[static_cast<std::size_t>(step.joint + 1)];
-    // As ActorCull::addDrawable(): near and far from what is drawn, the box against the frustum before.
+    // As ActorCull::addDrawable(): near and far from what is drawn, the box against the frustum before; from
+    // bounding volumes, gathered for the actor (a drawable wholly behind the eye dropped, as the visitor drops it).
     const osg::BoundingBox& box = drawable.getBoundingBox();
     if (_computeNearFar && box.valid())
     {
-        if (_frustumCulling && step.cullingActive &&
+        if (_frustumCulling && step.cullingActive && !insideTop &&
             isOutsideFrustum(box, modelView, _cv.getProjectionCullingStack().back().getFrustum()))
             return;
-        if (!_cv.updateCalculatedNearFar(modelView, drawable, true)) return;
+        if (_depthsByBounds ? !_actorDepths.addBox(box, modelView)
+                            : !_cv.updateCalculatedNearFar(modelView, drawable, true))
+            return;
     }
     if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
     float* out = nextInstance(batch);

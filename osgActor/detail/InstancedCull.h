@@ -4,10 +4,11 @@
 // cull as one keeps (ActorCullPlan), with nothing for the ordinary traversal, no state set on a joint, and state sets
 // on geodes and drawables that light as the instanced program lights) is culled as the ordinary traversal would cull
 // it, following its plan as ActorCull does (its mask and bound; each joint's and geode's mask and small-feature test
-// in its frame; while near and far are computed, each drawable's box against the frustum), its joints' model-view
-// matrices composed with the visitor's own products (CullArithmetic.h), and each drawable that survives adds one
-// instance, its joint's model-view matrix, to the batch of its (geode state set, drawable). The actors that cannot be
-// taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an
+// in its frame; while near and far are computed, each drawable's box against the frustum but below a top joint whose
+// sphere lies wholly inside it, and near and far from it, gathered per actor where from bounding volumes), its
+// joints' model-view matrices composed with the visitor's own products (CullArithmetic.h), and each drawable that
+// survives adds one instance, its joint's model-view matrix, to the batch of its (geode state set, drawable). The
+// actors that cannot be taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an
 // InstancedDraw of the drawable for all its instances, under the geode's and the drawable's state sets and the
 // frame's state set (the program and the texture buffer of all instances' matrices, as floats, 4 texels each).
 // A skinned mesh in the actor's frame (InstancedSkin.h) adds one instance to the batch of its (geode state set, mesh):
@@ -19,7 +20,8 @@
 // never writes what the draw of this one reads (each frame its own texture buffer).
 //
 // An actor that did not change since the cull before (its counters, its model-view matrix, the view) adds the
-// instances it kept (ActorCullState::InstancedVerdict) rather than being culled again; where the frame's buffer still
+// instances it kept (ActorCullState::InstancedVerdict) rather than being culled again, and, with near and far
+// computed from bounding volumes, merges the near and far its drawables gave into the visitor's; where the frame's buffer still
 // holds them at the texels this cull gives them (the frame's last cull added them there, InstancedFrame::contents()),
 // nothing is written, and a frame whose cull wrote nothing is not marked for upload: a still crowd before a still
 // camera, culled again into the frame it was culled into last (a viewer that draws each frame before the next cull),
@@ -127,6 +129,7 @@ public:
         unsigned actorsInstanced = 0;
         unsigned actorsOrdinary = 0;
         unsigned actorsOutOfView = 0;
+        unsigned actorsKept = 0;
         unsigned draws = 0;
         unsigned instances = 0;
         unsigned skinnedDraws = 0;
@@ -231,6 +234,7 @@ private:
     std::vector<const SkinnedMeshInstance*> _skinInstances; // the actor's, in step order
     std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
     FramePixelSizeVectors _pixelSizeVectors;  // per frame, made where a test needs it
+    std::vector<osg::Plane> _actorFramePlanes; // the frustum's planes in the actor's frame (cullSteps())
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
     InstancedFrame* _frame = nullptr; // this cull's, if any batch has a region
@@ -303,7 +307,7 @@ private:
     bool mayReplay(const ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions) const
     {
         return kept.kept && kept.serial == _state._serial && kept.view == _state._view && kept.versions == versions &&
-               !_computeNearFar;
+               (!_computeNearFar || _depthsByBounds);
     }
     /** The kept instances of the actor `ahead` actors after the one culled now, asked for (ActorNode's look-ahead
       * stages). */
@@ -324,7 +328,8 @@ private:
     bool isSmallFeature(const osg::BoundingSphere& bound, unsigned frame);
     /** The pixel-size vector of the actor's own frame. */
     const osg::Vec4& actorPixelSizeVector();
-    void addDrawable(const Step& step, unsigned batch);
+    /** insideTop: the drawable is below a top step whose sphere lies wholly inside the frustum (its box untested). */
+    void addDrawable(const Step& step, unsigned batch, bool insideTop);
     /** The actor's instance of a skinned mesh, culled as the mesh's own cull culls it. */
     void addSkinned(const SkinnedMeshInstance& instance, unsigned batch);
     /** Where the batch's next count instances go in its region, in this cull's buffer, or null where the region has
@@ -365,6 +370,11 @@ private:
     unsigned _maskOverride;
     bool _smallFeatureCulling;
     bool _computeNearFar;
+    /** Near and far computed from bounding volumes: each instanced actor's drawables' near and far gathered as the
+      * visitor gathers them (_actorDepths) and merged into the visitor's once per actor, which gives its values to
+      * the bit, and kept with its instances. From primitives, the visitor is asked per drawable. */
+    bool _depthsByBounds;
+    DepthRange _actorDepths;
     bool _frustumCulling;
     float _smallFeaturePixelSize;
     bool _overflowed;

@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cstring>
+#include <iomanip>
 #include <set>
 #include <utility>
 
@@ -96,19 +98,40 @@ struct Scene
             probe->sceneView().setComputeNearFarMode(osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR);
         lookFrom(osg::Vec3d(1.6, -7.0, 1.2));
     }
-    void lookFrom(const osg::Vec3d& eye)
+    void lookFrom(const osg::Vec3d& eye, const osg::Vec3d& center = osg::Vec3d(1.6, 0.0, 0.9))
     {
-        instancedProbe.lookAt(eye, osg::Vec3d(1.6, 0.0, 0.9));
-        ordinaryProbe.lookAt(eye, osg::Vec3d(1.6, 0.0, 0.9));
+        instancedProbe.lookAt(eye, center);
+        ordinaryProbe.lookAt(eye, center);
+    }
+    /** Near and far computed from bounding volumes (SceneView's default, osgViewer's) by both cull visitors. */
+    void computeNearFarFromBounds()
+    {
+        for (CullProbe* probe : {&instancedProbe, &ordinaryProbe})
+            probe->sceneView().setComputeNearFarMode(osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES);
     }
     std::vector<Instance> cullInstanced() { return instancesOf(instancedProbe.cull(++frame)); }
+    /** The ordinary traversal's instances, and its computed near and far (ordinaryNear, ordinaryFar). */
     std::vector<Instance> cullOrdinarily()
     {
         for (osg::ref_ptr<ActorNode>& actor : actors) actor->setCullMode(ActorNode::CULL_NODE_BY_NODE);
         std::vector<Instance> instances = ordinaryInstancesOf(ordinaryProbe.cull(++frame));
         for (osg::ref_ptr<ActorNode>& actor : actors) actor->setCullMode(ActorNode::CULL_AS_ONE);
+        ordinaryNear = ordinaryProbe.calculatedNear();
+        ordinaryFar = ordinaryProbe.calculatedFar();
         return instances;
     }
+    /** Whether the instanced cull's computed near and far are the ordinary traversal's last ones, to the bit. */
+    ::testing::AssertionResult sameNearFarAsOrdinary() const
+    {
+        const double nearPlane = instancedProbe.calculatedNear(), farPlane = instancedProbe.calculatedFar();
+        if (std::memcmp(&nearPlane, &ordinaryNear, sizeof(double)) == 0 &&
+            std::memcmp(&farPlane, &ordinaryFar, sizeof(double)) == 0)
+            return ::testing::AssertionSuccess();
+        return ::testing::AssertionFailure() << std::setprecision(17) << "near " << nearPlane << ", far " << farPlane
+                                             << " against the ordinary " << ordinaryNear << ", " << ordinaryFar;
+    }
+    double ordinaryNear = 0.0;
+    double ordinaryFar = 0.0;
 };
 
 } // namespace
@@ -242,4 +265,81 @@ TEST(InstancedReplay, ACrowdOverSeveralSmallBuffersGivesTheOrdinaryInstancesStil
     scene.instanced->setMaxTexelsPerBuffer(0);
     for (int frame = 0; frame < 2; ++frame) EXPECT_EQ(scene.cullInstanced(), posed) << "one buffer, frame " << frame;
     EXPECT_EQ(scene.instanced->getStatistics().buffers, 1u);
+}
+
+TEST(InstancedReplay, AStillCrowdWithNearAndFarFromBoundsKeepsItsInstancesAndGivesTheOrdinaryNearAndFar)
+{
+    // osgViewer's default camera: near and far computed from bounding volumes. The kept instances hold there, their
+    // near and far merged into the visitor's again: the ordinary traversal's instances and near and far, to the bit.
+    Scene scene;
+    scene.computeNearFarFromBounds();
+    const std::vector<Instance> ordinary = scene.cullOrdinarily();
+    ASSERT_EQ(ordinary.size(), 4u * 18u);
+    ASSERT_LT(scene.ordinaryNear, scene.ordinaryFar); // the test can fail: near and far were computed
+    for (int frame = 0; frame < 6; ++frame)
+    {
+        EXPECT_EQ(scene.cullInstanced(), ordinary) << "frame " << frame;
+        EXPECT_TRUE(scene.sameNearFarAsOrdinary()) << "frame " << frame;
+        EXPECT_EQ(scene.instanced->getStatistics().actorsInstanced, 4u);
+        // The first cull culls afresh, the second keeps what it culls, the others add it again.
+        if (frame >= 2) EXPECT_EQ(scene.instanced->getStatistics().actorsKept, 4u) << "frame " << frame;
+    }
+}
+
+TEST(InstancedReplay, AStillCrowdBeforeACameraWalkingThroughItGivesTheOrdinaryNearAndFarKeptOrNot)
+{
+    // The eye walks through the second figure, looking along the row's depth: parts in front, parts behind the eye
+    // (dropped), parts across its plane (a near distance below zero). At each stop the instanced group culls three
+    // times: afresh, kept, added again; each time the ordinary traversal's instances and near and far, to the bit.
+    Scene scene;
+    scene.computeNearFarFromBounds();
+    bool acrossEyePlane = false;
+    std::set<std::size_t> counts;
+    unsigned keptSeen = 0;
+    for (double y = -3.0; y < 1.5; y += 0.15)
+    {
+        const osg::Vec3d eye(1.1, y, 1.1);
+        scene.lookFrom(eye, eye + osg::Vec3d(0.2, 7.0, -0.3));
+        const std::vector<Instance> ordinary = scene.cullOrdinarily();
+        counts.insert(ordinary.size());
+        acrossEyePlane = acrossEyePlane || scene.ordinaryNear < 0.0;
+        for (int again = 0; again < 3; ++again)
+        {
+            EXPECT_EQ(scene.cullInstanced(), ordinary) << "eye at y " << y << ", cull " << again;
+            EXPECT_TRUE(scene.sameNearFarAsOrdinary()) << "eye at y " << y << ", cull " << again;
+        }
+        const InstancedActorGroup::Statistics statistics = scene.instanced->getStatistics();
+        EXPECT_EQ(statistics.actorsKept, statistics.actorsInstanced) << "eye at y " << y;
+        keptSeen += statistics.actorsKept;
+    }
+    EXPECT_TRUE(acrossEyePlane); // the test can fail: a part crossed the eye plane on the way
+    EXPECT_GT(counts.size(), 3u); // parts were behind the eye or out of view on the way
+    EXPECT_GT(keptSeen, 0u);
+}
+
+TEST(InstancedReplay, ACrowdMovingEveryFrameWithNearAndFarFromBoundsGivesTheOrdinaryNearAndFar)
+{
+    // Every actor posed anew at every frame (nothing kept), the camera walking through the row: each drawable's
+    // near and far gathered per actor and merged once, the ordinary traversal's values to the bit.
+    Scene scene;
+    scene.computeNearFarFromBounds();
+    bool acrossEyePlane = false;
+    int frame = 0;
+    for (double y = -7.0; y < 1.5; y += 0.25, ++frame)
+    {
+        for (std::size_t a = 0; a < scene.actors.size(); ++a)
+        {
+            scene.actors[a]->setDof("l_shoulder.ry", -0.25 * double(a) - 0.1 * frame);
+            scene.actors[a]->setDof("pelvis.rz", 0.05 * frame);
+            scene.actors[a]->update(nullptr);
+        }
+        const osg::Vec3d eye(1.1, y, 1.1);
+        scene.lookFrom(eye, eye + osg::Vec3d(0.2, 7.0, -0.3));
+        const std::vector<Instance> ordinary = scene.cullOrdinarily();
+        acrossEyePlane = acrossEyePlane || scene.ordinaryNear < 0.0;
+        EXPECT_EQ(scene.cullInstanced(), ordinary) << "frame " << frame;
+        EXPECT_TRUE(scene.sameNearFarAsOrdinary()) << "frame " << frame;
+        EXPECT_EQ(scene.instanced->getStatistics().actorsKept, 0u) << "frame " << frame;
+    }
+    EXPECT_TRUE(acrossEyePlane); // the test can fail: a part crossed the eye plane on the way
 }
