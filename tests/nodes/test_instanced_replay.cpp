@@ -282,7 +282,10 @@ TEST(InstancedReplay, AStillCrowdWithNearAndFarFromBoundsKeepsItsInstancesAndGiv
         EXPECT_TRUE(scene.sameNearFarAsOrdinary()) << "frame " << frame;
         EXPECT_EQ(scene.instanced->getStatistics().actorsInstanced, 4u);
         // The first cull culls afresh, the second keeps what it culls, the others add it again.
-        if (frame >= 2) EXPECT_EQ(scene.instanced->getStatistics().actorsKept, 4u) << "frame " << frame;
+        if (frame >= 2)
+        {
+            EXPECT_EQ(scene.instanced->getStatistics().actorsKept, 4u) << "frame " << frame;
+        }
     }
 }
 
