@@ -18,6 +18,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <set>
 #include <string>
@@ -313,6 +314,25 @@ struct EyeAndCentre
     osg::Vec3d centre;
 };
 
+/** Runs check for each camera under both primitive modes (near and far, near only), each traced. */
+template <std::size_t N>
+void forEachPrimitiveModeAndCamera(const EyeAndCentre (&cameras)[N],
+                                   const std::function<void(osg::CullSettings::ComputeNearFarMode,
+                                                            const EyeAndCentre&)>& check)
+{
+    for (const osg::CullSettings::ComputeNearFarMode mode :
+         {osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES, osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES})
+    {
+        SCOPED_TRACE(mode == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES ? "near from primitives"
+                                                                               : "near and far from primitives");
+        for (const EyeAndCentre& camera : cameras)
+        {
+            SCOPED_TRACE("eye at x " + std::to_string(camera.eye.x()) + ", y " + std::to_string(camera.eye.y()));
+            check(mode, camera);
+        }
+    }
+}
+
 } // namespace
 
 TEST(CullPlan, StillActorsWithNearAndFarFromBoundingVolumesAreReplayedUnenteredWithTheOrdinaryNearAndFar)
@@ -412,14 +432,8 @@ TEST(CullPlan, NearAndFarFromPrimitivesAreTheOrdinaryTraversalsToTheBit)
                                     {{0.2, -1.0, 1.5}, {1.6, 0.0, 0.7}},
                                     {{2.2, -3.0, 1.2}, {3.2, 0.0, 0.9}},
                                     {{1.12, 0.2, 1.1}, {3.0, 0.2, 1.1}}};
-    for (const osg::CullSettings::ComputeNearFarMode mode :
-         {osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES, osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES})
-    {
-        SCOPED_TRACE(mode == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES ? "near from primitives"
-                                                                               : "near and far from primitives");
-        for (const EyeAndCentre& camera : cameras)
-        {
-            SCOPED_TRACE("eye at x " + std::to_string(camera.eye.x()) + ", y " + std::to_string(camera.eye.y()));
+    forEachPrimitiveModeAndCamera(
+        cameras, [&](osg::CullSettings::ComputeNearFarMode mode, const EyeAndCentre& camera) {
             Scene scene;
             scene.computeNearFar(mode);
             scene.probe.lookAt(camera.eye, camera.centre);
@@ -438,8 +452,7 @@ TEST(CullPlan, NearAndFarFromPrimitivesAreTheOrdinaryTraversalsToTheBit)
                 scene.cullExpectingTheOrdinaryGraph(&entered);
                 EXPECT_GT(entered, enteringNone); // the test can fail: the actors are entered
             }
-        }
-    }
+        });
 }
 
 TEST(CullPlan, NearAndFarFromPrimitivesFollowTheVisitorsPlanesPastCullingOffAndOrdinarySubtrees)
@@ -456,14 +469,8 @@ TEST(CullPlan, NearAndFarFromPrimitivesFollowTheVisitorsPlanesPastCullingOffAndO
                                     {{1.1, -1.6, 1.2}, {1.1, 0.0, 1.0}},
                                     {{0.2, -1.0, 1.5}, {1.6, 0.0, 0.7}},
                                     {{1.12, 0.2, 1.1}, {3.0, 0.2, 1.1}}};
-    for (const osg::CullSettings::ComputeNearFarMode mode :
-         {osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES, osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES})
-    {
-        SCOPED_TRACE(mode == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES ? "near from primitives"
-                                                                               : "near and far from primitives");
-        for (const EyeAndCentre& camera : cameras)
-        {
-            SCOPED_TRACE("eye at x " + std::to_string(camera.eye.x()) + ", y " + std::to_string(camera.eye.y()));
+    forEachPrimitiveModeAndCamera(
+        cameras, [&](osg::CullSettings::ComputeNearFarMode mode, const EyeAndCentre& camera) {
             Scene scene;
             for (osg::ref_ptr<ActorNode>& actor : scene.actors)
             {
@@ -494,8 +501,7 @@ TEST(CullPlan, NearAndFarFromPrimitivesFollowTheVisitorsPlanesPastCullingOffAndO
                     }
                 scene.cullExpectingTheOrdinaryGraph();
             }
-        }
-    }
+        });
 }
 
 TEST(CullPlan, AJointMatrixSetByHandIsSeen)
