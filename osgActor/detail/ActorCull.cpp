@@ -785,12 +785,8 @@ void ActorCull::enterFrustum(const Step& step, std::size_t stepIndex)
 {
     // CullVisitor::apply(osg::Transform&) and apply(osg::Geode&): isCulled(node) in the frame the node is in, then,
     // going on, pushCurrentMask() there and (a transform) a culling set of its own.
-    if (stepIndex < _untestedUntil || isMaskedOut(_cv.getTraversalMask(), _cv.getNodeMaskOverride(), step.mask))
-        return;
-    const unsigned frame = step.kind == ActorCullPlan::JOINT
-                               ? static_cast<unsigned>(_plan->getJoints()[step.joint].parent + 1)
-                               : static_cast<unsigned>(step.joint + 1);
-    osg::Polytope& frustum = frameFrustum(frame);
+    if (frustumSkips(step, stepIndex)) return;
+    osg::Polytope& frustum = frameFrustum(frustumFrameOf(step));
     const osg::BoundingSphere& bound = step.node->getBound();
     if (step.cullingActive && bound.valid())
     {
@@ -814,12 +810,18 @@ void ActorCull::enterFrustum(const Step& step, std::size_t stepIndex)
 
 void ActorCull::leaveFrustum(const Step& step, std::size_t stepIndex)
 {
-    if (stepIndex < _untestedUntil || isMaskedOut(_cv.getTraversalMask(), _cv.getNodeMaskOverride(), step.mask))
-        return;
-    const unsigned frame = step.kind == ActorCullPlan::END_JOINT
-                               ? static_cast<unsigned>(_plan->getJoints()[step.joint].parent + 1)
-                               : static_cast<unsigned>(step.joint + 1);
-    frameFrustum(frame).popCurrentMask();
+    if (!frustumSkips(step, stepIndex)) frameFrustum(frustumFrameOf(step)).popCurrentMask();
+}
+
+bool ActorCull::frustumSkips(const Step& step, std::size_t stepIndex) const
+{
+    return stepIndex < _untestedUntil || isMaskedOut(_cv.getTraversalMask(), _cv.getNodeMaskOverride(), step.mask);
+}
+
+unsigned ActorCull::frustumFrameOf(const Step& step) const
+{
+    const bool jointNode = step.kind == ActorCullPlan::JOINT || step.kind == ActorCullPlan::END_JOINT;
+    return static_cast<unsigned>(jointNode ? _plan->getJoints()[step.joint].parent + 1 : step.joint + 1);
 }
 
 osg::Polytope::ClippingMask ActorCull::testDrawableBox(const Step& step, std::size_t stepIndex)

@@ -439,6 +439,11 @@ private:
       * the visitor goes on into it, its mask pushed (and a joint's frustum made). */
     void enterFrustum(const Step& step, std::size_t stepIndex);
     void leaveFrustum(const Step& step, std::size_t stepIndex);
+    /** Whether the visitor makes no test at the step: below a subtree it found outside, or the node masked out. */
+    bool frustumSkips(const Step& step, std::size_t stepIndex) const;
+    /** The frame (joint + 1; 0 the actor's) of the culling set the visitor tests a step's node in: a joint's node,
+      * entered or left, in its parent's, a geode in its joint's. */
+    unsigned frustumFrameOf(const Step& step) const;
     /** A DRAWABLE step met: the visitor's test of its box; the planes then active. */
     osg::Polytope::ClippingMask testDrawableBox(const Step& step, std::size_t stepIndex);
     /** CullVisitor::updateCalculatedNearFar() for the drawable with the planes of its frame's frustum given (that
