@@ -4,6 +4,10 @@
 #include <cstdlib>
 #include <new>
 
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
 namespace osgActor {
 namespace detail {
 
@@ -54,6 +58,26 @@ struct CurrentBatch
 };
 thread_local CurrentBatch current;
 
+/** Memory for a block of size bytes, aligned to a cache line. A block of huge pages' size or more is aligned to one
+  * and, where the system lends transparent huge pages on request, asks for them over its whole huge pages: a large
+  * actor's nodes are then mapped by a fault per huge page rather than one per small page, each page zeroed by the
+  * system once either way. */
+void* allocateBlock(std::size_t size)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    constexpr std::size_t kHugePage = std::size_t(2) << 20;
+    if (size >= kHugePage)
+    {
+        void* memory = nullptr;
+        if (posix_memalign(&memory, kHugePage, size) != 0) return nullptr;
+        // Advice only: refused (no huge pages here), the block keeps small pages.
+        madvise(memory, size / kHugePage * kHugePage, MADV_HUGEPAGE);
+        return memory;
+    }
+#endif
+    return std::aligned_alloc(kCacheLine, size);
+}
+
 /** Gives the block back once the last count of its slots is released. */
 void release(Block* block, std::size_t count)
 {
@@ -73,7 +97,7 @@ PlacedSkeletonNode::Batch::Batch(std::size_t count)
     const std::size_t slotSize =
         (placementPad() + sizeof(PlacedSkeletonNode) + kCacheLine - 1) / kCacheLine * kCacheLine;
     const std::size_t headerSize = (sizeof(Block) + kCacheLine - 1) / kCacheLine * kCacheLine;
-    void* memory = std::aligned_alloc(kCacheLine, headerSize + count * slotSize);
+    void* memory = allocateBlock(headerSize + count * slotSize);
     if (!memory) return; // the nodes are then allocated one by one
     current.block = new (memory) Block;
     current.block->live.store(count + 1, std::memory_order_relaxed);

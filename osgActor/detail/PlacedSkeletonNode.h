@@ -5,8 +5,9 @@
 // member and no behaviour, keeps SkeletonNode's class name for osgDB, and clones as a plain SkeletonNode.
 //
 // The nodes an actor builds at once are placed side by side in one block of memory (a Batch): one allocation
-// instead of one per node, each node's lines next to the previous one's. The block is given back when the last of its
-// nodes is deleted, whichever thread deletes it.
+// instead of one per node, each node's lines next to the previous one's; a block of a huge page or more is advised to
+// take huge pages, so a large actor's build faults its memory in once per huge page rather than once per small page.
+// The block is given back when the last of its nodes is deleted, whichever thread deletes it.
 #ifndef OSGACTOR_DETAIL_PLACEDSKELETONNODE_H
 #define OSGACTOR_DETAIL_PLACEDSKELETONNODE_H 1
 

@@ -8,6 +8,8 @@
 #include <osg/MatrixTransform>
 
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <cstdint>
 #include <limits>
 
@@ -450,3 +452,73 @@ TEST(ActorNode, TheSkeletonNodesItBuildsOrCopiesHaveMatricesThatStartACacheLine)
     }
     EXPECT_NE(clone->getSkeletonNode(1u), actor->getSkeletonNode(1u)) << "the clone has nodes of its own";
 }
+
+#if defined(__linux__)
+namespace {
+
+/** The flags /proc/self/smaps gives the mapping that holds address ("hg": advised to use huge pages), or "" where
+  * none holds it. */
+std::string mappingFlags(const void* address)
+{
+    const std::uintptr_t at = reinterpret_cast<std::uintptr_t>(address);
+    std::ifstream smaps("/proc/self/smaps");
+    bool inside = false;
+    for (std::string line; std::getline(smaps, line);)
+    {
+        std::uintptr_t begin = 0, end = 0;
+        char dash = 0;
+        std::istringstream range(line);
+        if (range >> std::hex >> begin >> dash >> end && dash == '-' && line.find(' ') != std::string::npos &&
+            line.find(':') > line.find(' '))
+            inside = begin <= at && at < end;
+        else if (inside && line.compare(0, 8, "VmFlags:") == 0)
+            return line.substr(8) + " ";
+    }
+    return std::string();
+}
+
+} // namespace
+
+TEST(ActorNode, ALargeActorsSkeletonNodesLieSideBySideOnMemoryAdvisedForHugePages)
+{
+    // A performance property (docs/performance.md: a large actor builds with a page fault per huge page, not per
+    // small page), checked here because nothing else would notice its loss; and the nodes in such a block behave.
+    constexpr unsigned kJoints = 6000; // more than 2 MB of nodes
+    ActorDefinitionBuilder builder("long chain");
+    builder.reserve(kJoints);
+    builder.addJoint("j0").dofs(dofBit(Dof::RZ));
+    for (unsigned j = 1; j < kJoints; ++j)
+        builder.addJoint("j" + std::to_string(j), "j" + std::to_string(j % 500 == 1 ? 0 : j - 1))
+            .offset(0.1, 0.0, 0.0)
+            .dofs(dofBit(Dof::RZ));
+    const BuildResult built = builder.build();
+    ASSERT_TRUE(built) << built.error;
+    osg::ref_ptr<ActorNode> actor = new ActorNode(built.definition);
+    ASSERT_EQ(actor->getNumSkeletonNodes(), kJoints);
+
+    const char* first = reinterpret_cast<const char*>(actor->getSkeletonNode(0u));
+    const std::ptrdiff_t stride = reinterpret_cast<const char*>(actor->getSkeletonNode(1u)) - first;
+    EXPECT_GT(stride, 0);
+    EXPECT_EQ(stride % 64, 0);
+    for (unsigned j = 0; j < kJoints; ++j)
+        ASSERT_EQ(reinterpret_cast<const char*>(actor->getSkeletonNode(j)) - first, stride * j) << "joint " << j;
+    // The block starts a huge page, the first node just after the block's header.
+    const char* inHugePage = first;
+    const std::string thp = [] {
+        std::ifstream enabled("/sys/kernel/mm/transparent_hugepage/enabled");
+        std::string text;
+        std::getline(enabled, text);
+        return text;
+    }();
+    if (!thp.empty() && thp.find("[never]") == std::string::npos)
+        EXPECT_NE(mappingFlags(inHugePage).find(" hg "), std::string::npos) << mappingFlags(inHugePage);
+
+    // Posed, edited and given back like any other.
+    actor->setDof(actor->getDefinition()->getFirstDof(kJoints - 1), 0.5);
+    actor->update(nullptr);
+    EXPECT_NEAR(actor->getSkeletonNode(kJoints - 1)->getMatrix()(0, 1), std::sin(0.5), 1e-12);
+    osg::ref_ptr<SkeletonNode> kept = actor->getSkeletonNode(kJoints / 2);
+    actor = nullptr;
+    EXPECT_EQ(kept->getName(), "j" + std::to_string(kJoints / 2)) << "a node outlives its actor";
+}
+#endif
