@@ -1,4 +1,5 @@
 #include <osgActor/detail/ActorCullPlan.h>
+#include <osgActor/ActorNode>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/Prefetch.h>
 #include <osgActor/detail/SkeletonNodeAccess.h>
@@ -165,6 +166,16 @@ private:
 
 ActorCullPlan::ActorCullPlan(osg::Group& actor)
 {
+    // Room for an actor's joints made at once: grown joint by joint, a large actor's lists would be copied each time
+    // they fill, fetching what they hold again.
+    if (const ActorNode* node = dynamic_cast<const ActorNode*>(&actor))
+    {
+        const std::size_t numJoints = node->getNumSkeletonNodes();
+        _joints.reserve(numJoints);
+        _steps.reserve(2 * numJoints); // JOINT and END_JOINT
+        _jointCheckNodes.reserve(numJoints);
+        _jointCheckFlags.reserve(numJoints);
+    }
     for (unsigned i = 0; i < actor.getNumChildren(); ++i) addChild(*actor.getChild(i), -1);
     std::unordered_set<const osg::Referenced*>().swap(_checked);
     JointFlagsIndex().swap(_distinctJointFlags);
@@ -326,10 +337,19 @@ bool ActorCullPlan::addJointCheck(const SkeletonNode& node)
     const unsigned char* const block = NodeFlags::flagBlock(node);
     for (std::size_t i = 0; i < kNodeFlagBytes; ++i) flags.nodeFlags[i] = block[i] & _flagMask[i];
     flags.referenceFrame = node.getReferenceFrame();
-    // Found in a hash map while planning: an actor may have as many distinct ones as joints (a state set each).
-    const auto found = _distinctJointFlags.emplace(flags, static_cast<unsigned>(_jointFlags.size()));
-    if (found.second) _jointFlags.push_back(flags);
-    _jointCheckFlags.push_back(found.first->second);
+    // Most joints have the flags of the joint checked before them; others are found in a hash map while planning: an
+    // actor may have as many distinct ones as joints (a state set each). Not emplace(), which allocates an entry
+    // before it looks.
+    if (!_jointCheckFlags.empty() && _jointFlags[_jointCheckFlags.back()] == flags)
+    {
+        _jointCheckFlags.push_back(_jointCheckFlags.back());
+    }
+    else
+    {
+        const auto found = _distinctJointFlags.try_emplace(flags, static_cast<unsigned>(_jointFlags.size()));
+        if (found.second) _jointFlags.push_back(flags);
+        _jointCheckFlags.push_back(found.first->second);
+    }
     _jointCheckNodes.push_back(&node);
     return true;
 }

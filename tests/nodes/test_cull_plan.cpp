@@ -759,6 +759,37 @@ TEST(CullPlan, AReferenceFrameChangedInPlaceIsSeenWithItsCullingFlagSetBack)
     scene.cullExpectingTheOrdinaryGraph();
 }
 
+TEST(CullPlan, JointsOfAlternatingFlagsAreKeptAndAChangeToAnyOfThemIsSeen)
+{
+    Scene scene;
+    ActorNode& actor = scene.first();
+    // Every other joint with another node mask (as visible), so that a joint's planned flags are never those of the
+    // joint before it.
+    constexpr osg::Node::NodeMask kOther = 0xfffffffeu;
+    for (unsigned j = 1; j < actor.getNumSkeletonNodes(); j += 2) actor.getSkeletonNode(j)->setNodeMask(kOther);
+    scene.cullExpectingTheOrdinaryGraph();
+    const std::vector<CulledLeaf> kept = scene.probe.cull(++scene.frame);
+    // Kept: every joint's flags are found as planned, so a matrix written behind OSG's back does not show.
+    SkeletonNode& head = *actor.getSkeletonNode("head");
+    const osg::Drawable* headDrawable = head.getChild(0)->asGeode()->getDrawable(0);
+    detail::SkeletonNodeAccess::matrixStorage(head)[12] += 0.25;
+    const std::vector<CulledLeaf> replayed = scene.probe.cull(++scene.frame);
+    detail::SkeletonNodeAccess::matrixStorage(head)[12] -= 0.25;
+    ASSERT_TRUE(find(kept, headDrawable) && find(replayed, headDrawable));
+    EXPECT_EQ(find(replayed, headDrawable)->modelView[12], find(kept, headDrawable)->modelView[12]);
+    // Any joint's flags changed in place, to the others' or to hidden, are seen.
+    for (unsigned j = 0; j < actor.getNumSkeletonNodes(); ++j)
+    {
+        SkeletonNode& joint = *actor.getSkeletonNode(j);
+        const osg::Node::NodeMask mask = joint.getNodeMask();
+        joint.setNodeMask(mask == kOther ? ~0u : kOther);
+        scene.cullExpectingTheOrdinaryGraph();
+        joint.setNodeMask(0);
+        scene.cullExpectingTheOrdinaryGraph();
+        joint.setNodeMask(mask);
+    }
+}
+
 TEST(CullPlan, ActorsAmongOtherNodesEditedOneByOneGiveTheOrdinaryGraph)
 {
     // The cull of each actor fetches the next ones among its siblings ahead: nodes of other classes between them,
