@@ -1,10 +1,27 @@
 #include "ScaleReport"
 
+#include <algorithm>
 #include <cstdio>
 #include <set>
 #include <string>
 
 namespace bench {
+
+double ScaleReport::Measure::medianSeconds() const
+{
+    if (seconds.empty()) return 0.0;
+    std::vector<double> sorted = seconds;
+    std::sort(sorted.begin(), sorted.end());
+    const std::size_t middle = sorted.size() / 2;
+    return sorted.size() % 2 ? sorted[middle] : 0.5 * (sorted[middle - 1] + sorted[middle]);
+}
+
+ScaleReport::Measure& ScaleReport::measureOf(const std::string& row, long size)
+{
+    auto it = std::find_if(_rows.begin(), _rows.end(), [&row](const auto& entry) { return entry.first == row; });
+    if (it == _rows.end()) it = _rows.emplace(_rows.end(), row, std::map<long, Measure>());
+    return it->second[size];
+}
 
 void ScaleReport::ReportRuns(const std::vector<Run>& runs)
 {
@@ -17,9 +34,8 @@ void ScaleReport::ReportRuns(const std::vector<Run>& runs)
         if (slash == std::string::npos) continue;
         const std::string row = name.substr(0, slash);
         const long size = std::stol(name.substr(slash + 1));
-        if (_rows.empty() || _rows.back().first != row) _rows.emplace_back(row, std::map<long, Measure>());
-        Measure& measure = _rows.back().second[size];
-        measure.seconds = run.cpu_accumulated_time / static_cast<double>(run.iterations);
+        Measure& measure = measureOf(row, size);
+        measure.seconds.push_back(run.cpu_accumulated_time / static_cast<double>(run.iterations));
         const auto peak = run.counters.find(kPeakBytesPerItem);
         if (peak != run.counters.end()) measure.peakBytesPerItem = peak->second.value;
         const auto held = run.counters.find(kHeldBytesPerItem);
@@ -57,17 +73,17 @@ int ScaleReport::printSummary() const
         {
             const auto it = measures.find(size);
             if (it == measures.end()) std::printf(" %9s", "-");
-            else std::printf(" %9.3f", it->second.seconds * 1e3);
+            else std::printf(" %9.3f", it->second.medianSeconds() * 1e3);
         }
         for (long size : tenfold)
         {
             const auto small = measures.find(size), large = measures.find(size * 10);
-            if (small == measures.end() || large == measures.end() || small->second.seconds <= 0.0)
+            if (small == measures.end() || large == measures.end() || small->second.medianSeconds() <= 0.0)
             {
                 std::printf(" %9s", "-");
                 continue;
             }
-            const double growth = large->second.seconds / small->second.seconds;
+            const double growth = large->second.medianSeconds() / small->second.medianSeconds();
             if (growth > kMaxGrowthPerTenfold) ++over;
             std::printf(" %8.1f%s", growth, growth > kMaxGrowthPerTenfold ? "!" : " ");
         }
