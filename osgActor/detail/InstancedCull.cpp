@@ -523,12 +523,13 @@ bool InstancedCull::isSkinInstanceableNow(const osg::StateSet* state)
 bool InstancedCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame)
 {
     return _scratch->pixelSizeVectors.isSmallFeature(bound, frame, *_cv.getViewport(), *_cv.getProjectionMatrix(),
-                                                   _scratch->modelViews[frame], _smallFeaturePixelSize);
+                                                     _scratch->modelViews[frame], _smallFeaturePixelSize);
 }
 
 const osg::Vec4& InstancedCull::actorPixelSizeVector()
 {
-    return _scratch->pixelSizeVectors.vector(0, *_cv.getViewport(), *_cv.getProjectionMatrix(), _scratch->modelViews[0]);
+    return _scratch->pixelSizeVectors.vector(0, *_cv.getViewport(), *_cv.getProjectionMatrix(),
+                                             _scratch->modelViews[0]);
 }
 
 void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
@@ -843,6 +844,10 @@ float* InstancedCull::nextInstance(unsigned batch)
     return out;
 }
 
+// Out of line: the serial cull's nextInstance(), which every instance of a moving crowd goes through, stays as small.
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
 float* InstancedCull::appendInstance(unsigned batch)
 {
     std::vector<InstancedCullState::ActorRun>& runs = _scratch->runs;
