@@ -26,6 +26,9 @@
 // nothing is written, and a frame whose cull wrote nothing is not marked for upload: a still crowd before a still
 // camera, culled again into the frame it was culled into last (a viewer that draws each frame before the next cull),
 // writes and uploads nothing.
+//
+// With an ActorGroup's threads (from its getMinActorsForParallelCull() actors on), each actor child's part of the cull
+// runs on them, with the same code, and the result is the serial cull's: InstancedCullParallel.cpp says how.
 #ifndef OSGACTOR_DETAIL_INSTANCEDCULL_H
 #define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
 
@@ -368,7 +371,8 @@ private:
     void tally(ActorOutcome::Kind kind);
     /** Whether the actor is out of view (its mask, its bound) as the visitor finds it on its way in. */
     bool isOutOfView(ActorNode& actor);
-    /** The update policy's note of the view, with the actor's frame on the visitor's stack, as its own cull makes it. */
+    /** The update policy's note of the view, with the actor's frame on the visitor's stack, as its own cull makes
+      * it. */
     void noteSeen(ActorNode& actor, const osg::Matrixd& modelView);
 
     /** Whether the actor node itself lets its children be culled here: its own class, culled as one, no cull
@@ -457,7 +461,8 @@ private:
     float* nextInstance(unsigned batch);
     /** The actor's next instance of a batch in the thread's scratch, after its others. */
     float* appendInstance(unsigned batch);
-    /** Whether the visitor drops a drawable of this box in a frame of this model-view matrix: its depth not a number. */
+    /** Whether the visitor drops a drawable of this box in a frame of this model-view matrix: its depth not a
+      * number. */
     static bool hasNoDepth(const osg::BoundingBox& box, const osg::Matrixd& modelView)
     {
         return box.valid() && osg::isNaN(eyeDepth(box.center(), modelView));
