@@ -173,7 +173,8 @@ void InstancedCull::prepareSkinnedBatches()
         if (!batch.mesh) continue;
         batch.texels = InstancedSkin::texelsPerInstance(*batch.mesh);
         batch.texelsKnown = true;
-        if (const osg::Geometry* geometry = InstancedSkin::geometryOf(*batch.mesh, _profile)) geometry->getBoundingBox();
+        if (const osg::Geometry* geometry = InstancedSkin::geometryOf(*batch.mesh, _profile))
+            geometry->getBoundingBox();
     }
 }
 

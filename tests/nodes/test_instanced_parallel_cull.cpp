@@ -102,12 +102,13 @@ struct TwinCrowds
     InstancedActorGroup::Statistics statistics() const { return parallel->getStatistics(); }
 };
 
-const osg::CullSettings::ComputeNearFarMode kNearFarModes[] = {osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR,
-                                                               osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES};
+const osg::CullSettings::ComputeNearFarMode kNearFarModes[] = {
+    osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR, osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES};
 
 std::string nameOf(osg::CullSettings::ComputeNearFarMode mode)
 {
-    return mode == osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR ? "near and far not computed" : "near and far from bounds";
+    return mode == osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR ? "near and far not computed"
+                                                              : "near and far from bounds";
 }
 
 } // namespace
