@@ -681,12 +681,18 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
     {
         // The parallel cull: into the thread's scratch, in step order, the drawables whose depth is a number (its
         // last pass puts them in their regions, or where their batches move).
+        InstancedCullState::InstanceData& data = _scratch->data;
+        const std::size_t start = data.size();
+        float* out = data.extend(16 * verdict.plainInstances.size());
         for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
         {
             const osg::Matrixd& modelView = _scratch->modelViews[instance.frame];
-            if (!hasNoDepth(instance.drawable->getBoundingBox(), modelView))
-                writeInstanceMatrix(modelView, appendInstance(instance.batch));
+            if (hasNoDepth(instance.drawable->getBoundingBox(), modelView)) continue;
+            writeInstanceMatrix(modelView, out);
+            out += 16;
+            addToRuns(instance.batch);
         }
+        data.shrink(start + std::size_t(out - (data.data() + start)));
         _wroteTexels = true;
         return true;
     }
@@ -850,16 +856,18 @@ __attribute__((noinline))
 #endif
 float* InstancedCull::appendInstance(unsigned batch)
 {
+    addToRuns(batch);
+    _wroteTexels = true;
+    return _scratch->data.extend(4 * std::size_t(_state._batches[batch].texels));
+}
+
+void InstancedCull::addToRuns(unsigned batch)
+{
     std::vector<InstancedCullState::ActorRun>& runs = _scratch->runs;
     if (runs.size() > _outcome->firstRun && runs.back().batch == batch)
         ++runs.back().count;
     else
         runs.push_back({batch, 1u, 0u});
-    std::vector<float>& data = _scratch->data;
-    const std::size_t floats = 4 * std::size_t(_state._batches[batch].texels);
-    data.resize(data.size() + floats);
-    _wroteTexels = true;
-    return data.data() + data.size() - floats;
 }
 
 void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)

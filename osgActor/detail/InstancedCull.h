@@ -47,6 +47,7 @@
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
@@ -242,6 +243,31 @@ private:
         unsigned count;
         unsigned first;
     };
+    /** Floats appended without being set first (a std::vector sets them): the instances' data a thread's actors add
+      * in the parallel cull, written where appended. */
+    class InstanceData
+    {
+    public:
+        std::size_t size() const { return _size; }
+        const float* data() const { return _floats.get(); }
+        void clear() { _size = 0; }
+        /** n more floats, for the caller to write (valid until the next extend()). */
+        float* extend(std::size_t n)
+        {
+            if (_size + n > _capacity) grow(_size + n);
+            float* out = _floats.get() + _size;
+            _size += n;
+            return out;
+        }
+        /** The first size floats kept, the others dropped. */
+        void shrink(std::size_t size) { _size = size; }
+
+    private:
+        void grow(std::size_t least);
+        std::unique_ptr<float[]> _floats;
+        std::size_t _size = 0;
+        std::size_t _capacity = 0;
+    };
     /** One thread's working space for the actors it culls; the cull thread's, the first, is the serial cull's. On a
       * cache line of its own, as the threads grow its lists. */
     struct alignas(64) ActorScratch
@@ -256,7 +282,7 @@ private:
         // other; the model-view matrices of the actors whose update policy notes the view; whether its second pass
         // wrote any texel.
         std::vector<ActorRun> runs;
-        std::vector<float> data;
+        InstanceData data;
         std::vector<osg::Matrixd> seenModelViews;
         bool wrote = false;
     };
@@ -461,6 +487,8 @@ private:
     float* nextInstance(unsigned batch);
     /** The actor's next instance of a batch in the thread's scratch, after its others. */
     float* appendInstance(unsigned batch);
+    /** Counts the actor's next instance of a batch into its runs in the thread's scratch. */
+    void addToRuns(unsigned batch);
     /** Whether the visitor drops a drawable of this box in a frame of this model-view matrix: its depth not a
       * number. */
     static bool hasNoDepth(const osg::BoundingBox& box, const osg::Matrixd& modelView)

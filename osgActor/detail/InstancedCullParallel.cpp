@@ -20,6 +20,7 @@
 #include <cstring>
 #include <typeinfo>
 #include <unordered_set>
+#include <utility>
 
 namespace osgActor {
 namespace detail {
@@ -144,6 +145,16 @@ bool InstancedCull::cullInParallel(osg::Group& group, const Threads& threads)
     for (const InstancedCullState::ActorScratch& scratch : _state._scratch)
         if (scratch.wrote) _wroteTexels = true;
     return true;
+}
+
+void InstancedCullState::InstanceData::grow(std::size_t least)
+{
+    // Doubled, so that a crowd's first culls reallocate it a few times, and the next ones not at all.
+    const std::size_t capacity = std::max(least, 2 * _capacity);
+    std::unique_ptr<float[]> floats(new float[capacity]);
+    if (_size) std::memcpy(floats.get(), _floats.get(), _size * sizeof(float));
+    _floats = std::move(floats);
+    _capacity = capacity;
 }
 
 void InstancedCull::listActorChildren(osg::Group& group, unsigned childrenVersion)
