@@ -56,7 +56,17 @@ bool InstancedCull::cullInParallel(osg::Group& group, const Threads& threads)
     outcomes.resize(numActors);
     workers.parallelForWithThread(numActors, [&](unsigned i, unsigned thread) {
         InstancedCull worker(*this, thread);
-        worker.cullChildInto(static_cast<ActorNode&>(*group.getChild(actorChildren[i])), outcomes[i]);
+        ActorNode& actor = static_cast<ActorNode&>(*group.getChild(actorChildren[i]));
+        // The thread's next actors fetched ahead, as the serial cull fetches the next children. Where the look-ahead
+        // holds an actor's state while another thread comes to cull it (at the end of a thread's share), that actor
+        // is DEFERRED: culled on this thread after, as the serial cull would.
+        for (unsigned ahead = 1; ahead <= ActorNode::kCullLookahead && i + ahead < numActors; ++ahead)
+        {
+            const osg::Node& next = *group.getChild(actorChildren[i + ahead]);
+            actor.prefetchCullAhead(next, ahead);
+            worker.prefetchKeptAhead(next, ahead);
+        }
+        worker.cullChildInto(actor, outcomes[i]);
     });
 
     // In child order: what the visitor is told, and each run's place among its batch's instances.
