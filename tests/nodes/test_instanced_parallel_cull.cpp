@@ -11,8 +11,12 @@
 #include <osgActor/ActorNode>
 #include <osgActor/InstancedActorGroup>
 
+#include <osg/FrameStamp>
+#include <osgUtil/UpdateVisitor>
+
 #include <gtest/gtest.h>
 
+#include <set>
 #include <string>
 
 using namespace osgActor;
@@ -100,6 +104,20 @@ struct TwinCrowds
         return same;
     }
     InstancedActorGroup::Statistics statistics() const { return parallel->getStatistics(); }
+    /** Both groups' update traversals at the frame after the last cull's, as a viewer's next frame runs them. */
+    void updateNextFrame()
+    {
+        osg::ref_ptr<osg::FrameStamp> stamp = new osg::FrameStamp;
+        stamp->setFrameNumber(frame + 1);
+        stamp->setSimulationTime((frame + 1) / 60.0);
+        for (InstancedActorGroup* group : {serial.get(), parallel.get()})
+        {
+            osg::ref_ptr<osgUtil::UpdateVisitor> update = new osgUtil::UpdateVisitor;
+            update->setFrameStamp(stamp.get());
+            update->setTraversalNumber(frame + 1);
+            group->accept(*update);
+        }
+    }
 };
 
 const osg::CullSettings::ComputeNearFarMode kNearFarModes[] = {
@@ -233,4 +251,34 @@ TEST(InstancedParallelCull, FewActorsAChildTwiceOrNearAndFarFromPrimitivesAreCul
         crowds.computeNearFar(osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES);
         EXPECT_TRUE(crowds.cullAlike(false));
     }
+}
+
+TEST(InstancedParallelCull, TheUpdatePolicyNotesTheViewsThatSeeEachActorAsTheSerialCullDoes)
+{
+    // Actors updated only when seen, at half or quarter rate where small on screen: the views that saw each actor,
+    // and its size, noted on the cull thread in child order from what the threads found, decide its next updates as
+    // the serial cull's notes do.
+    TwinCrowds crowds(40);
+    ActorNode::UpdatePolicy policy;
+    policy.onlyWhenSeen = true;
+    policy.halfRateBelowPixels = 300.0f;
+    policy.quarterRateBelowPixels = 150.0f;
+    crowds.both([&policy](InstancedActorGroup&, std::vector<osg::ref_ptr<ActorNode>>& actors) {
+        for (const osg::ref_ptr<ActorNode>& actor : actors) actor->setUpdatePolicy(policy);
+    });
+    for (int at = 0; at < 6; ++at)
+    {
+        crowds.updateNextFrame();
+        EXPECT_TRUE(crowds.cullAlike()) << "frame " << at;
+    }
+    crowds.updateNextFrame();
+    std::set<unsigned> skips;
+    for (std::size_t a = 0; a < crowds.serialActors.size(); ++a)
+    {
+        EXPECT_EQ(crowds.parallelActors[a]->getNumUpdatesSkipped(), crowds.serialActors[a]->getNumUpdatesSkipped())
+            << "actor " << a;
+        skips.insert(crowds.serialActors[a]->getNumUpdatesSkipped());
+    }
+    // The test can fail: actors updated at every frame, at a lower rate, and never (out of view).
+    EXPECT_GE(skips.size(), 3u);
 }
