@@ -28,7 +28,7 @@ void applyWorkerAffinity(const OpenThreads::Affinity& asked)
 
 ActorGroup::ActorGroup()
     : _numThreads(0), _minActorsForParallelCull(kDefaultMinActorsForParallelCull), _numParallelCulls(0),
-      _actorsStale(true), _hasActorPolicy(false)
+      _actorsStale(true), _childrenVersion(0), _hasActorPolicy(false)
 {
     _culling.clear();
     setUpdateCallback(new ActorGroupUpdateCallback);
@@ -37,7 +37,7 @@ ActorGroup::ActorGroup()
 ActorGroup::ActorGroup(const ActorGroup& group, const osg::CopyOp& copyop)
     : osg::Group(group, copyop), _numThreads(group._numThreads), _workerAffinity(group._workerAffinity),
       _minActorsForParallelCull(group._minActorsForParallelCull), _numParallelCulls(0), _actorsStale(true),
-      _hasActorPolicy(group._hasActorPolicy), _actorPolicy(group._actorPolicy)
+      _childrenVersion(0), _hasActorPolicy(group._hasActorPolicy), _actorPolicy(group._actorPolicy)
 {
     _culling.clear();
 }
@@ -66,7 +66,7 @@ void ActorGroup::setActorUpdatePolicy(const ActorNode::UpdatePolicy& policy)
 
 bool ActorGroup::setChild(unsigned i, osg::Node* node)
 {
-    _actorsStale = true; // osg::Group::setChild() reports neither a removal nor an insertion
+    childrenChanged(); // osg::Group::setChild() reports neither a removal nor an insertion
     return osg::Group::setChild(i, node);
 }
 
@@ -135,20 +135,29 @@ void ActorGroup::traverse(osg::NodeVisitor& nv)
     if (!cv || !cullActorsInParallel(*cv)) osg::Group::traverse(nv);
 }
 
+ActorGroup::CullThreads::CullThreads(ActorGroup& group) : _group(group), _flagTaken(false), _pool(nullptr)
+{
+    // Another camera's cull (on another thread, or within this one's traversal), or the next frame's update.
+    if (_group._culling.test_and_set(std::memory_order_acquire)) return;
+    _flagTaken = true;
+    _lock = std::unique_lock<std::mutex>(_group._poolMutex, std::try_to_lock);
+    if (!_lock.owns_lock()) return;
+    WorkerPool& workers = _group.pool();
+    if (workers.getNumThreads() >= 2) _pool = &workers;
+}
+
+ActorGroup::CullThreads::~CullThreads()
+{
+    if (_lock.owns_lock()) _lock.unlock();
+    if (_flagTaken) _group._culling.clear(std::memory_order_release);
+}
+
 bool ActorGroup::cullActorsInParallel(osgUtil::CullVisitor& cv)
 {
     if (_children.size() < _minActorsForParallelCull || !detail::ActorCull::canCullAsOne(cv)) return false;
-    // Another camera's cull (on another thread, or within this one's traversal), or the next frame's update.
-    if (_culling.test_and_set(std::memory_order_acquire)) return false;
-    struct EndCull
-    {
-        std::atomic_flag& culling;
-        ~EndCull() { culling.clear(std::memory_order_release); }
-    } endCull{_culling};
-    std::unique_lock<std::mutex> lock(_poolMutex, std::try_to_lock);
-    if (!lock.owns_lock()) return false;
-    WorkerPool& workers = pool();
-    if (workers.getNumThreads() < 2) return false;
+    CullThreads threads(*this);
+    if (!threads.get()) return false;
+    WorkerPool& workers = *threads.get();
     _cullActors.clear();
     for (const osg::ref_ptr<osg::Node>& child : _children)
         if (ActorNode* actor = dynamic_cast<ActorNode*>(child.get())) _cullActors.push_back(actor);

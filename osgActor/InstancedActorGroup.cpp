@@ -100,7 +100,17 @@ void InstancedActorGroup::traverse(osg::NodeVisitor& nv)
         ActorGroup::traverse(nv);
         return;
     }
-    detail::InstancedCull(*cv, *_cullState, *this, _programState.get(), kInstanceTextureUnit);
+    // From getMinActorsForParallelCull() children on, each actor's part of the cull on the group's threads, where
+    // they are free.
+    if (getNumChildren() >= getMinActorsForParallelCull())
+    {
+        CullThreads threads(*this);
+        const detail::InstancedCull cull(*cv, *_cullState, *this, _programState.get(), kInstanceTextureUnit,
+                                         {threads.get(), getMinActorsForParallelCull(), getChildrenVersion()});
+        if (cull.culledInParallel()) _numParallelCulls.fetch_add(1, std::memory_order_relaxed);
+    }
+    else
+        detail::InstancedCull(*cv, *_cullState, *this, _programState.get(), kInstanceTextureUnit);
     _cullState->release();
 }
 

@@ -51,21 +51,22 @@ tsan() {
     export TSAN_OPTIONS="suppressions=$supp/tsan.supp:second_deadlock_stack=1:history_size=4"
     export OSG_NOTIFY_LEVEL=WARN
     "$build/bin/osgactor_node_tests" \
-        --gtest_filter='WorkerPool.*:ActorGroup.*:ActorGroupCull.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*'
+        --gtest_filter='WorkerPool.*:ActorGroup.*:ActorGroupCull.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*:InstancedParallelCull.*'
     OSGACTOR_SOAK_FRAMES=400 "$build/bin/osgactor_soak_test"
     local model
     for model in DrawThreadPerContext CullDrawThreadPerContext; do
         xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_threaded_viewer" "$model" 60
     done
-    # Instanced draws: each frame's instance buffer written by one cull while the previous frame's is drawn.
+    # Instanced draws: each frame's instance buffer written by one cull (its actors' part on the group's threads)
+    # while the previous frame's is drawn.
     xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_threaded_viewer" DrawThreadPerContext 60 instanced
     # Skinned meshes: per-frame buffers filled in cull by two cameras' cull threads while the draw reads the others;
     # their matrices and bounds computed on the ActorGroup's threads, and the actors' cull prepared there.
     for model in DrawThreadPerContext CullDrawThreadPerContext; do
         xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" "$model" 40
     done
-    # Skinned instancing: each frame's palettes written into its instance buffer by one cull while the previous frame's
-    # are drawn.
+    # Skinned instancing: each frame's palettes written into its instance buffer by one cull (on the group's threads)
+    # while the previous frame's are drawn.
     xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" DrawThreadPerContext 40 \
         instanced
     # OSG's own race between that model's second camera's cull and the next update: the file says which and why.
@@ -74,6 +75,10 @@ tsan() {
     TSAN_OPTIONS="$TSAN_OPTIONS:suppressions=$build/tsan-cull-thread-per-camera.supp" \
         xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" \
         CullThreadPerCameraDrawThreadPerContext 40
+    # The same instanced: one camera's cull takes the group's threads, the other culls serially or ordinarily.
+    TSAN_OPTIONS="$TSAN_OPTIONS:suppressions=$build/tsan-cull-thread-per-camera.supp" \
+        xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_skinned_threaded_viewer" \
+        CullThreadPerCameraDrawThreadPerContext 40 instanced
 }
 
 for step in "${steps[@]}"; do

@@ -105,7 +105,7 @@ void SummaryReporter::writeSummary()
     std::stable_sort(_results.begin(), _results.end(), [](const Result& a, const Result& b) {
         const auto key = [](const Result& r) {
             return std::make_tuple(rank(r.mode, {"update", "update_cull", "update_cull_nearfar", "frame_in_view", "frame_quarter_in_view",
-                                                 "parallel", "parallel_cull", "memory"}),
+                                                 "parallel", "parallel_cull", "parallel_cull_instanced", "memory"}),
                                    r.n,
                                    rank(r.system, {"osgActor_all", "osgActor_all_nodebynode", "osgActor_all_follow",
                                                    "osgActor_quarter", "osgActor_idle", "osgActor_all_instanced",
@@ -135,7 +135,7 @@ void SummaryReporter::writeSummary()
         const double ratio = it != osgAnimation.end() && r.value > 0.0 ? it->second / r.value : 0.0;
         const char* unit = r.mode == "memory" ? "bytes/actor" : "ns/joint";
         csv << r.mode << ',' << r.system << ',' << r.n << ',' << r.value << ',' << unit << ',' << ratio << '\n';
-        if (ratio > 0.0 && (r.mode == "parallel" || r.mode == "parallel_cull"))
+        if (ratio > 0.0 && (r.mode == "parallel" || r.mode == "parallel_cull" || r.mode == "parallel_cull_instanced"))
             std::printf("%-12s %-18s %6ld %9.1f %-11s %.2fx the speed of one thread\n", r.mode.c_str(),
                         r.system.c_str(), r.n, r.value, unit, ratio);
         else if (ratio > 0.0 && r.mode != "memory")

@@ -191,6 +191,25 @@ void registerAll(const Sweep& sweep)
                 runScene(state, *crowd, withCull, true);
             })->Arg(largest)->Unit(benchmark::kMicrosecond)->UseRealTime();
         }
+    // The same crowd under an InstancedActorGroup, update + cull (parallel_cull_instanced: each actor's part of the
+    // instanced cull, its instances' data included, on the group's threads), its own crowd kept as the one above.
+    for (int threads : sweep.threads)
+    {
+        const std::string name = std::string("parallel_cull_instanced/osgActor_") + std::to_string(threads) +
+                                  (threads == 1 ? "thread" : "threads");
+        benchmark::RegisterBenchmark(name.c_str(), [threads](benchmark::State& state) {
+            static osgActor::ActorGroup* const crowd = [&state] {
+                bench::OsgActorCrowd instanced;
+                instanced.instanced = true;
+                osg::ref_ptr<osg::Group> scene =
+                    bench::makeOsgActorScene(static_cast<unsigned>(state.range(0)), instanced);
+                scene->ref(); // the reference that is never given back
+                return static_cast<osgActor::ActorGroup*>(scene.get());
+            }();
+            crowd->setNumThreads(unsigned(threads));
+            runScene(state, *crowd, true, true);
+        })->Arg(largest)->Unit(benchmark::kMicrosecond)->UseRealTime();
+    }
 }
 
 /** Takes --actors=N,... and --threads=N,... out of the arguments (Google Benchmark's own stay); false, with a

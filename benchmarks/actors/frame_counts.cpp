@@ -8,8 +8,9 @@
 // too, "idle" for actors without a controller, "instanced" for the crowd under an InstancedActorGroup (its
 // update_cull/osgActor_all_instanced, or _idle_instanced), "nearfar" for a cull computing near and far from bounding
 // volumes as osgViewer's default camera does (update_cull_nearfar/osgActor_all, or _idle, _all_instanced,
-// _idle_instanced). Divide the counts by actors x frames x 31 joints for figures per joint and frame
-// (docs/performance.md).
+// _idle_instanced), "threads=N" for the crowd's group (an ActorGroup, or the InstancedActorGroup) on N threads, its
+// update and cull on them (callgrind runs the threads one at a time: --separate-threads=yes counts each one's share).
+// Divide the counts by actors x frames x 31 joints for figures per joint and frame (docs/performance.md).
 #include "FrameLoop"
 #include "PeerScenes"
 
@@ -24,8 +25,10 @@ int main(int argc, char** argv)
     const unsigned numActors = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 1000u;
     const unsigned numFrames = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 20u;
     bool follow = false, cull = false, idle = false, instanced = false, nearFar = false;
+    unsigned threads = 0;
     for (int i = 3; i < argc; ++i)
     {
+        if (std::strncmp(argv[i], "threads=", 8) == 0) threads = static_cast<unsigned>(std::atoi(argv[i] + 8));
         follow = follow || std::strcmp(argv[i], "follow") == 0;
         cull = cull || std::strcmp(argv[i], "cull") == 0;
         idle = idle || std::strcmp(argv[i], "idle") == 0;
@@ -34,13 +37,15 @@ int main(int argc, char** argv)
     }
     if (numActors == 0 || numFrames == 0)
     {
-        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced] [nearfar]\n", argv[0]);
+        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced] [nearfar] [threads=N]\n",
+                     argv[0]);
         return 1;
     }
     bench::OsgActorCrowd crowd;
     crowd.motion = idle ? bench::Motion::Idle : bench::Motion::All;
     crowd.bounds = follow ? bench::Bounds::FollowPose : bench::Bounds::CoverRotations;
     crowd.instanced = instanced;
+    crowd.threads = threads;
     osg::ref_ptr<osg::Group> scene = bench::makeOsgActorScene(numActors, crowd);
     bench::FrameLoop loop(scene.get(), cull,
                           nearFar ? bench::FrameLoop::NearFar::FromBoundingVolumes : bench::FrameLoop::NearFar::NotComputed);

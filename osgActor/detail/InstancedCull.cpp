@@ -122,7 +122,7 @@ InstancedCullState::InstancedCullState()
           static std::atomic<std::uint64_t> counter{0};
           return counter.fetch_add(1, std::memory_order_relaxed) + 1; // 0: no state
       }()),
-      _limit(new InstanceBufferLimit)
+      _limit(new InstanceBufferLimit), _scratch(1)
 {
     _busy.clear();
 }
@@ -189,7 +189,15 @@ bool InstancedCull::isInstanceableState(const osg::StateSet* state)
 
 InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state, osg::Group& group,
                              osg::StateSet* programState, unsigned textureUnit)
-    : _cv(cv), _state(state), _programState(programState), _traversalMask(cv.getTraversalMask()),
+    : InstancedCull(cv, state, group, programState, textureUnit, Threads{nullptr, 0, 0})
+{
+}
+
+InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state, osg::Group& group,
+                             osg::StateSet* programState, unsigned textureUnit, const Threads& threads)
+    : _cv(cv), _state(state), _programState(programState), _textureUnit(textureUnit), _scratch(&state._scratch[0]),
+      _outcome(nullptr), _mayDecideShared(true), _deferred(false), _culledInParallel(false), _loopFrame(nullptr),
+      _loopContents(0), _traversalMask(cv.getTraversalMask()),
       _maskOverride(cv.getNodeMaskOverride()),
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
@@ -212,9 +220,11 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
     }
     _state._statistics = InstancedCullState::Statistics();
     _state._statistics.texelLimit = _texelLimit;
-    _state._stateVerdicts.clear();
-    _state._skinStateVerdicts.clear();
+    _scratch->stateVerdicts.clear();
+    _scratch->skinStateVerdicts.clear();
     placeBatches(textureUnit);
+    _loopFrame = _state._frame;
+    _loopContents = _loopFrame ? _loopFrame->contents() : 0;
     // A skinned mesh's setup may change between culls: found again when an actor first needs it.
     for (InstancedCullState::Batch& batch : _state._batches) batch.texelsKnown = !batch.mesh;
     // Verdicts of plans that only the cache still holds (their actors made new ones, or are gone) are dropped now and
@@ -222,6 +232,22 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
     if (_state._verdicts.size() > 2 * std::size_t(group.getNumChildren()) + 64)
         for (auto it = _state._verdicts.begin(); it != _state._verdicts.end();)
             it = it->second.plan->referenceCount() == 1 ? _state._verdicts.erase(it) : std::next(it);
+    _culledInParallel = threads.pool && cullInParallel(group, threads);
+    if (!_culledInParallel) cullSerially(group);
+    if (_overflowed) gatherOverflow(textureUnit);
+    emitBatches();
+}
+
+InstancedCull::InstancedCull(const InstancedCull& cull, unsigned thread) : InstancedCull(cull)
+{
+    _scratch = &_state._scratch[thread];
+    _outcome = nullptr;
+    _mayDecideShared = false;
+    _recording = nullptr;
+}
+
+void InstancedCull::cullSerially(osg::Group& group)
+{
     const unsigned numChildren = group.getNumChildren();
     for (unsigned i = 0; i < numChildren; ++i)
     {
@@ -240,10 +266,8 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
             cullChild(static_cast<ActorNode&>(child));
         }
         else
-            child.accept(cv);
+            child.accept(_cv);
     }
-    if (_overflowed) gatherOverflow(textureUnit);
-    emitBatches();
 }
 
 void InstancedCull::prefetchKeptAhead(const osg::Node& node, unsigned ahead) const
@@ -273,18 +297,53 @@ bool InstancedCull::isPlainActor(const ActorNode& actor)
            actor.getReferenceFrame() == osg::Transform::RELATIVE_RF && isCullingActive(actor);
 }
 
+bool InstancedCull::isOutOfView(ActorNode& actor)
+{
+    if (!_outcome) return !_cv.validNodeMask(actor) || _cv.isCulled(actor);
+    // The same tests, without the writes the visitor's test of the bound makes (its planes' mask, which only near
+    // and far from primitives read, never culled in parallel).
+    return isMasked(actor.getNodeMask()) ||
+           (actor.isCullingActive() && ActorCullView::isCulled(_cv.getCurrentCullingSet(), actor.getBound()));
+}
+
+void InstancedCull::noteSeen(ActorNode& actor, const osg::Matrixd& modelView)
+{
+    _cv.pushModelViewMatrix(new osg::RefMatrix(modelView), osg::Transform::RELATIVE_RF);
+    actor.noteSeen(_cv);
+    _cv.popModelViewMatrix();
+}
+
+void InstancedCull::tally(ActorOutcome::Kind kind)
+{
+    if (_outcome)
+    {
+        _outcome->kind = kind;
+        return;
+    }
+    InstancedCullState::Statistics& statistics = _state._statistics;
+    switch (kind)
+    {
+    case ActorOutcome::OUT_OF_VIEW: ++statistics.actorsOutOfView; break;
+    case ActorOutcome::ORDINARY: ++statistics.actorsOrdinary; break;
+    case ActorOutcome::INSTANCED: ++statistics.actorsInstanced; break;
+    case ActorOutcome::KEPT: ++statistics.actorsKept; break; // counted instanced already
+    default: break;
+    }
+}
+
 void InstancedCull::cullChild(ActorNode& actor)
 {
     // The actor's own cull state (one cull at a time: another thread may be culling the actor for another camera)
     // gives the plan its cull as one keeps: its joints, geodes and drawables in the visitor's order.
     ActorCullState& actorState = *actor._cullState;
-    if (isPlainActor(actor) && actorState.tryAcquire())
+    const bool plainActor = isPlainActor(actor);
+    if (plainActor && actorState.tryAcquire())
     {
         // What the visitor does on its way into the actor, first: its mask, then its bound in the group's frame. An
         // actor out of view costs that test alone, not its plan's check (a cache line per joint).
-        if (!_cv.validNodeMask(actor) || _cv.isCulled(actor))
+        if (isOutOfView(actor))
         {
-            ++_state._statistics.actorsOutOfView;
+            tally(ActorOutcome::OUT_OF_VIEW);
             actorState.release();
             return;
         }
@@ -300,22 +359,34 @@ void InstancedCull::cullChild(ActorNode& actor)
             if (!keptInFrame(kept)) prefetchForRead(kept.matrices.data(), kept.matrices.size() * sizeof(float));
         }
         const ActorCullPlan& plan = actorState.currentPlan(actor, versions.plan, !replayable);
-        // The verdict the actor kept from this group's last cull, if made for the same plan; looked up otherwise.
-        const InstancedCullState::PlanVerdict* verdict =
-            kept.serial == _state._serial && kept.plan == &plan
-                ? instanceableNow(*static_cast<const InstancedCullState::PlanVerdict*>(kept.verdict))
-                : instanceableVerdict(plan, kept);
+        // The verdict the actor kept from this group's last cull, if made for the same plan; looked up otherwise
+        // (on the cull thread: the lookup may make verdicts and batches).
+        const bool verdictKept = kept.serial == _state._serial && kept.plan == &plan;
+        const InstancedCullState::PlanVerdict* verdict = nullptr;
+        if (verdictKept)
+            verdict = instanceableNow(*static_cast<const InstancedCullState::PlanVerdict*>(kept.verdict));
+        else if (_mayDecideShared)
+            verdict = instanceableVerdict(plan, kept);
+        else
+            _deferred = true;
         if (verdict && canInstanceSkins(actor, *verdict))
         {
-            ++_state._statistics.actorsInstanced;
+            tally(ActorOutcome::INSTANCED);
             cullActor(actor, *verdict, kept, versions);
-            actorState.release();
+            if (!_outcome) actorState.release(); // the parallel cull's last pass gives it back
             return;
         }
         actorState.release();
+        if (_deferred) return;
     }
-    ++_state._statistics.actorsOrdinary;
-    actor.accept(_cv);
+    else if (plainActor && !_mayDecideShared)
+    {
+        // Held (another camera's cull): looked at again on the cull thread, as the serial cull would.
+        _deferred = true;
+        return;
+    }
+    tally(ActorOutcome::ORDINARY);
+    if (!_outcome) actor.accept(_cv); // the parallel cull's traversal in child order does it
 }
 
 const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const ActorCullPlan& plan,
@@ -373,11 +444,16 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableNow(const Inst
 
 bool InstancedCull::canInstanceSkins(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict)
 {
-    _state._skinInstances.clear();
+    _scratch->skinInstances.clear();
     if (verdict.skinBatches.empty()) return true;
     for (unsigned b : verdict.skinBatches)
     {
         InstancedCullState::Batch& batch = _state._batches[b];
+        if (!batch.texelsKnown && !_mayDecideShared)
+        {
+            _deferred = true; // found before the parallel cull's first pass: a batch made since
+            return false;
+        }
         if (!batch.texelsKnown)
         {
             batch.texels = InstancedSkin::texelsPerInstance(*batch.mesh);
@@ -386,6 +462,11 @@ bool InstancedCull::canInstanceSkins(ActorNode& actor, const InstancedCullState:
         // The mesh's cull callback and state set, which the plan does not watch (the mesh is not a node it plans).
         SkinnedMesh& mesh = *batch.mesh;
         if (!batch.texels || mesh.getCullCallback() || !isSkinInstanceableNow(mesh.getStateSet())) return false;
+        if (batch.texels > _texelLimit && !_state._oversizeNoticed && !_mayDecideShared)
+        {
+            _deferred = true; // the notice given on the cull thread
+            return false;
+        }
         if (batch.texels > _texelLimit)
         {
             // One instance is more than a texture buffer holds: its actors are drawn ordinarily.
@@ -398,7 +479,7 @@ bool InstancedCull::canInstanceSkins(ActorNode& actor, const InstancedCullState:
         }
         const SkinnedMeshInstance* instance = InstancedSkin::instanceOf(mesh, actor);
         if (!instance) return false;
-        _state._skinInstances.push_back(instance);
+        _scratch->skinInstances.push_back(instance);
     }
     return true;
 }
@@ -423,31 +504,32 @@ unsigned InstancedCull::batchOf(const osg::StateSet* geodeState, const osg::Geom
 
 bool InstancedCull::isInstanceableNow(const osg::StateSet* state)
 {
-    for (const auto& known : _state._stateVerdicts)
+    for (const auto& known : _scratch->stateVerdicts)
         if (known.first == state) return known.second;
     const bool verdict = isInstanceableState(state);
-    _state._stateVerdicts.emplace_back(state, verdict);
+    _scratch->stateVerdicts.emplace_back(state, verdict);
     return verdict;
 }
 
 bool InstancedCull::isSkinInstanceableNow(const osg::StateSet* state)
 {
-    for (const auto& known : _state._skinStateVerdicts)
+    for (const auto& known : _scratch->skinStateVerdicts)
         if (known.first == state) return known.second;
     const bool verdict = InstancedSkin::isInstanceableState(state);
-    _state._skinStateVerdicts.emplace_back(state, verdict);
+    _scratch->skinStateVerdicts.emplace_back(state, verdict);
     return verdict;
 }
 
 bool InstancedCull::isSmallFeature(const osg::BoundingSphere& bound, unsigned frame)
 {
-    return _state._pixelSizeVectors.isSmallFeature(bound, frame, *_cv.getViewport(), *_cv.getProjectionMatrix(),
-                                                   _state._modelViews[frame], _smallFeaturePixelSize);
+    return _scratch->pixelSizeVectors.isSmallFeature(bound, frame, *_cv.getViewport(), *_cv.getProjectionMatrix(),
+                                                     _scratch->modelViews[frame], _smallFeaturePixelSize);
 }
 
 const osg::Vec4& InstancedCull::actorPixelSizeVector()
 {
-    return _state._pixelSizeVectors.vector(0, *_cv.getViewport(), *_cv.getProjectionMatrix(), _state._modelViews[0]);
+    return _scratch->pixelSizeVectors.vector(0, *_cv.getViewport(), *_cv.getProjectionMatrix(),
+                                             _scratch->modelViews[0]);
 }
 
 void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVerdict& verdict,
@@ -456,7 +538,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     const ActorCullPlan& plan = *verdict.plan;
     const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
     const std::size_t numFrames = joints.size() + 1;
-    std::vector<osg::Matrixd>& modelViews = _state._modelViews;
+    std::vector<osg::Matrixd>& modelViews = _scratch->modelViews;
     modelViews.resize(numFrames);
     // The actor's frame, as the visitor's pushModelViewMatrix() makes it (MatrixTransform: actor_m * group's), or
     // the one kept where neither changed.
@@ -467,31 +549,43 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         composeModelView(actor.getMatrix().ptr(), _cv.getModelViewMatrix()->ptr(), modelViews[0].ptr());
     if (actor.getUpdatePolicy().onlyWhenSeen)
     {
-        // The update policy notes the view with the actor's frame on the visitor's stack, as its own cull does.
-        _cv.pushModelViewMatrix(new osg::RefMatrix(modelViews[0]), osg::Transform::RELATIVE_RF);
-        actor.noteSeen(_cv);
-        _cv.popModelViewMatrix();
+        // Noted on the cull thread, in child order, in the parallel cull.
+        if (!_outcome)
+            noteSeen(actor, modelViews[0]);
+        else
+        {
+            _outcome->seen = static_cast<unsigned>(_scratch->seenModelViews.size());
+            _scratch->seenModelViews.push_back(modelViews[0]);
+        }
     }
     // An actor with skinned meshes is culled anew at every cull: its palettes are kept by its meshes, not here.
     if (verdict.skinBatches.empty())
     {
         if (replayKept(kept, versions, entryKept))
         {
-            ++_state._statistics.actorsKept;
-            if (_depthsByBounds) kept.depths.mergeInto(_cv);
+            tally(ActorOutcome::KEPT);
+            if (_depthsByBounds && _outcome) _outcome->depths = kept.depths;
+            else if (_depthsByBounds) kept.depths.mergeInto(_cv);
             return;
         }
     }
     else
         kept.kept = false;
-    _state._pixelSizeVectors.reset(numFrames);
+    _scratch->pixelSizeVectors.reset(numFrames);
     // Each joint's frame, parents first, as ActorCull composes them.
     plan.composeModelViews(modelViews.data());
     _actorDepths = DepthRange();
+    _skinDepths = DepthRange();
     if (!addPlainInstances(verdict)) cullSteps(verdict);
     if (_depthsByBounds)
     {
-        _actorDepths.mergeInto(_cv);
+        if (_outcome)
+        {
+            _outcome->skinDepths = _skinDepths;
+            _outcome->depths = _actorDepths;
+        }
+        else
+            _actorDepths.mergeInto(_cv);
         if (_recording) _recording->depths = _actorDepths;
     }
     _recording = nullptr;
@@ -512,8 +606,8 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
     const bool boxesTested = _computeNearFar && _frustumCulling;
     if (boxesTested)
     {
-        _state._actorFramePlanes = _cv.getProjectionCullingStack().back().getFrustum().getPlaneList();
-        for (osg::Plane& plane : _state._actorFramePlanes) plane.transformProvidingInverse(_state._modelViews[0]);
+        _scratch->actorFramePlanes = _cv.getProjectionCullingStack().back().getFrustum().getPlaneList();
+        for (osg::Plane& plane : _scratch->actorFramePlanes) plane.transformProvidingInverse(_scratch->modelViews[0]);
     }
     std::size_t topEnd = 0; // the end of the top step the steps are below
     bool insideTop = false; // its sphere wholly inside the frustum
@@ -523,7 +617,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
         if (boxesTested && i >= topEnd)
         {
             topEnd = step.end ? step.end : i + 1;
-            insideTop = step.cullingActive && isWhollyInside(step.node->getBound(), _state._actorFramePlanes);
+            insideTop = step.cullingActive && isWhollyInside(step.node->getBound(), _scratch->actorFramePlanes);
         }
         switch (step.kind)
         {
@@ -548,7 +642,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
         case ActorCullPlan::ORDINARY:
             // A skinned mesh (the only ORDINARY step of an instanceable plan): its mask now, as its accept() tests it
             // (the plan does not watch it).
-            if (!isMasked(step.node->getNodeMask())) addSkinned(*_state._skinInstances[skin], verdict.batchOfStep[i]);
+            if (!isMasked(step.node->getNodeMask())) addSkinned(*_scratch->skinInstances[skin], verdict.batchOfStep[i]);
             ++skin;
             break;
         default: break; // the ends
@@ -583,6 +677,25 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
             _smallFeatureCulling ? actorPixelSizeVector() : osg::Vec4(), _smallFeaturePixelSize,
             [this](const osg::BoundingSphere& bound) { return isSmallFeature(bound, 0); }))
         return false;
+    if (_outcome)
+    {
+        // The parallel cull: into the thread's scratch, in step order, the drawables whose depth is a number (its
+        // last pass puts them in their regions, or where their batches move).
+        InstancedCullState::InstanceData& data = _scratch->data;
+        const std::size_t start = data.size();
+        float* out = data.extend(16 * verdict.plainInstances.size());
+        for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
+        {
+            const osg::Matrixd& modelView = _scratch->modelViews[instance.frame];
+            if (hasNoDepth(instance.drawable->getBoundingBox(), modelView)) continue;
+            writeInstanceMatrix(modelView, out);
+            out += 16;
+            addToRuns(instance.batch);
+        }
+        data.shrink(start + std::size_t(out - (data.data() + start)));
+        _wroteTexels = true;
+        return true;
+    }
     // Every instance in its batch's region (nextInstance() moves a batch that outgrows it: the steps do that).
     std::vector<InstancedCullState::Batch>& batches = _state._batches;
     for (const std::pair<unsigned, unsigned>& counted : verdict.instancesPerBatch)
@@ -590,7 +703,7 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
     // Then what addDrawable() does without near and far: a drawable whose depth is not a number is dropped (the
     // visitor drops it), the others' matrices written in step order, so each batch's instances are in the order the
     // steps would give them.
-    writePlainInstances(verdict, _state._modelViews.data(), batches.data(), _state._texels);
+    writePlainInstances(verdict, _scratch->modelViews.data(), batches.data(), _state._texels);
     _wroteTexels = true;
     return true;
 }
@@ -604,8 +717,7 @@ OSGACTOR_HOT_PATH void InstancedCull::writePlainInstances(const InstancedCullSta
     for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
     {
         const osg::Matrixd& modelView = modelViews[instance.frame];
-        const osg::BoundingBox& box = instance.drawable->getBoundingBox();
-        if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) continue;
+        if (hasNoDepth(instance.drawable->getBoundingBox(), modelView)) continue;
         // Where the batch's next instance goes: its region has room for all of them (addPlainInstances() checked).
         InstancedCullState::Batch& batch = batches[instance.batch];
         writeInstanceMatrix(modelView, texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count));
@@ -634,39 +746,16 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
         kept.kept = false;
         return false;
     }
-    const osg::Matrixd& actorModelView = _state._modelViews[0];
+    const osg::Matrixd& actorModelView = _scratch->modelViews[0];
     if (mayReplay(kept, versions) && (entryKept || sameBits(kept.actorModelView, actorModelView)))
     {
         kept.entry = _state._entry;
-        // Run by run of instances of one batch (an actor's parts of one drawable follow one another): none written
-        // where the run is found where this frame's last cull added it; one copy where the batch's region has room
-        // for it; one instance at a time where it may not.
-        const bool inFrame = keptInFrame(kept);
-        const float* matrix = kept.matrices.data();
-        for (ActorCullState::InstancedVerdict::Run& run : kept.runs)
-        {
-            InstancedCullState::Batch& into = _state._batches[run.batch];
-            if (float* out = roomInRegion(into, run.count))
-            {
-                const unsigned at = into.base + into.count * into.texels;
-                if (!inFrame || run.at != at)
-                {
-                    std::memcpy(out, matrix, 16 * sizeof(float) * run.count);
-                    run.at = at;
-                    _wroteTexels = true;
-                }
-                into.count += run.count;
-                matrix += 16 * std::size_t(run.count);
-            }
-            else
-            {
-                for (unsigned k = 0; k < run.count; ++k, matrix += 16)
-                    std::memcpy(nextInstance(run.batch), matrix, 16 * sizeof(float));
-                run.at = ~0u;
-            }
-        }
-        kept.frame = _state._frame;
-        kept.contents = _state._frame ? _state._frame->contents() : 0;
+        if (!_outcome)
+            addKeptRuns(kept);
+        else
+            // The parallel cull: added by its last pass, where the runs go among their batches' instances.
+            for (const ActorCullState::InstancedVerdict::Run& run : kept.runs)
+                _scratch->runs.push_back({run.batch, run.count, 0u});
         return true;
     }
     // Unchanged since the cull before, but not kept, or kept for another view: culled now, and kept.
@@ -681,10 +770,43 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
     return false;
 }
 
+void InstancedCull::addKeptRuns(ActorCullState::InstancedVerdict& kept)
+{
+    // Run by run of instances of one batch (an actor's parts of one drawable follow one another): none written where
+    // the run is found where this frame's last cull added it; one copy where the batch's region has room for it; one
+    // instance at a time where it may not.
+    const bool inFrame = keptInFrame(kept);
+    const float* matrix = kept.matrices.data();
+    for (ActorCullState::InstancedVerdict::Run& run : kept.runs)
+    {
+        InstancedCullState::Batch& into = _state._batches[run.batch];
+        if (float* out = roomInRegion(into, run.count))
+        {
+            const unsigned at = into.base + into.count * into.texels;
+            if (!inFrame || run.at != at)
+            {
+                std::memcpy(out, matrix, 16 * sizeof(float) * run.count);
+                run.at = at;
+                _wroteTexels = true;
+            }
+            into.count += run.count;
+            matrix += 16 * std::size_t(run.count);
+        }
+        else
+        {
+            for (unsigned k = 0; k < run.count; ++k, matrix += 16)
+                std::memcpy(nextInstance(run.batch), matrix, 16 * sizeof(float));
+            run.at = ~0u;
+        }
+    }
+    kept.frame = _loopFrame;
+    kept.contents = _loopContents;
+}
+
 void InstancedCull::addDrawable(const Step& step, unsigned batch, bool insideTop)
 {
     const osg::Geometry& drawable = *static_cast<const osg::Geometry*>(step.node->asDrawable());
-    const osg::Matrixd& modelView = _state._modelViews[static_cast<std::size_t>(step.joint + 1)];
+    const osg::Matrixd& modelView = _scratch->modelViews[static_cast<std::size_t>(step.joint + 1)];
     // As ActorCull::addDrawable(): near and far from what is drawn, the box against the frustum before; from
     // bounding volumes, gathered for the actor (a drawable wholly behind the eye dropped, as the visitor drops it).
     const osg::BoundingBox& box = drawable.getBoundingBox();
@@ -697,7 +819,7 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch, bool insideTop
                             : !_cv.updateCalculatedNearFar(modelView, drawable, true))
             return;
     }
-    if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return; // the visitor drops it too
+    if (hasNoDepth(box, modelView)) return; // the visitor drops it too
     float* out = nextInstance(batch);
     writeInstanceMatrix(modelView, out);
     if (_recording)
@@ -713,6 +835,7 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch, bool insideTop
 
 float* InstancedCull::nextInstance(unsigned batch)
 {
+    if (_outcome) return appendInstance(batch);
     InstancedCullState::Batch& into = _state._batches[batch];
     const std::size_t floats = 4 * std::size_t(into.texels);
     float* out = roomInRegion(into, 1);
@@ -727,6 +850,26 @@ float* InstancedCull::nextInstance(unsigned batch)
     return out;
 }
 
+// Out of line: the serial cull's nextInstance(), which every instance of a moving crowd goes through, stays as small.
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+float* InstancedCull::appendInstance(unsigned batch)
+{
+    addToRuns(batch);
+    _wroteTexels = true;
+    return _scratch->data.extend(4 * std::size_t(_state._batches[batch].texels));
+}
+
+void InstancedCull::addToRuns(unsigned batch)
+{
+    std::vector<InstancedCullState::ActorRun>& runs = _scratch->runs;
+    if (runs.size() > _outcome->firstRun && runs.back().batch == batch)
+        ++runs.back().count;
+    else
+        runs.push_back({batch, 1u, 0u});
+}
+
 void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
 {
     InstancedCullState::Batch& batch = _state._batches[b];
@@ -734,7 +877,7 @@ void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
     // As SkinnedMesh's cull: drawn from the actor's first update on, its bound (model space, the actor's frame)
     // against the view.
     if (!InstancedSkin::hasMatrices(instance)) return;
-    const osg::Matrixd& modelView = _state._modelViews[0];
+    const osg::Matrixd& modelView = _scratch->modelViews[0];
     const osg::Polytope& frustum = _cv.getProjectionCullingStack().back().getFrustum();
     if (_frustumCulling && mesh.isCullingActive() && isOutsideFrustum(InstancedSkin::boundOf(instance), modelView, frustum))
         return;
@@ -743,8 +886,12 @@ void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
     const osg::Geometry& geometry = *InstancedSkin::geometryOf(mesh, _profile);
     const osg::BoundingBox& box = geometry.getBoundingBox();
     if (_frustumCulling && geometry.isCullingActive() && isOutsideFrustum(box, modelView, frustum)) return;
-    if (_computeNearFar && box.valid() && !_cv.updateCalculatedNearFar(modelView, geometry, true)) return;
-    if (box.valid() && osg::isNaN(eyeDepth(box.center(), modelView))) return;
+    // In the parallel cull (near and far from bounding volumes, the visitor's own arithmetic for them), gathered for
+    // the cull thread to merge where the actor comes.
+    if (_computeNearFar && box.valid() &&
+        !(_outcome ? _skinDepths.addBox(box, modelView) : _cv.updateCalculatedNearFar(modelView, geometry, true)))
+        return;
+    if (hasNoDepth(box, modelView)) return;
     InstancedSkin::writeInstance(mesh, instance, modelView, nextInstance(b));
 }
 

@@ -26,6 +26,9 @@
 // nothing is written, and a frame whose cull wrote nothing is not marked for upload: a still crowd before a still
 // camera, culled again into the frame it was culled into last (a viewer that draws each frame before the next cull),
 // writes and uploads nothing.
+//
+// With an ActorGroup's threads (from its getMinActorsForParallelCull() actors on), each actor child's part of the cull
+// runs on them, with the same code, and the result is the serial cull's: InstancedCullParallel.cpp says how.
 #ifndef OSGACTOR_DETAIL_INSTANCEDCULL_H
 #define OSGACTOR_DETAIL_INSTANCEDCULL_H 1
 
@@ -42,13 +45,16 @@
 #include <osgUtil/CullVisitor>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <unordered_map>
 #include <vector>
 
 namespace osgActor {
 
 class ActorNode;
+class WorkerPool;
 class SkinnedMesh;
 class SkinnedMeshInstance;
 
@@ -229,12 +235,91 @@ private:
     Statistics _statistics;
     std::unordered_map<const ActorCullPlan*, PlanVerdict> _verdicts;
     // The working space of one cull, kept so that a steady frame allocates nothing.
-    std::vector<std::pair<const osg::StateSet*, bool>> _stateVerdicts; // this cull's
-    std::vector<std::pair<const osg::StateSet*, bool>> _skinStateVerdicts; // this cull's
-    std::vector<const SkinnedMeshInstance*> _skinInstances; // the actor's, in step order
-    std::vector<osg::Matrixd> _modelViews;    // per frame: the actor's (0), each joint's (joint + 1)
-    FramePixelSizeVectors _pixelSizeVectors;  // per frame, made where a test needs it
-    std::vector<osg::Plane> _actorFramePlanes; // the frustum's planes in the actor's frame (cullSteps())
+    /** A run of an actor's instances of one batch in the parallel cull (InstancedCull::cullInParallel()), and where
+      * the first goes among the batch's instances of the cull (given in child order, between the passes). */
+    struct ActorRun
+    {
+        unsigned batch;
+        unsigned count;
+        unsigned first;
+    };
+    /** Floats appended without being set first (a std::vector sets them): the instances' data a thread's actors add
+      * in the parallel cull, written where appended. */
+    class InstanceData
+    {
+    public:
+        std::size_t size() const { return _size; }
+        const float* data() const { return _floats.get(); }
+        void clear() { _size = 0; }
+        /** n more floats, for the caller to write (valid until the next extend()). */
+        float* extend(std::size_t n)
+        {
+            if (_size + n > _capacity) grow(_size + n);
+            float* out = _floats.get() + _size;
+            _size += n;
+            return out;
+        }
+        /** The first size floats kept, the others dropped. */
+        void shrink(std::size_t size) { _size = size; }
+
+    private:
+        void grow(std::size_t least);
+        std::unique_ptr<float[]> _floats;
+        std::size_t _size = 0;
+        std::size_t _capacity = 0;
+    };
+    /** One thread's working space for the actors it culls; the cull thread's, the first, is the serial cull's. On a
+      * cache line of its own, as the threads grow its lists. */
+    struct alignas(64) ActorScratch
+    {
+        std::vector<std::pair<const osg::StateSet*, bool>> stateVerdicts;     // this cull's
+        std::vector<std::pair<const osg::StateSet*, bool>> skinStateVerdicts; // this cull's
+        std::vector<const SkinnedMeshInstance*> skinInstances; // the actor's, in step order
+        std::vector<osg::Matrixd> modelViews;     // per frame: the actor's (0), each joint's (joint + 1)
+        FramePixelSizeVectors pixelSizeVectors;   // per frame, made where a test needs it
+        std::vector<osg::Plane> actorFramePlanes; // the frustum's planes in the actor's frame (cullSteps())
+        // The parallel cull's: the runs of instances of the thread's actors and the instances' data, one after the
+        // other; the model-view matrices of the actors whose update policy notes the view; whether its second pass
+        // wrote any texel.
+        std::vector<ActorRun> runs;
+        InstanceData data;
+        std::vector<osg::Matrixd> seenModelViews;
+        bool wrote = false;
+    };
+    std::vector<ActorScratch> _scratch; // per thread, at least one
+    /** What the parallel cull's first pass found for an actor child, for the passes that follow (its instances' runs
+      * and data in a thread's scratch). */
+    struct ActorOutcome
+    {
+        enum Kind : unsigned char
+        {
+            OUT_OF_VIEW,
+            ORDINARY,  // the ordinary traversal
+            INSTANCED, // culled now
+            KEPT,      // its kept instances added again
+            DEFERRED   // what a worker may not decide: culled on the cull thread, in child order
+        };
+        Kind kind;
+        bool wrote;      // data written (the frame marked for upload)
+        unsigned thread; // whose scratch holds its runs and data
+        unsigned firstRun;
+        unsigned numRuns;
+        unsigned seen; // its model-view matrix among the thread's seenModelViews, or ~0u
+        std::size_t firstData;
+        /** With near and far from bounding volumes, merged into the visitor's in this order, where the actor comes
+          * among the children: its skinned meshes' (the visitor's own updates, gathered), then its drawables'. */
+        DepthRange skinDepths;
+        DepthRange depths;
+    };
+    std::vector<ActorOutcome> _outcomes; // per actor child
+    /** The group's children that are exactly ActorNode, by index, and whether one is a child twice, for the
+      * children of the version _childrenVersion (listed: _childrenListed). */
+    std::vector<unsigned> _actorChildren;
+    bool _childrenRepeat = false;
+    bool _childrenListed = false;
+    unsigned _childrenVersion = 0;
+    /** Per batch, for the parallel cull: the texel its instances are moved to where they outgrew its region, or ~0u. */
+    std::vector<unsigned> _movedBase;
     std::vector<Batch> _batches; // in order of first use; emptied, not freed, per cull
     std::unordered_map<BatchKey, unsigned, BatchKeyHash> _batchOfKey;
     InstancedFrame* _frame = nullptr; // this cull's, if any batch has a region
@@ -256,6 +341,21 @@ public:
       * instanced draws under programState (the program and the sampler on textureUnit), the others ordinarily. */
     InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state, osg::Group& group, osg::StateSet* programState,
                   unsigned textureUnit);
+    /** The group's threads for the parallel cull: the pool (taken for this cull), from how many actor children on,
+      * and the version of the group's children (ActorGroup::getChildrenVersion()). */
+    struct Threads
+    {
+        WorkerPool* pool;
+        unsigned minActors;
+        unsigned childrenVersion;
+    };
+    /** The same, each actor's part of the cull on the threads where the pool is given and the children are at least
+      * threads.minActors actors (cullInParallel()); the render graph, the frame's texels and the statistics those of
+      * the cull on this thread alone. */
+    InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state, osg::Group& group, osg::StateSet* programState,
+                  unsigned textureUnit, const Threads& threads);
+    /** Whether the actors were culled on the threads. */
+    bool culledInParallel() const { return _culledInParallel; }
 
     /** Whether a state set (a geode's or a drawable's, or none) lights its drawables as the instanced program does:
       * no program, textures, uniforms or render bin of its own, and no attribute but a material without colour
@@ -264,6 +364,42 @@ public:
 
 private:
     using Step = ActorCullPlan::Step;
+    using ActorOutcome = InstancedCullState::ActorOutcome;
+
+    /** A worker's copy of the cull, for the actors one thread culls in the parallel cull's first pass: the same view
+      * and settings, the thread's scratch, nothing to the visitor. */
+    InstancedCull(const InstancedCull& cull, unsigned thread);
+
+    /** The children one after the other, on this thread. */
+    void cullSerially(osg::Group& group);
+    /** The parallel cull, where it may be (near and far not from primitives, enough actors, none a child twice):
+      * first, on the threads, each actor child's part that touches neither the visitor nor what other actors share
+      * (its bound, its verdict, its model-view matrices and tests, its instances' data into the thread's scratch);
+      * then, on this thread, in child order, what is left (the ordinary traversals, the other children, the actors
+      * a worker could not decide, the near and far merged, each actor's place among its batches' instances); then, on
+      * the threads, each actor's data written at its place in the frame's buffer. false, nothing done, where not. */
+    bool cullInParallel(osg::Group& group, const Threads& threads);
+    /** Lists the group's actor children for its children's version, unless listed already. */
+    void listActorChildren(osg::Group& group, unsigned childrenVersion);
+    /** Each skinned batch's texels per instance for this cull and its geometry's box, found before the threads read
+      * them. */
+    void prepareSkinnedBatches();
+    /** The first pass for one actor child, into outcome, on a thread (or on the cull thread for one DEFERRED). */
+    void cullChildInto(ActorNode& actor, ActorOutcome& outcome);
+    /** The last pass for one actor: its instances written where its runs go, its cull state given back. */
+    void writeActor(ActorNode& actor, const ActorOutcome& outcome, bool& wrote) const;
+    /** count instances of a batch, the first the batch's instance first, from data: in its region where it has room
+      * for them, as the serial cull adds them, and where the batch was moved if it outgrew its region. kept: the kept
+      * run they are, or null; inFrame: whether the kept instances lie in this cull's buffer (keptInFrame()). */
+    void writeRun(unsigned batch, unsigned first, unsigned count, const float* data,
+                  ActorCullState::InstancedVerdict::Run* kept, bool inFrame, bool& wrote) const;
+    /** Counts an actor of the kind into the statistics (the serial cull), or notes it in its outcome. */
+    void tally(ActorOutcome::Kind kind);
+    /** Whether the actor is out of view (its mask, its bound) as the visitor finds it on its way in. */
+    bool isOutOfView(ActorNode& actor);
+    /** The update policy's note of the view, with the actor's frame on the visitor's stack, as its own cull makes
+      * it. */
+    void noteSeen(ActorNode& actor, const osg::Matrixd& modelView);
 
     /** Whether the actor node itself lets its children be culled here: its own class, culled as one, no cull
       * callback or state set, a relative frame, culling on. */
@@ -313,12 +449,15 @@ private:
       * stages). */
     void prefetchKeptAhead(const osg::Node& node, unsigned ahead) const;
     /** Adds the kept instances of an actor that did not change, if they hold for this cull (the actor's model-view
-      * matrix in _modelViews[0], the kept one where entryKept). */
+      * matrix in modelViews[0], the kept one where entryKept); in the parallel cull, notes their runs for the passes
+      * that follow. */
     bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions, bool entryKept);
+    /** The serial cull's copy of the kept instances into their batches. */
+    void addKeptRuns(ActorCullState::InstancedVerdict& kept);
     /** Whether the kept instances lie in this cull's buffer where the last cull of its frame added them. */
     bool keptInFrame(const ActorCullState::InstancedVerdict& kept) const
     {
-        return _state._frame && kept.frame == _state._frame && kept.contents + 1 == _state._frame->contents();
+        return _loopFrame && kept.frame == _loopFrame && kept.contents + 1 == _loopContents;
     }
     /** Whether kept.actorModelView is the actor's model-view matrix now, not composed again (its bound counted in
       * versions). */
@@ -343,8 +482,19 @@ private:
         if ((batch.count + count) * batch.texels > batch.capacity) return nullptr;
         return texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count);
     }
-    /** Where the next instance of a batch goes: its region, or its overflow. */
+    /** Where the next instance of a batch goes: its region, or its overflow; in the parallel cull, the thread's
+      * scratch (appendInstance()). */
     float* nextInstance(unsigned batch);
+    /** The actor's next instance of a batch in the thread's scratch, after its others. */
+    float* appendInstance(unsigned batch);
+    /** Counts the actor's next instance of a batch into its runs in the thread's scratch. */
+    void addToRuns(unsigned batch);
+    /** Whether the visitor drops a drawable of this box in a frame of this model-view matrix: its depth not a
+      * number. */
+    static bool hasNoDepth(const osg::BoundingBox& box, const osg::Matrixd& modelView)
+    {
+        return box.valid() && osg::isNaN(eyeDepth(box.center(), modelView));
+    }
     /** Gives each batch its region in a frame's buffer, as large as its data of the previous cull. */
     void placeBatches(unsigned textureUnit);
     /** Moves the batches that overflowed their regions to the buffer's end, whole. */
@@ -366,6 +516,21 @@ private:
     osgUtil::CullVisitor& _cv;
     InstancedCullState& _state;
     osg::StateSet* _programState;
+    unsigned _textureUnit;
+    /** The working space of the thread culling actors with this object. */
+    InstancedCullState::ActorScratch* _scratch;
+    /** In the parallel cull, the outcome of the actor being culled (its instances go to the thread's scratch); null
+      * in the serial cull (straight to the frame's buffer). */
+    ActorOutcome* _outcome;
+    /** Whether the actor's cull may make plan verdicts and batches and find batches' texels (this thread's alone):
+      * not on a worker, whose actors that need them are DEFERRED. */
+    bool _mayDecideShared;
+    bool _deferred;
+    bool _culledInParallel;
+    /** The frame the actors' instances go to, and its contents, as the placing of the batches left them (before any
+      * batch outgrows its region). */
+    InstancedFrame* _loopFrame;
+    std::uint64_t _loopContents;
     unsigned _traversalMask;
     unsigned _maskOverride;
     bool _smallFeatureCulling;
@@ -375,6 +540,8 @@ private:
       * the bit, and kept with its instances. From primitives, the visitor is asked per drawable. */
     bool _depthsByBounds;
     DepthRange _actorDepths;
+    /** In the parallel cull, the actor's skinned meshes' near and far (the serial cull gives them to the visitor). */
+    DepthRange _skinDepths;
     bool _frustumCulling;
     float _smallFeaturePixelSize;
     bool _overflowed;

@@ -33,6 +33,7 @@ public:
     const osg::Geometry* getGeometry() const { return _geometry.get(); }
     unsigned getNumInstances() const { return _count; }
     int getBase() const { return _base; }
+    int getTexelsPerInstance() const { return _texelsPerInstance; }
 
     void drawImplementation(osg::RenderInfo& renderInfo) const override;
 

@@ -47,6 +47,38 @@ TEST(WorkerPool, RunsEveryItemExactlyOnce)
     }
 }
 
+TEST(WorkerPool, TellsEachItemTheThreadThatRunsItOneThreadAtATime)
+{
+    // Each thread's index below getNumThreads(), the caller's 0, and no two items at once under one index (each
+    // item marks its index busy while it runs): working space per thread is safe.
+    for (unsigned threads : {1u, 2u, 4u})
+    {
+        WorkerPool pool(threads);
+        for (unsigned count : {0u, 3u, 1000u})
+        {
+            std::vector<std::atomic<int>> hits(count);
+            for (auto& h : hits) h = 0;
+            std::vector<std::atomic<bool>> busy(threads);
+            for (auto& b : busy) b = false;
+            std::atomic<bool> clash{false}, outOfRange{false};
+            pool.parallelForWithThread(count, [&](unsigned i, unsigned thread) {
+                hits[i].fetch_add(1);
+                if (thread >= threads)
+                {
+                    outOfRange = true;
+                    return;
+                }
+                if (busy[thread].exchange(true)) clash = true;
+                std::this_thread::yield();
+                busy[thread] = false;
+            });
+            EXPECT_FALSE(outOfRange.load()) << threads << " threads";
+            EXPECT_FALSE(clash.load()) << threads << " threads";
+            for (unsigned i = 0; i < count; ++i) ASSERT_EQ(hits[i].load(), 1) << threads << " threads, item " << i;
+        }
+    }
+}
+
 TEST(WorkerPool, FinishesTheSliceOfAThreadThatIsStillBusy)
 {
     // Two threads, four items, one at a time: the caller's slice is items 0-1, the worker's 2-3. Whichever thread

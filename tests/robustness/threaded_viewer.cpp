@@ -30,6 +30,7 @@ int main(int argc, char** argv)
     const bool instanced = argc > 3 && std::string(argv[3]) == "instanced";
     osg::ref_ptr<ActorGroup> actors = instanced ? new InstancedActorGroup : new ActorGroup;
     actors->setNumThreads(3);
+    if (instanced) actors->setMinActorsForParallelCull(1); // the instanced cull on the threads too
     for (int a = 0; a < 24; ++a)
     {
         osg::ref_ptr<ActorNode> actor = osg::clone(prototype.get(), osg::CopyOp::SHALLOW_COPY);

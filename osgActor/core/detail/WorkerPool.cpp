@@ -37,7 +37,10 @@ void WorkerPool::runItems(unsigned thread)
             const unsigned begin = slice.next.fetch_add(_grain, std::memory_order_relaxed);
             if (begin >= slice.end) break;
             const unsigned end = std::min(slice.end, begin + _grain);
-            for (unsigned i = begin; i < end; ++i) (*_task)(i);
+            if (_threadTask)
+                for (unsigned i = begin; i < end; ++i) (*_threadTask)(i, thread);
+            else
+                for (unsigned i = begin; i < end; ++i) (*_task)(i);
         }
     }
 }
@@ -63,15 +66,30 @@ void WorkerPool::workerLoop(unsigned thread)
 
 void WorkerPool::parallelFor(unsigned count, const std::function<void(unsigned)>& task, unsigned grain)
 {
+    run(count, &task, nullptr, grain);
+}
+
+void WorkerPool::parallelForWithThread(unsigned count, const std::function<void(unsigned, unsigned)>& task,
+                                       unsigned grain)
+{
+    run(count, nullptr, &task, grain);
+}
+
+void WorkerPool::run(unsigned count, const std::function<void(unsigned)>* task,
+                     const std::function<void(unsigned, unsigned)>* threadTask, unsigned grain)
+{
     if (count == 0) return;
     if (_workers.empty() || count <= grain)
     {
-        for (unsigned i = 0; i < count; ++i) task(i);
+        for (unsigned i = 0; i < count; ++i)
+            if (threadTask) (*threadTask)(i, 0);
+            else (*task)(i);
         return;
     }
     {
         std::lock_guard<std::mutex> lock(_mutex);
-        _task = &task;
+        _task = task;
+        _threadTask = threadTask;
         _grain = std::max(1u, grain);
         const unsigned numThreads = getNumThreads();
         const auto sliceStart = [&](unsigned slice) {
@@ -92,6 +110,7 @@ void WorkerPool::parallelFor(unsigned count, const std::function<void(unsigned)>
     std::unique_lock<std::mutex> lock(_mutex);
     _finished.wait(lock, [&] { return _busyWorkers == 0; });
     _task = nullptr;
+    _threadTask = nullptr;
 }
 
 } // namespace osgActor
