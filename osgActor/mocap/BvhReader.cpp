@@ -19,8 +19,6 @@ namespace {
 
 /** A clip counts its frames in an unsigned int. */
 constexpr unsigned long kMaxFrames = 4294967295ul;
-/** Frames' worth of memory reserved up front from the header's count (the vector grows past it if the data does). */
-constexpr unsigned long kMaxReservedFrames = 10000ul;
 /** Deepest joint nesting read (real skeletons: a few dozen; the .actor syntax allows 200 too). */
 constexpr unsigned kMaxDepth = 200;
 
@@ -259,7 +257,12 @@ bool BvhParser::readFrames(MocapImport& result, unsigned long numFrames, double 
     const unsigned numChannels = def.getNumDofs();
     std::vector<double> values;
     // The header's count is a hint, not a promise: a lying one must not allocate gigabytes before any frame is read.
-    values.reserve(std::min(numFrames, kMaxReservedFrames) * numChannels);
+    // A frame's line holds numChannels numbers and the blanks between them, two bytes a channel at the least, so
+    // the text left bounds the frames it may hold; room for those is made at once (grown frame by frame, a long
+    // motion's values would be copied, and mapped afresh, each time they fill).
+    const unsigned long framesTheTextMayHold =
+        numChannels == 0 ? 0ul : static_cast<unsigned long>(_text.bytesAfterLine() / (2ul * numChannels) + 1ul);
+    values.reserve(std::min(numFrames, framesTheTextMayHold) * numChannels);
     unsigned long frame = 0;
     unsigned long extraLines = 0;
     while (_text.nextLine())

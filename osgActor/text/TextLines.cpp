@@ -19,6 +19,17 @@ char lowerAscii(char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A
 
 TextLines::TextLines(std::istream& in, const std::string& fileName) : _fileName(fileName)
 {
+    // Room for the whole rest of a stream that can tell its length (a file, a string), made at once: a text grown
+    // chunk by chunk is copied each time it fills, and a large one maps its memory afresh each time.
+    const std::istream::pos_type start = in.tellg();
+    if (start != std::istream::pos_type(-1))
+    {
+        in.seekg(0, std::ios::end);
+        const std::istream::pos_type end = in.tellg();
+        in.clear();
+        in.seekg(start);
+        if (end != std::istream::pos_type(-1) && end > start) _text.reserve(static_cast<std::size_t>(end - start));
+    }
     char buffer[1 << 16];
     while (in.read(buffer, sizeof(buffer)) || in.gcount() > 0)
         _text.append(buffer, static_cast<std::size_t>(in.gcount()));

@@ -69,3 +69,47 @@ TEST(TextLines, WordsCompareWithoutCaseInAscii)
     EXPECT_FALSE(sameWord("Xrotation", "Xrotatio"));
     EXPECT_FALSE(sameWord("\xc3\xa9", "\xc3\x89")) << "only ASCII letters fold";
 }
+
+namespace {
+
+/** A stream buffer that cannot seek, as a pipe's. */
+class UnseekableBuffer : public std::streambuf
+{
+public:
+    explicit UnseekableBuffer(std::string text) : _text(std::move(text))
+    {
+        setg(_text.data(), _text.data(), _text.data() + _text.size());
+    }
+
+private:
+    std::string _text;
+};
+
+std::vector<std::string> allTokens(TextLines& text)
+{
+    std::vector<std::string> tokens;
+    std::string_view token;
+    while (text.nextToken(token)) tokens.push_back(std::string(token));
+    return tokens;
+}
+
+} // namespace
+
+TEST(TextLines, ReadsTheRestOfAStreamFromWhereItStandsWhetherItCanSeekOrNot)
+{
+    const std::vector<std::string> expected{"b", "c", "d"};
+    std::istringstream seekable("skipped\nb c\nd\n");
+    std::string skipped;
+    std::getline(seekable, skipped);
+    TextLines fromTheMiddle(seekable, "t.txt");
+    EXPECT_EQ(allTokens(fromTheMiddle), expected);
+    EXPECT_EQ(fromTheMiddle.bytesAfterLine(), 0u);
+
+    UnseekableBuffer buffer("b c\nd\n");
+    std::istream unseekable(&buffer);
+    TextLines fromAPipe(unseekable, "t.txt");
+    EXPECT_EQ(fromAPipe.bytesAfterLine(), 6u) << "nothing read yet: all of it";
+    ASSERT_TRUE(fromAPipe.nextLine());
+    EXPECT_EQ(fromAPipe.bytesAfterLine(), 2u) << "after \"b c\\n\"";
+    EXPECT_EQ(allTokens(fromAPipe), (std::vector<std::string>{"b", "c", "d"}));
+}

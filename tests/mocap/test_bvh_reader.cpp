@@ -238,6 +238,20 @@ TEST(BvhReader, WarnsWhenTheHeaderFrameCountDisagreesWithTheData)
     EXPECT_NE(missing.warnings[0].find("declares 2 frames but the file holds 1"), std::string::npos);
 }
 
+TEST(BvhReader, AHeaderClaimingFarMoreFramesThanTheTextHoldsReadsWhatIsThere)
+{
+    // Room is made for the frames the text may hold, not for the header's count (here about 240 GB of values).
+    std::string text = kTwoJoints;
+    const std::size_t count = text.find("Frames: 2");
+    ASSERT_NE(count, std::string::npos);
+    text.replace(count, 9, "Frames: 4294967295");
+    const MocapImport read = readText(text + "0 0 0 0 0 0 1\n", fileFrame());
+    ASSERT_TRUE(read) << read.error;
+    EXPECT_EQ(read.clip->getNumFrames(), 1u);
+    ASSERT_EQ(read.warnings.size(), 1u);
+    EXPECT_NE(read.warnings[0].find("declares 4294967295 frames but the file holds 1"), std::string::npos);
+}
+
 TEST(BvhReader, ScalesTurnsYUpIntoZUpAndDropsTheReferenceFrame)
 {
     const std::string text = std::string(kTwoJoints) + "9 9 9 0 0 0 0\n1 2 3 0 0 0 90\n";
