@@ -93,8 +93,13 @@ InstancedActorGroup::Statistics InstancedActorGroup::getStatistics() const
 void InstancedActorGroup::traverse(osg::NodeVisitor& nv)
 {
     osgUtil::CullVisitor* cv = nv.getVisitorType() == osg::NodeVisitor::CULL_VISITOR ? nv.asCullVisitor() : nullptr;
-    // The instances of a part are drawn together, in no order by depth: only in a bin sorted by state.
-    if (_drawMode != INSTANCED || !cv || !detail::ActorCull::canCullAsOne(*cv) ||
+    // The instances of a part are drawn together, in no order by depth: only in a bin sorted by state. Near and far
+    // from primitives clip each drawable's triangles against the frustum in the drawable's own frame, which the
+    // instanced cull (one culling set for the group) does not follow: each actor is then culled as one, which does.
+    const bool nearFarFromPrimitives =
+        cv && (cv->getComputeNearFarMode() == osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES ||
+               cv->getComputeNearFarMode() == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES);
+    if (_drawMode != INSTANCED || !cv || !detail::ActorCull::canCullAsOne(*cv) || nearFarFromPrimitives ||
         cv->getCurrentRenderBin()->getSortMode() != osgUtil::RenderBin::SORT_BY_STATE || !_cullState->tryAcquire())
     {
         ActorGroup::traverse(nv);
