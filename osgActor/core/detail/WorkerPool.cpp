@@ -37,10 +37,7 @@ void WorkerPool::runItems(unsigned thread)
             const unsigned begin = slice.next.fetch_add(_grain, std::memory_order_relaxed);
             if (begin >= slice.end) break;
             const unsigned end = std::min(slice.end, begin + _grain);
-            if (_threadTask)
-                for (unsigned i = begin; i < end; ++i) (*_threadTask)(i, thread);
-            else
-                for (unsigned i = begin; i < end; ++i) (*_task)(i);
+            for (unsigned i = begin; i < end; ++i) (*_task)(i, thread);
         }
     }
 }
@@ -66,30 +63,21 @@ void WorkerPool::workerLoop(unsigned thread)
 
 void WorkerPool::parallelFor(unsigned count, const std::function<void(unsigned)>& task, unsigned grain)
 {
-    run(count, &task, nullptr, grain);
+    parallelForWithThread(count, [&task](unsigned i, unsigned) { task(i); }, grain);
 }
 
 void WorkerPool::parallelForWithThread(unsigned count, const std::function<void(unsigned, unsigned)>& task,
                                        unsigned grain)
 {
-    run(count, nullptr, &task, grain);
-}
-
-void WorkerPool::run(unsigned count, const std::function<void(unsigned)>* task,
-                     const std::function<void(unsigned, unsigned)>* threadTask, unsigned grain)
-{
     if (count == 0) return;
     if (_workers.empty() || count <= grain)
     {
-        for (unsigned i = 0; i < count; ++i)
-            if (threadTask) (*threadTask)(i, 0);
-            else (*task)(i);
+        for (unsigned i = 0; i < count; ++i) task(i, 0);
         return;
     }
     {
         std::lock_guard<std::mutex> lock(_mutex);
-        _task = task;
-        _threadTask = threadTask;
+        _task = &task;
         _grain = std::max(1u, grain);
         const unsigned numThreads = getNumThreads();
         const auto sliceStart = [&](unsigned slice) {
@@ -110,7 +98,6 @@ void WorkerPool::run(unsigned count, const std::function<void(unsigned)>* task,
     std::unique_lock<std::mutex> lock(_mutex);
     _finished.wait(lock, [&] { return _busyWorkers == 0; });
     _task = nullptr;
-    _threadTask = nullptr;
 }
 
 } // namespace osgActor
