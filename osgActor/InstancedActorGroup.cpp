@@ -96,10 +96,8 @@ void InstancedActorGroup::traverse(osg::NodeVisitor& nv)
     // The instances of a part are drawn together, in no order by depth: only in a bin sorted by state. Near and far
     // from primitives clip each drawable's triangles against the frustum in the drawable's own frame, which the
     // instanced cull (one culling set for the group) does not follow: each actor is then culled as one, which does.
-    const bool nearFarFromPrimitives =
-        cv && (cv->getComputeNearFarMode() == osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES ||
-               cv->getComputeNearFarMode() == osg::CullSettings::COMPUTE_NEAR_USING_PRIMITIVES);
-    if (_drawMode != INSTANCED || !cv || !detail::ActorCull::canCullAsOne(*cv) || nearFarFromPrimitives ||
+    if (_drawMode != INSTANCED || !cv || !detail::ActorCull::canCullAsOne(*cv) ||
+        detail::ActorCull::nearFarFromPrimitives(*cv) ||
         cv->getCurrentRenderBin()->getSortMode() != osgUtil::RenderBin::SORT_BY_STATE || !_cullState->tryAcquire())
     {
         ActorGroup::traverse(nv);

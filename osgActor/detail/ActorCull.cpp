@@ -480,7 +480,7 @@ void ActorCull::prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahea
     }
 }
 
-inline bool ActorCull::nearFarFromPrimitives(const osgUtil::CullVisitor& cv)
+bool ActorCull::nearFarFromPrimitives(const osgUtil::CullVisitor& cv)
 {
     const osg::CullSettings::ComputeNearFarMode mode = cv.getComputeNearFarMode();
     return mode == osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES ||

@@ -361,6 +361,9 @@ public:
     /** Whether the visitor can take the actor as one: its own class (a subclass may draw otherwise), and no
       * occluders or state frustums in the current culling set (they need each drawable's box in its own frame). */
     static bool canCullAsOne(osgUtil::CullVisitor& cv);
+    /** Whether the visitor computes near and far from primitives (reading its current culling set's frustum, which
+      * the calls made before entering the actor would not hold). */
+    static bool nearFarFromPrimitives(const osgUtil::CullVisitor& cv);
 
     /** Culls the children of the actor node the visitor is in now (its model-view matrix on top of the stack),
       * with the state the caller acquired, from what prepare() made for this visitor or, if it made nothing for
@@ -398,9 +401,6 @@ private:
       * actor (where it will enter it: the model-view matrix on top of its stack). */
     ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
               const ActorCullState::Versions& versions, const osg::Matrixd& entry);
-    /** Whether the visitor computes near and far from primitives (reading its current culling set's frustum, which
-      * the calls made before entering the actor would not hold). */
-    static bool nearFarFromPrimitives(const osgUtil::CullVisitor& cv);
     /** The actor's model-view matrix as CullVisitor::apply(osg::Transform&) will compute it (the same bits). */
     static osg::Matrixd modelViewOnEntering(osgUtil::CullVisitor& cv, osg::MatrixTransform& actor);
     /** What the constructors leave for the next cull once the calls are made: the calls and matrices kept for

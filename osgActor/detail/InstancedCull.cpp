@@ -201,7 +201,6 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
       _maskOverride(cv.getNodeMaskOverride()),
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
-      _depthsByBounds(cv.getComputeNearFarMode() == osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES),
       _frustumCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::VIEW_FRUSTUM_CULLING) != 0),
       _smallFeaturePixelSize(cv.getCurrentCullingSet().getSmallFeatureCullingPixelSize()), _overflowed(false),
       _wroteTexels(false), _texelLimit(state._limit->texels()), _profile(skinningProfileOf(cv.getState())), _view(cv),
@@ -564,8 +563,8 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
         if (replayKept(kept, versions, entryKept))
         {
             tally(ActorOutcome::KEPT);
-            if (_depthsByBounds && _outcome) _outcome->depths = kept.depths;
-            else if (_depthsByBounds) kept.depths.mergeInto(_cv);
+            if (_computeNearFar && _outcome) _outcome->depths = kept.depths;
+            else if (_computeNearFar) kept.depths.mergeInto(_cv);
             return;
         }
     }
@@ -577,7 +576,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     _actorDepths = DepthRange();
     _skinDepths = DepthRange();
     if (!addPlainInstances(verdict)) cullSteps(verdict);
-    if (_depthsByBounds)
+    if (_computeNearFar)
     {
         if (_outcome)
         {
@@ -737,9 +736,8 @@ bool InstancedCull::keptEntry(const ActorNode& actor, const ActorCullState::Inst
 bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions,
                                bool entryKept)
 {
-    // Near and far computed from what is drawn would need each drawable's box again: kept only without them, or
-    // from bounding volumes (the kept range merged again).
-    const bool unchanged = kept.versions == versions && (!_computeNearFar || _depthsByBounds);
+    // With near and far computed (from bounding volumes), the kept range is merged again.
+    const bool unchanged = kept.versions == versions;
     kept.versions = versions;
     if (!unchanged)
     {
@@ -815,9 +813,7 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch, bool insideTop
         if (_frustumCulling && step.cullingActive && !insideTop &&
             isOutsideFrustum(box, modelView, _cv.getProjectionCullingStack().back().getFrustum()))
             return;
-        if (_depthsByBounds ? !_actorDepths.addBox(box, modelView)
-                            : !_cv.updateCalculatedNearFar(modelView, drawable, true))
-            return;
+        if (!_actorDepths.addBox(box, modelView)) return;
     }
     if (hasNoDepth(box, modelView)) return; // the visitor drops it too
     float* out = nextInstance(batch);

@@ -3,17 +3,18 @@
 // Per cull, every actor child that can be drawn instanced (its own class, culled as one, and a cull plan, the one its
 // cull as one keeps (ActorCullPlan), with nothing for the ordinary traversal, no state set on a joint, and state sets
 // on geodes and drawables that light as the instanced program lights) is culled as the ordinary traversal would cull
-// it, following its plan as ActorCull does (its mask and bound; each joint's and geode's mask and small-feature test
-// in its frame; while near and far are computed, each drawable's box against the frustum but below a top joint whose
-// sphere lies wholly inside it, and near and far from it, gathered per actor where from bounding volumes), its
-// joints' model-view matrices composed with the visitor's own products (CullArithmetic.h), and each drawable that
-// survives adds one instance, its joint's model-view matrix, to the batch of its (geode state set, drawable). The
-// actors that cannot be taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an
-// InstancedDraw of the drawable for all its instances, under the geode's and the drawable's state sets and the
-// frame's state set (the program and the texture buffer of all instances' matrices, as floats, 4 texels each).
-// A skinned mesh in the actor's frame (InstancedSkin.h) adds one instance to the batch of its (geode state set, mesh):
-// its model-view matrix and its palette, drawn by one instanced draw of the mesh's bind-pose geometry under the mesh's
-// instanced program, in the same texture buffer after the rigid parts' matrices.
+// it, following its plan as ActorCull does (its mask and bound; each joint's and geode's mask and small-feature test in
+// its frame; while near and far are computed, each drawable's box against the frustum but below a top joint whose
+// sphere lies wholly inside it, and near and far from it, gathered per actor (from bounding volumes: near and far from
+// primitives are culled ordinarily, InstancedActorGroup)), its joints' model-view matrices composed with the visitor's
+// own products (CullArithmetic.h), and each drawable that survives adds one instance, its joint's model-view matrix, to
+// the batch of its (geode state set, drawable). The actors that cannot be taken so get the ordinary traversal, in child
+// order. Then each batch becomes one leaf: an InstancedDraw of the drawable for all its instances, under the geode's
+// and the drawable's state sets and the frame's state set (the program and the texture buffer of all instances'
+// matrices, as floats, 4 texels each). A skinned mesh in the actor's frame (InstancedSkin.h) adds one instance to the
+// batch of its (geode state set, mesh): its model-view matrix and its palette, drawn by one instanced draw of the
+// mesh's bind-pose geometry under the mesh's instanced program, in the same texture buffer after the rigid parts'
+// matrices.
 //
 // The matrices of a frame live in an InstancedFrame taken from a pool: one the render graph no longer holds (every
 // draw of it held by the pool alone), so that with osgViewer drawing on another thread the cull of the next frame
@@ -372,7 +373,7 @@ private:
 
     /** The children one after the other, on this thread. */
     void cullSerially(osg::Group& group);
-    /** The parallel cull, where it may be (near and far not from primitives, enough actors, none a child twice):
+    /** The parallel cull, where it may be (enough actors, none a child twice):
       * first, on the threads, each actor child's part that touches neither the visitor nor what other actors share
       * (its bound, its verdict, its model-view matrices and tests, its instances' data into the thread's scratch);
       * then, on this thread, in child order, what is left (the ordinary traversals, the other children, the actors
@@ -442,8 +443,7 @@ private:
       * still to compare). */
     bool mayReplay(const ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions) const
     {
-        return kept.kept && kept.serial == _state._serial && kept.view == _state._view && kept.versions == versions &&
-               (!_computeNearFar || _depthsByBounds);
+        return kept.kept && kept.serial == _state._serial && kept.view == _state._view && kept.versions == versions;
     }
     /** The kept instances of the actor `ahead` actors after the one culled now, asked for (ActorNode's look-ahead
       * stages). */
@@ -534,11 +534,10 @@ private:
     unsigned _traversalMask;
     unsigned _maskOverride;
     bool _smallFeatureCulling;
+    /** Near and far computed, from bounding volumes (never from primitives: InstancedActorGroup culls each actor as one
+      * then): each instanced actor's drawables' near and far gathered as the visitor gathers them (_actorDepths) and
+      * merged into the visitor's once per actor, which gives its values to the bit, and kept with its instances. */
     bool _computeNearFar;
-    /** Near and far computed from bounding volumes: each instanced actor's drawables' near and far gathered as the
-      * visitor gathers them (_actorDepths) and merged into the visitor's once per actor, which gives its values to
-      * the bit, and kept with its instances. From primitives, the visitor is asked per drawable. */
-    bool _depthsByBounds;
     DepthRange _actorDepths;
     /** In the parallel cull, the actor's skinned meshes' near and far (the serial cull gives them to the visitor). */
     DepthRange _skinDepths;

@@ -27,9 +27,6 @@ namespace detail {
 
 bool InstancedCull::cullInParallel(osg::Group& group, const Threads& threads)
 {
-    // Near and far from primitives: the visitor is asked per drawable, in child order, with the planes its last test
-    // of a bound left active.
-    if (_computeNearFar && !_depthsByBounds) return false;
     listActorChildren(group, threads.childrenVersion);
     const std::vector<unsigned>& actorChildren = _state._actorChildren;
     const unsigned numActors = static_cast<unsigned>(actorChildren.size());
@@ -104,7 +101,7 @@ bool InstancedCull::cullInParallel(osg::Group& group, const Threads& threads)
             if (outcome.kind == ActorOutcome::KEPT) ++statistics.actorsKept;
             InstancedCullState::ActorScratch& scratch = _state._scratch[outcome.thread];
             if (outcome.seen != ~0u) noteSeen(actor, scratch.seenModelViews[outcome.seen]);
-            if (_depthsByBounds)
+            if (_computeNearFar)
             {
                 outcome.skinDepths.mergeInto(_cv);
                 outcome.depths.mergeInto(_cv);
