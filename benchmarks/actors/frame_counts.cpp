@@ -9,7 +9,9 @@
 // update_cull/osgActor_all_instanced, or _idle_instanced), "nearfar" for a cull computing near and far from bounding
 // volumes as osgViewer's default camera does (update_cull_nearfar/osgActor_all, or _idle, _all_instanced,
 // _idle_instanced), "threads=N" for the crowd's group (an ActorGroup, or the InstancedActorGroup) on N threads, its
-// update and cull on them (callgrind runs the threads one at a time: --separate-threads=yes counts each one's share).
+// update and cull on them (callgrind runs the threads one at a time: --separate-threads=yes counts each one's share),
+// "inflight=N" for N frames in flight, the culls taking turns among N scene views each holding its render graph until
+// its next cull (2: osgViewer's draw thread, DrawThreadPerContext; an InstancedActorGroup's frames alternate).
 // Divide the counts by actors x frames x 31 joints for figures per joint and frame (docs/performance.md).
 #include "FrameLoop"
 #include "PeerScenes"
@@ -25,19 +27,22 @@ int main(int argc, char** argv)
     const unsigned numActors = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 1000u;
     const unsigned numFrames = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 20u;
     bool follow = false, cull = false, idle = false, instanced = false, nearFar = false;
-    unsigned threads = 0;
+    unsigned threads = 0, framesInFlight = 1;
     for (int i = 3; i < argc; ++i)
     {
         if (std::strncmp(argv[i], "threads=", 8) == 0) threads = static_cast<unsigned>(std::atoi(argv[i] + 8));
+        if (std::strncmp(argv[i], "inflight=", 9) == 0) framesInFlight = static_cast<unsigned>(std::atoi(argv[i] + 9));
         follow = follow || std::strcmp(argv[i], "follow") == 0;
         cull = cull || std::strcmp(argv[i], "cull") == 0;
         idle = idle || std::strcmp(argv[i], "idle") == 0;
         instanced = instanced || std::strcmp(argv[i], "instanced") == 0;
         nearFar = nearFar || std::strcmp(argv[i], "nearfar") == 0;
     }
-    if (numActors == 0 || numFrames == 0)
+    if (numActors == 0 || numFrames == 0 || framesInFlight == 0)
     {
-        std::fprintf(stderr, "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced] [nearfar] [threads=N]\n",
+        std::fprintf(stderr,
+                     "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced] [nearfar] [threads=N] "
+                     "[inflight=N > 0]\n",
                      argv[0]);
         return 1;
     }
@@ -48,7 +53,8 @@ int main(int argc, char** argv)
     crowd.threads = threads;
     osg::ref_ptr<osg::Group> scene = bench::makeOsgActorScene(numActors, crowd);
     bench::FrameLoop loop(scene.get(), cull,
-                          nearFar ? bench::FrameLoop::NearFar::FromBoundingVolumes : bench::FrameLoop::NearFar::NotComputed);
+                          nearFar ? bench::FrameLoop::NearFar::FromBoundingVolumes : bench::FrameLoop::NearFar::NotComputed,
+                          framesInFlight);
     for (int i = 0; i < 10; ++i) loop.frame();
     CALLGRIND_ZERO_STATS;
     CALLGRIND_START_INSTRUMENTATION;
