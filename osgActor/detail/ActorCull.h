@@ -309,7 +309,7 @@ private:
           * dirties) stay, actorModelView is the actor's model-view matrix, not composed again. */
         std::uint64_t entry = 0;
         osg::Matrixd actorModelView;
-        /** A run of instances of one batch, and the texel of the frame's buffer it was last added at (or ~0u). */
+        /** A run of instances of one batch, and the texel of the frames' buffers it was last added at (or ~0u). */
         struct Run
         {
             unsigned batch;
@@ -318,10 +318,13 @@ private:
         };
         std::vector<Run> runs;
         std::vector<float> matrices;
-        /** The frame the runs were last added to, and what its buffer held then (InstancedFrame::contents()): while
-          * the frame's next cull is the one that finds them at the same texels, they are there already. */
-        const void* frame = nullptr;
-        std::uint64_t contents = 0;
+        /** The group's culls that added the runs (numbered by its cull state), one after the other, each at the
+          * same texels (Run::at), from placedSince to placedUntil (none where placedSince > placedUntil): a frame one
+          * of them took holds them there still while no cull took it since and nothing moved in its buffer
+          * (InstancedFrame::beginWrites()), whichever of the pool's frames the next cull takes (with osgViewer's
+          * draw thread the frames alternate). */
+        std::uint64_t placedSince = 1;
+        std::uint64_t placedUntil = 0;
         /** With near and far computed from bounding volumes (the view's, which the kept instances' view number
           * counts), the near and far distances the kept instances' drawables gave (DepthRange), merged into the
           * visitor's again where they are added again. */

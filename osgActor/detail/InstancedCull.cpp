@@ -90,6 +90,14 @@ void InstancedFrame::setWindow(unsigned i, unsigned first, unsigned texels)
     window.setImage(static_cast<int>(texels), 1, 1, GL_RGBA32F_ARB, GL_RGBA, GL_FLOAT, data, osg::Image::NO_DELETE);
 }
 
+std::uint64_t InstancedFrame::beginWrites(std::uint64_t cull)
+{
+    const std::uint64_t holds = _contents == _writesContents + 1 ? _writesCull : 0;
+    _writesContents = _contents;
+    _writesCull = cull;
+    return holds;
+}
+
 void InstancedFrame::dirtyAll()
 {
     for (const Buffer& buffer : _buffers) buffer.texels->dirty();
@@ -196,8 +204,8 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
 InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state, osg::Group& group,
                              osg::StateSet* programState, unsigned textureUnit, const Threads& threads)
     : _cv(cv), _state(state), _programState(programState), _textureUnit(textureUnit), _scratch(&state._scratch[0]),
-      _outcome(nullptr), _mayDecideShared(true), _deferred(false), _culledInParallel(false), _loopFrame(nullptr),
-      _loopContents(0), _traversalMask(cv.getTraversalMask()),
+      _outcome(nullptr), _mayDecideShared(true), _deferred(false), _culledInParallel(false),
+      _cullNumber(++state._culls), _frameHolds(0), _traversalMask(cv.getTraversalMask()),
       _maskOverride(cv.getNodeMaskOverride()),
       _smallFeatureCulling((cv.getCurrentCullingSet().getCullingMask() & osg::CullingSet::SMALL_FEATURE_CULLING) != 0),
       _computeNearFar(cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR),
@@ -222,8 +230,7 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
     _scratch->stateVerdicts.clear();
     _scratch->skinStateVerdicts.clear();
     placeBatches(textureUnit);
-    _loopFrame = _state._frame;
-    _loopContents = _loopFrame ? _loopFrame->contents() : 0;
+    if (_state._frame) _frameHolds = _state._frame->beginWrites(_cullNumber);
     // A skinned mesh's setup may change between culls: found again when an actor first needs it.
     for (InstancedCullState::Batch& batch : _state._batches) batch.texelsKnown = !batch.mesh;
     // Verdicts of plans that only the cache still holds (their actors made new ones, or are gone) are dropped now and
@@ -763,7 +770,8 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
     kept.actorModelView = actorModelView;
     kept.runs.clear();
     kept.matrices.clear();
-    kept.frame = nullptr;
+    kept.placedSince = 1; // added nowhere yet
+    kept.placedUntil = 0;
     _recording = &kept;
     return false;
 }
@@ -774,6 +782,7 @@ void InstancedCull::addKeptRuns(ActorCullState::InstancedVerdict& kept)
     // the run is found where this frame's last cull added it; one copy where the batch's region has room for it; one
     // instance at a time where it may not.
     const bool inFrame = keptInFrame(kept);
+    bool samePlaces = true;
     const float* matrix = kept.matrices.data();
     for (ActorCullState::InstancedVerdict::Run& run : kept.runs)
     {
@@ -783,6 +792,7 @@ void InstancedCull::addKeptRuns(ActorCullState::InstancedVerdict& kept)
             const unsigned at = into.base + into.count * into.texels;
             if (!inFrame || run.at != at)
             {
+                samePlaces = samePlaces && run.at == at;
                 std::memcpy(out, matrix, 16 * sizeof(float) * run.count);
                 run.at = at;
                 _wroteTexels = true;
@@ -794,11 +804,11 @@ void InstancedCull::addKeptRuns(ActorCullState::InstancedVerdict& kept)
         {
             for (unsigned k = 0; k < run.count; ++k, matrix += 16)
                 std::memcpy(nextInstance(run.batch), matrix, 16 * sizeof(float));
+            samePlaces = samePlaces && run.at == ~0u;
             run.at = ~0u;
         }
     }
-    kept.frame = _loopFrame;
-    kept.contents = _loopContents;
+    notePlaced(kept, samePlaces);
 }
 
 void InstancedCull::addDrawable(const Step& step, unsigned batch, bool insideTop)

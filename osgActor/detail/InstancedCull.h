@@ -23,10 +23,12 @@
 // An actor that did not change since the cull before (its counters, its model-view matrix, the view) adds the
 // instances it kept (ActorCullState::InstancedVerdict) rather than being culled again, and, with near and far
 // computed from bounding volumes, merges the near and far its drawables gave into the visitor's; where the frame's buffer still
-// holds them at the texels this cull gives them (the frame's last cull added them there, InstancedFrame::contents()),
-// nothing is written, and a frame whose cull wrote nothing is not marked for upload: a still crowd before a still
-// camera, culled again into the frame it was culled into last (a viewer that draws each frame before the next cull),
-// writes and uploads nothing.
+// holds them at the texels this cull gives them, nothing is written, and a frame whose cull wrote nothing is not
+// marked for upload. The culls are numbered, and the actor keeps the run of culls, one after the other, that added
+// its instances at the same texels; a frame knows which cull took it last and whether its buffer changed since
+// (InstancedFrame::beginWrites()). So a still crowd before a still camera writes and uploads nothing, whether the
+// viewer draws each frame before the next cull (one frame, culled again) or draws on a thread of its own while the
+// next frame is culled (osgViewer's DrawThreadPerContext: two frames or more, taken in turn, each written once).
 //
 // With an ActorGroup's threads (from its getMinActorsForParallelCull() actors on), each actor child's part of the cull
 // runs on them, with the same code, and the result is the serial cull's: InstancedCullParallel.cpp says how.
@@ -90,6 +92,10 @@ public:
     std::uint64_t contents() const { return _contents; }
     void taken() { ++_contents; }
     void moved() { ++_contents; }
+    /** A cull that took the frame begins writing (its buffer placed), numbered cull by the group's cull state: the
+      * number of the frame's cull before, whose texels, from its own beginWrites() on, buffer 0 holds still (no cull
+      * took the frame between, nothing moved or was lost since), or 0. */
+    std::uint64_t beginWrites(std::uint64_t cull);
     /** Buffer i and the rigid parts' program. */
     osg::StateSet* getStateSet(unsigned i = 0) const { return _buffers[i].stateSet.get(); }
     /** Buffer i alone, for the skinned meshes' draws, under their own programs. */
@@ -117,6 +123,8 @@ private:
     std::vector<Buffer> _buffers;
     std::vector<osg::ref_ptr<InstancedDraw>> _draws;
     std::uint64_t _contents = 0;
+    std::uint64_t _writesContents = 0; // contents() when the last cull began writing (beginWrites())
+    std::uint64_t _writesCull = 0;     // that cull's number
 };
 
 /** What an InstancedActorGroup keeps from one cull to the next: the pool of frames and the cull's working space. One
@@ -228,6 +236,8 @@ private:
     /** Tells this state from every other, for the verdict an actor keeps (ActorCullState::InstancedVerdict). */
     const std::uint64_t _serial;
     std::vector<osg::ref_ptr<InstancedFrame>> _frames;
+    /** The culls so far: the last one's number (ActorCullState::InstancedVerdict::placedSince). */
+    std::uint64_t _culls = 0;
     osg::ref_ptr<InstanceBufferLimit> _limit;
     /** Whether the notices of a frame split over several buffers, and of a mesh whose instance alone is more than a
       * buffer holds, were given (once per group). */
@@ -454,10 +464,18 @@ private:
     bool replayKept(ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions, bool entryKept);
     /** The serial cull's copy of the kept instances into their batches. */
     void addKeptRuns(ActorCullState::InstancedVerdict& kept);
-    /** Whether the kept instances lie in this cull's buffer where the last cull of its frame added them. */
+    /** Whether the kept instances lie in this cull's buffer where the last cull of its frame added them: the culls
+      * that added them at the same texels, one after the other, reach this one and include the frame's last, whose
+      * texels its buffer holds still. */
     bool keptInFrame(const ActorCullState::InstancedVerdict& kept) const
     {
-        return _loopFrame && kept.frame == _loopFrame && kept.contents + 1 == _loopContents;
+        return kept.placedUntil + 1 == _cullNumber && kept.placedSince <= _frameHolds;
+    }
+    /** Notes that this cull added the kept runs, each where it was before if samePlaces. */
+    void notePlaced(ActorCullState::InstancedVerdict& kept, bool samePlaces) const
+    {
+        if (!samePlaces || kept.placedUntil + 1 != _cullNumber) kept.placedSince = _cullNumber;
+        kept.placedUntil = _cullNumber;
     }
     /** Whether kept.actorModelView is the actor's model-view matrix now, not composed again (its bound counted in
       * versions). */
@@ -527,10 +545,10 @@ private:
     bool _mayDecideShared;
     bool _deferred;
     bool _culledInParallel;
-    /** The frame the actors' instances go to, and its contents, as the placing of the batches left them (before any
-      * batch outgrows its region). */
-    InstancedFrame* _loopFrame;
-    std::uint64_t _loopContents;
+    /** This cull's number, and that of the cull before of the frame the actors' instances go to, whose texels its
+      * buffer holds still as the placing of the batches left it (InstancedFrame::beginWrites()), or 0. */
+    std::uint64_t _cullNumber;
+    std::uint64_t _frameHolds;
     unsigned _traversalMask;
     unsigned _maskOverride;
     bool _smallFeatureCulling;

@@ -226,14 +226,16 @@ void InstancedCull::writeActor(ActorNode& actor, const ActorOutcome& outcome, bo
         // As addKeptRuns(): a run where this frame's last cull added it is not written again.
         ActorCullState::InstancedVerdict& kept = actorState._instancedVerdict;
         const bool inFrame = keptInFrame(kept);
+        bool samePlaces = true;
         const float* matrix = kept.matrices.data();
         for (unsigned k = 0; k < outcome.numRuns; ++k)
         {
+            const unsigned at = kept.runs[k].at;
             writeRun(runs[k].batch, runs[k].first, runs[k].count, matrix, &kept.runs[k], inFrame, wrote);
+            samePlaces = samePlaces && kept.runs[k].at == at;
             matrix += 16 * std::size_t(runs[k].count);
         }
-        kept.frame = _loopFrame;
-        kept.contents = _loopContents;
+        notePlaced(kept, samePlaces);
     }
     else
     {
