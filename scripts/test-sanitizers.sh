@@ -46,12 +46,12 @@ tsan() {
     local build="${OSGACTOR_TSAN_BUILD_DIR:-$root/build-tsan}"
     sanitizer_configure tsan "$build"
     cmake --build "$build" -j "$jobs" --target osgactor_node_tests osgactor_soak_test osgactor_threaded_viewer \
-        osgactor_skinned_threaded_viewer
+        osgactor_skinned_threaded_viewer osgactor_still_crowd_viewer
     # Any report makes the program exit with 66 at the end (TSan's exitcode), which fails this script.
     export TSAN_OPTIONS="suppressions=$supp/tsan.supp:second_deadlock_stack=1:history_size=4"
     export OSG_NOTIFY_LEVEL=WARN
     "$build/bin/osgactor_node_tests" \
-        --gtest_filter='WorkerPool.*:ActorGroup.*:ActorGroupCull.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*:InstancedParallelCull.*'
+        --gtest_filter='WorkerPool.*:ActorGroup.*:ActorGroupCull.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*:InstancedParallelCull.*:InstancedFramesInFlight.*'
     OSGACTOR_SOAK_FRAMES=400 "$build/bin/osgactor_soak_test"
     local model
     for model in DrawThreadPerContext CullDrawThreadPerContext; do
@@ -60,6 +60,8 @@ tsan() {
     # Instanced draws: each frame's instance buffer written by one cull (its actors' part on the group's threads)
     # while the previous frame's is drawn.
     xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_threaded_viewer" DrawThreadPerContext 60 instanced
+    # A still instanced crowd: its kept instances found in the alternating frames, written by no cull.
+    xvfb-run -a -s "-screen 0 1280x1024x24" "$build/bin/osgactor_still_crowd_viewer" DrawThreadPerContext 30
     # Skinned meshes: per-frame buffers filled in cull by two cameras' cull threads while the draw reads the others;
     # their matrices and bounds computed on the ActorGroup's threads, and the actors' cull prepared there.
     for model in DrawThreadPerContext CullDrawThreadPerContext; do

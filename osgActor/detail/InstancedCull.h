@@ -86,10 +86,9 @@ public:
     InstancedDraw* draw(unsigned i);
     /** Marks every buffer's texels (buffer 0's and the windows', in use or not) written, for upload. */
     void dirtyAll();
-    /** A number for what buffer 0 holds: a new one for each cull that takes the frame (taken()), and wherever what
-      * was written moves or is lost (its texels reserved anew, a batch moved). Texels written while it was n are
-      * there still while it is n + 1, where the cull finds them at the same place. */
-    std::uint64_t contents() const { return _contents; }
+    /** What buffer 0 holds is numbered anew for each cull that takes the frame (taken()), and wherever what was
+      * written moves or is lost (moved(): its texels reserved anew, a batch moved). Texels written while it was n are
+      * there still while it is n + 1, where the cull finds them at the same place (beginWrites()). */
     void taken() { ++_contents; }
     void moved() { ++_contents; }
     /** A cull that took the frame begins writing (its buffer placed), numbered cull by the group's cull state: the
@@ -122,8 +121,8 @@ private:
     osg::ref_ptr<InstanceBufferLimit> _limit;
     std::vector<Buffer> _buffers;
     std::vector<osg::ref_ptr<InstancedDraw>> _draws;
-    std::uint64_t _contents = 0;
-    std::uint64_t _writesContents = 0; // contents() when the last cull began writing (beginWrites())
+    std::uint64_t _contents = 0;       // the number of what buffer 0 holds (taken(), moved())
+    std::uint64_t _writesContents = 0; // _contents when the last cull began writing (beginWrites())
     std::uint64_t _writesCull = 0;     // that cull's number
 };
 

@@ -1,11 +1,11 @@
 /* A still crowd under an InstancedActorGroup before a still camera, in osgViewer with a threading model (argv[1], as
- * osgactor_threaded_viewer takes it) and a number of frames (argv[2]): with a draw thread the render graph of one
- * frame is drawn while the next is culled, so the group's frames (their texture buffers of instances) alternate
- * (DrawThreadPerContext or CullThreadPerCameraDrawThreadPerContext; argv[3] "serial": too few actors for the group's
- * threads).
- * Once each has been filled, no cull may mark a buffer for upload again. The buffers are found in the render graphs
- * the renderer's scene views hold, the draw thread stopped. Run under xvfb-run by ctest. Exit status 0 when nothing
- * was marked for upload after the first frames, 1 if something was, or the viewer could not start. */
+ * osgactor_threaded_viewer takes it, with a draw thread: DrawThreadPerContext or
+ * CullThreadPerCameraDrawThreadPerContext) for a number of frames (argv[2]); argv[3] "serial": too few actors for the
+ * group's threads. The render graph of one frame is drawn while the next is culled, so the group's frames (their
+ * texture buffers of instances) alternate; once each has been filled, no cull may mark a buffer for upload again. The
+ * buffers are found in the render graphs the renderer's scene views hold, the draw thread stopped. Run under xvfb-run
+ * by ctest and ThreadSanitizer. Exit status 0 when nothing was marked for upload after the first frames, 1 if
+ * something was, the frames did not alternate, or the viewer could not start. */
 #include "RobustnessUtil"
 #include "ViewerThreadingModel"
 #include "nodes/CullProbe"
