@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
     build-essential cmake pkg-config git
+    ccache                                 # compiles again only what changed (scripts/build.sh; the clean-clone check)
     libopenscenegraph-dev openscenegraph   # OSG 3.6 headers, libraries, osgDB plugins, osgviewer/osgconv
     libglm-dev                             # the core's math
     libtinygltf-dev                        # the glTF reader (osgActor/import)

@@ -511,7 +511,9 @@ TEST(ActorNode, ALargeActorsSkeletonNodesLieSideBySideOnMemoryAdvisedForHugePage
         return text;
     }();
     if (!thp.empty() && thp.find("[never]") == std::string::npos)
+    {
         EXPECT_NE(mappingFlags(inHugePage).find(" hg "), std::string::npos) << mappingFlags(inHugePage);
+    }
 
     // Posed, edited and given back like any other.
     actor->setDof(actor->getDefinition()->getFirstDof(kJoints - 1), 0.5);

@@ -32,7 +32,7 @@ int runRender(const std::string& arguments, std::string& output)
     // One log per test: ctest runs the tests of this file at the same time.
     const std::string log = kOut + ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".log";
     osgDB::makeDirectoryForFile(log);
-    const int status = std::system((std::string(OSGACTOR_RENDER_PROGRAM) + arguments + " > " + log + " 2>&1").c_str());
+    const int status = std::system((std::string(OSGACTOR_TEST_PROGRAM_DIR) + "/osgactorrender" + arguments + " > " + log + " 2>&1").c_str());
     std::ifstream in(log);
     std::ostringstream text;
     text << in.rdbuf();
