@@ -4,12 +4,16 @@
 # renders the demo offscreen (scripts/demo.sh without a display) and runs the quick suite (OSGACTOR_QUICK=1
 # scripts/test.sh). Uncommitted changes are not in the copy: the script says so when there are some.
 #
-# Cost: a second build, without the benchmarks. When the main build went through ccache, this one does too, and every
-# object whose compile command does not hold the copy's path (the library, plugins, applications: everything but the
-# tests, which are given their data folders' paths) comes from the main build's; the copy's folder depends only on
-# this tree's path, so from the second run on the tests' objects come from the cache too. Otherwise the copy is built
-# without debug information. docs/robustness.md ("Timings") has the figures. scripts/test.sh runs it after the quick suite;
-# OSGACTOR_CLEAN_CLONE=0 leaves it out there.
+# Cost: a second build, without the benchmarks. When the main build went through ccache (scripts/build.sh does where
+# it is installed), this one does too, and takes every object from the main build's (no compile command holds a path
+# of either tree: tests/TestPaths). Otherwise the copy is built without debug information. docs/robustness.md
+# ("Timings") has the figures. scripts/test.sh runs it after the quick suite; OSGACTOR_CLEAN_CLONE=0 leaves it out there.
+#
+# In place: where this tree is itself a clean clone (CI's checkout), a copy would repeat the very run that made it.
+# scripts/test.sh says so (OSGACTOR_CLEAN_CLONE_IN_PLACE=1) when, before it built anything, the tree held nothing but
+# committed files (git status, ignored files included) and its folder held nothing but the tree. Then the same checks
+# run here: no committed file names this tree's path, and the demo renders offscreen; the quick suite has just passed
+# by the same test command.
 #
 # Environment: OSGACTOR_JOBS (parallel jobs), OSGACTOR_KEEP_CLEAN_CLONE=1 (keep the copy and its build afterwards).
 set -euo pipefail
@@ -30,6 +34,40 @@ if [ "$changes" -gt 0 ]; then
         "the commit $commit"
 fi
 
+# No committed file names this tree's own path (which would work here and nowhere else).
+check_no_own_path() {
+    local tree="$1" named
+    named="$(grep -rIl --exclude-dir=.git -F "$root" "$tree" 2>/dev/null || true)"
+    [ -z "$named" ] || fail "these files name $root:"$'\n'"${named//$tree\//}"
+}
+
+# The demo without a display, by the tree's own command: it builds, then renders the showcase offscreen into out.
+# Whatever the render says beyond its own lines ("demo: ...", "osgactorrender: ...") is a warning (a file osgDB could
+# not find, say): the check fails on it.
+check_demo() {
+    local tree="$1" out="$2" log said frames
+    log="$(mktemp)"
+    (cd "$tree" && unset DISPLAY OSG_LIBRARY_PATH OSG_FILE_PATH &&
+        OSGACTOR_DEMO_OUT="$out" OSGACTOR_JOBS="$jobs" scripts/demo.sh) 2>&1 | tee "$log"
+    said="$(sed -n '/^demo: no display/,$p' "$log" | grep -vE '^(demo|osgactorrender): ' || true)"
+    rm -f "$log"
+    [ -z "$said" ] || fail "the demo's render said:"$'\n'"$said"
+    frames=("$out"/frame_*.png)
+    { [ ${#frames[@]} -eq 60 ] && [ -s "$out/contact_sheet.png" ]; } ||
+        fail "the demo rendered ${#frames[@]} frames (60 expected) or no contact sheet"
+    say "demo: 60 frames and the contact sheet in $out"
+}
+
+if [ "${OSGACTOR_CLEAN_CLONE_IN_PLACE:-0}" = 1 ]; then
+    say "this tree is itself a clean clone (nothing but committed files, nothing beside it): checked in place"
+    check_no_own_path "$root"
+    out="$(mktemp -d)"
+    trap 'rm -rf "$out"' EXIT
+    check_demo "$root" "$out"
+    say "the commit $commit builds, renders the demo and passes the quick suite alone, in $((SECONDS - start)) s"
+    exit 0
+fi
+
 # A folder holding the copy and nothing else, named after this tree so that two trees' checks never share one.
 parent="${TMPDIR:-/tmp}/osgactor-clean-clone-$(id -u)-$(printf '%s' "$root" | cksum | cut -d ' ' -f 1)"
 clone="$parent/osgActor"
@@ -39,14 +77,7 @@ mkdir -p "$clone"
 git -C "$root" archive --format=tar HEAD | tar -x -C "$clone"
 [ "$(ls -A "$parent")" = osgActor ] || fail "$parent holds more than the copy"
 say "commit $commit copied to $clone"
-
-# No committed file names this tree's own path (which would work here and nowhere else).
-if grep -rIl --exclude-dir=.git -F "$root" "$clone" >"$parent.paths" 2>/dev/null; then
-    sed "s|^$clone/||" "$parent.paths" >&2
-    rm -f "$parent.paths"
-    fail "the files above name $root"
-fi
-rm -f "$parent.paths"
+check_no_own_path "$clone"
 
 # The build as the copy's scripts make it (the benchmarks left out: neither the demo nor the tests use them). When the
 # main build went through ccache, so does this one, with the same flags: paths below $parent are made relative for
@@ -66,19 +97,8 @@ else
 fi
 cmake -S "$clone" -B "$clone/build" "${configure[@]}" >/dev/null
 # The copy's scripts work in the copy: its build/ and out/demo/, whatever this shell points them at.
-unset OSGACTOR_BUILD_DIR OSGACTOR_DEMO_OUT
-
-# The demo without a display: it builds, then renders the showcase offscreen. Whatever the render says beyond its own
-# lines ("demo: ...", "osgactorrender: ...") is a warning (a file osgDB could not find, say): the check fails on it.
-unset DISPLAY OSG_LIBRARY_PATH OSG_FILE_PATH
-(cd "$clone" && OSGACTOR_JOBS="$jobs" scripts/demo.sh) 2>&1 | tee "$parent.demo.log"
-render_said="$(sed -n '/^demo: no display/,$p' "$parent.demo.log" | grep -vE '^(demo|osgactorrender): ' || true)"
-rm -f "$parent.demo.log"
-[ -z "$render_said" ] || fail "the demo's render said:"$'\n'"$render_said"
-frames=("$clone"/out/demo/frame_*.png)
-{ [ ${#frames[@]} -eq 60 ] && [ -s "$clone/out/demo/contact_sheet.png" ]; } ||
-    fail "the demo rendered ${#frames[@]} frames (60 expected) or no contact sheet"
-say "demo: 60 frames and the contact sheet in the copy's out/demo"
+unset OSGACTOR_BUILD_DIR
+check_demo "$clone" "$clone/out/demo"
 
 # The quick suite, by the copy's own test command.
 (cd "$clone" && OSGACTOR_QUICK=1 OSGACTOR_JOBS="$jobs" scripts/test.sh)
