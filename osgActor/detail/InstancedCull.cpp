@@ -729,10 +729,20 @@ OSGACTOR_HOT_PATH void InstancedCull::writePlainInstances(const InstancedCullSta
                                                           InstancedCullState::Batch* batches, float* texels,
                                                           DepthRange* depths)
 {
+    // The loop made twice, with near and far and without, so that neither asks per instance.
+    if (depths) writeEachPlainInstance<true>(verdict, modelViews, batches, texels, depths);
+    else writeEachPlainInstance<false>(verdict, modelViews, batches, texels, nullptr);
+}
+
+template <bool WithDepths>
+inline void InstancedCull::writeEachPlainInstance(const InstancedCullState::PlanVerdict& verdict,
+                                                  const osg::Matrixd* modelViews, InstancedCullState::Batch* batches,
+                                                  float* texels, DepthRange* depths)
+{
     for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
     {
         const osg::Matrixd& modelView = modelViews[instance.frame];
-        if (!isDrawn(instance.drawable->getBoundingBox(), modelView, depths)) continue;
+        if (!isDrawn(instance.drawable->getBoundingBox(), modelView, WithDepths ? depths : nullptr)) continue;
         // Where the batch's next instance goes: its region has room for all of them (addPlainInstances() checked).
         InstancedCullState::Batch& batch = batches[instance.batch];
         writeInstanceMatrix(modelView, texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count));

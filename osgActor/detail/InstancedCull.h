@@ -447,6 +447,11 @@ private:
       * texels, from the actor's frames modelViews; near and far gathered into depths, where computed (else null). */
     static void writePlainInstances(const InstancedCullState::PlanVerdict& verdict, const osg::Matrixd* modelViews,
                                     InstancedCullState::Batch* batches, float* texels, DepthRange* depths);
+    /** writePlainInstances()'s loop, with near and far gathered (WithDepths) or not, inlined into each of its
+      * clones. */
+    template <bool WithDepths>
+    static void writeEachPlainInstance(const InstancedCullState::PlanVerdict& verdict, const osg::Matrixd* modelViews,
+                                       InstancedCullState::Batch* batches, float* texels, DepthRange* depths);
     /** The frustum's planes moved into the actor's frame (_scratch->actorFramePlanes), where the visitor tests the
       * top steps' spheres. */
     void moveFrustumIntoActorFrame();
