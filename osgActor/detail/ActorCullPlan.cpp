@@ -250,8 +250,8 @@ void ActorCullPlan::noteShape()
 {
     for (unsigned i = 0; i < _steps.size(); i = _steps[i].end ? _steps[i].end : i + 1)
     {
-        if (_steps[i].kind == JOINT) _topJointSteps.push_back(i);
-        else _topStepsAllJoints = false;
+        _topSteps.push_back(i);
+        if (_steps[i].kind != JOINT) _topStepsAllJoints = false;
     }
     for (unsigned i = 0; i < _steps.size(); ++i)
     {

@@ -111,6 +111,8 @@ public:
     bool provesNoSmallFeatureBelow(const Step& step, const osg::Vec4& actorVector, float pixelSize) const;
     /** The DRAWABLE steps, in order. */
     const std::vector<unsigned>& getDrawableSteps() const { return _drawableSteps; }
+    /** The steps at the top (not below another: joints and geodes in the actor's frame), in order. */
+    const std::vector<unsigned>& getTopSteps() const { return _topSteps; }
     /** Whether a step gives a subtree the ordinary traversal (which may read or reset the visitor's near and far). */
     bool hasOrdinarySteps() const { return _hasOrdinarySteps; }
     /** Whether a cull would test nothing below the top joints' own spheres, so that it culls nothing below them: no
@@ -126,7 +128,7 @@ public:
             if (isMaskedOut(traversalMask, nodeMaskOverride, mask)) return false;
         if (!smallFeatureCulling) return true;
         if (!_topStepsAllJoints) return false;
-        for (unsigned i : _topJointSteps)
+        for (unsigned i : _topSteps)
         {
             const Step& step = _steps[i];
             if (step.cullingActive && isSmallFeatureAtTop(step.node->getBound())) return false;
@@ -244,8 +246,8 @@ private:
     bool isUnchanged(const NodeCheck& check) const;
     static bool isUnchanged(const StateCheck& check);
 
-    /** Once planned: the distinct masks of the JOINT, GEODE and DRAWABLE steps, the steps at the top (each a joint:
-      * _topStepsAllJoints) and the DRAWABLE steps. */
+    /** Once planned: the distinct masks of the JOINT, GEODE and DRAWABLE steps, the steps at the top (and whether
+      * each is a joint: _topStepsAllJoints) and the DRAWABLE steps. */
     void noteShape();
 
     // First, so that the check reads the plan's first lines only.
@@ -259,7 +261,7 @@ private:
     std::vector<Step> _steps;
     std::vector<Joint> _joints;
     std::vector<osg::Node::NodeMask> _masks;
-    std::vector<unsigned> _topJointSteps;
+    std::vector<unsigned> _topSteps;
     bool _topStepsAllJoints = true;
     bool _hasOrdinarySteps = false;
     std::vector<unsigned> _drawableSteps;

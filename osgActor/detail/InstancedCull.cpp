@@ -610,11 +610,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
     // step whose sphere lies wholly inside every plane, as ActorCullState::prepareDrawablesByBounds() does: the
     // visitor tests that sphere so (the planes moved into the actor's frame) and then tests no plane below it.
     const bool boxesTested = _computeNearFar && _frustumCulling;
-    if (boxesTested)
-    {
-        _scratch->actorFramePlanes = _cv.getProjectionCullingStack().back().getFrustum().getPlaneList();
-        for (osg::Plane& plane : _scratch->actorFramePlanes) plane.transformProvidingInverse(_scratch->modelViews[0]);
-    }
+    if (boxesTested) moveFrustumIntoActorFrame();
     std::size_t topEnd = 0; // the end of the top step the steps are below
     bool insideTop = false; // its sphere wholly inside the frustum
     for (std::size_t i = 0; i < steps.size();)
@@ -623,7 +619,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
         if (boxesTested && i >= topEnd)
         {
             topEnd = step.end ? step.end : i + 1;
-            insideTop = step.cullingActive && isWhollyInside(step.node->getBound(), _scratch->actorFramePlanes);
+            insideTop = isInsideTop(step);
         }
         switch (step.kind)
         {
@@ -672,58 +668,88 @@ void InstancedCull::compilePlainInstances(InstancedCullState::PlanVerdict& verdi
     }
 }
 
+void InstancedCull::moveFrustumIntoActorFrame()
+{
+    _scratch->actorFramePlanes = _cv.getProjectionCullingStack().back().getFrustum().getPlaneList();
+    for (osg::Plane& plane : _scratch->actorFramePlanes) plane.transformProvidingInverse(_scratch->modelViews[0]);
+}
+
 bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& verdict)
 {
-    // What cullSteps() would test: near and far from each drawable's box, a node a mask rules out, a top joint that
-    // is a small feature, a subtree below a top joint with no proof that none of its spheres is one. The instances
-    // being recorded for an idle actor go through the steps too.
-    if (!verdict.compiled() || _computeNearFar || _recording) return false;
+    // What cullSteps() would test: a node a mask rules out, a top joint that is a small feature, a subtree below a
+    // top joint with no proof that none of its spheres is one, and, with near and far computed, each drawable's box
+    // against the frustum below a top step whose sphere is not wholly inside it (a visible crowd's actors are
+    // mostly wholly inside: their near and far come from the list below). The instances being recorded for an idle
+    // actor go through the steps too.
+    if (!verdict.compiled() || _recording) return false;
     if (!verdict.plan->needsNoTestBelowTopJoints(
             _traversalMask, _maskOverride, _smallFeatureCulling,
             _smallFeatureCulling ? actorPixelSizeVector() : osg::Vec4(), _smallFeaturePixelSize,
             [this](const osg::BoundingSphere& bound) { return isSmallFeature(bound, 0); }))
         return false;
+    if (_computeNearFar && _frustumCulling)
+    {
+        moveFrustumIntoActorFrame();
+        const std::vector<Step>& steps = verdict.plan->getSteps();
+        for (unsigned i : verdict.plan->getTopSteps())
+            if (!isInsideTop(steps[i])) return false;
+    }
+    // Then what addDrawable() does with a drawable it does not test against the frustum (isDrawn()), in step order,
+    // so each batch's instances are in the order the steps would give them, and the actor's near and far gathered
+    // from the same boxes in the same order.
+    DepthRange* depths = _computeNearFar ? &_actorDepths : nullptr;
     if (_outcome)
     {
-        // The parallel cull: into the thread's scratch, in step order, the drawables whose depth is a number (its
-        // last pass puts them in their regions, or where their batches move).
+        // The parallel cull: into the thread's scratch (its last pass puts them in their regions, or where their
+        // batches move).
         InstancedCullState::InstanceData& data = _scratch->data;
         const std::size_t start = data.size();
         float* out = data.extend(16 * verdict.plainInstances.size());
         for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
         {
             const osg::Matrixd& modelView = _scratch->modelViews[instance.frame];
-            if (hasNoDepth(instance.drawable->getBoundingBox(), modelView)) continue;
+            if (!isDrawn(instance.drawable->getBoundingBox(), modelView, depths)) continue;
             writeInstanceMatrix(modelView, out);
             out += 16;
             addToRuns(instance.batch);
         }
         data.shrink(start + std::size_t(out - (data.data() + start)));
         _wroteTexels = true;
+        _outcome->compiled = true;
         return true;
     }
     // Every instance in its batch's region (nextInstance() moves a batch that outgrows it: the steps do that).
     std::vector<InstancedCullState::Batch>& batches = _state._batches;
     for (const std::pair<unsigned, unsigned>& counted : verdict.instancesPerBatch)
         if (!roomInRegion(batches[counted.first], counted.second)) return false;
-    // Then what addDrawable() does without near and far: a drawable whose depth is not a number is dropped (the
-    // visitor drops it), the others' matrices written in step order, so each batch's instances are in the order the
-    // steps would give them.
-    writePlainInstances(verdict, _scratch->modelViews.data(), batches.data(), _state._texels);
+    writePlainInstances(verdict, _scratch->modelViews.data(), batches.data(), _state._texels, depths);
     _wroteTexels = true;
+    ++_state._statistics.actorsCompiled;
     return true;
 }
 
 // Built for x86-64-v3 too (the conversions to float four at a time): every instance of a moving crowd goes through
-// it. The depths' products and sums are not contracted (this file's options), so each clone gives the same bits.
+// it. The depths' and near and far's products and sums are not contracted (this file's options), so each clone gives
+// the bits of the steps' addDrawable().
 OSGACTOR_HOT_PATH void InstancedCull::writePlainInstances(const InstancedCullState::PlanVerdict& verdict,
                                                           const osg::Matrixd* modelViews,
-                                                          InstancedCullState::Batch* batches, float* texels)
+                                                          InstancedCullState::Batch* batches, float* texels,
+                                                          DepthRange* depths)
+{
+    // The loop made twice, with near and far and without, so that neither asks per instance.
+    if (depths) writeEachPlainInstance<true>(verdict, modelViews, batches, texels, depths);
+    else writeEachPlainInstance<false>(verdict, modelViews, batches, texels, nullptr);
+}
+
+template <bool WithDepths>
+inline void InstancedCull::writeEachPlainInstance(const InstancedCullState::PlanVerdict& verdict,
+                                                  const osg::Matrixd* modelViews, InstancedCullState::Batch* batches,
+                                                  float* texels, DepthRange* depths)
 {
     for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
     {
         const osg::Matrixd& modelView = modelViews[instance.frame];
-        if (hasNoDepth(instance.drawable->getBoundingBox(), modelView)) continue;
+        if (!isDrawn(instance.drawable->getBoundingBox(), modelView, WithDepths ? depths : nullptr)) continue;
         // Where the batch's next instance goes: its region has room for all of them (addPlainInstances() checked).
         InstancedCullState::Batch& batch = batches[instance.batch];
         writeInstanceMatrix(modelView, texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count));
@@ -818,14 +844,10 @@ void InstancedCull::addDrawable(const Step& step, unsigned batch, bool insideTop
     // As ActorCull::addDrawable(): near and far from what is drawn, the box against the frustum before; from
     // bounding volumes, gathered for the actor (a drawable wholly behind the eye dropped, as the visitor drops it).
     const osg::BoundingBox& box = drawable.getBoundingBox();
-    if (_computeNearFar && box.valid())
-    {
-        if (_frustumCulling && step.cullingActive && !insideTop &&
-            isOutsideFrustum(box, modelView, _cv.getProjectionCullingStack().back().getFrustum()))
-            return;
-        if (!_actorDepths.addBox(box, modelView)) return;
-    }
-    if (hasNoDepth(box, modelView)) return; // the visitor drops it too
+    if (_computeNearFar && box.valid() && _frustumCulling && step.cullingActive && !insideTop &&
+        isOutsideFrustum(box, modelView, _cv.getProjectionCullingStack().back().getFrustum()))
+        return;
+    if (!isDrawn(box, modelView, _computeNearFar ? &_actorDepths : nullptr)) return; // the visitor drops it too
     float* out = nextInstance(batch);
     writeInstanceMatrix(modelView, out);
     if (_recording)

@@ -8,8 +8,11 @@
 // sphere lies wholly inside it, and near and far from it, gathered per actor (from bounding volumes: near and far from
 // primitives are culled ordinarily, InstancedActorGroup)), its joints' model-view matrices composed with the visitor's
 // own products (CullArithmetic.h), and each drawable that survives adds one instance, its joint's model-view matrix, to
-// the batch of its (geode state set, drawable). The actors that cannot be taken so get the ordinary traversal, in child
-// order. Then each batch becomes one leaf: an InstancedDraw of the drawable for all its instances, under the geode's
+// the batch of its (geode state set, drawable). An actor of rigid parts whose cull would test nothing below its top
+// joints (no mask rules out a node, no small feature below them, and, while near and far are computed, every top
+// joint's sphere wholly inside the frustum, so that no drawable's box is tested) adds its drawables from its plan's
+// compiled list in one loop, with their near and far in the same loop, in the order and with the arithmetic the steps
+// would (addPlainInstances()). The actors that cannot be taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an InstancedDraw of the drawable for all its instances, under the geode's
 // and the drawable's state sets and the frame's state set (the program and the texture buffer of all instances'
 // matrices, as floats, 4 texels each). A skinned mesh in the actor's frame (InstancedSkin.h) adds one instance to the
 // batch of its (geode state set, mesh): its model-view matrix and its palette, drawn by one instanced draw of the
@@ -136,14 +139,17 @@ public:
     bool tryAcquire() { return !_busy.test_and_set(std::memory_order_acquire); }
     void release() { _busy.clear(std::memory_order_release); }
 
-    /** What the last cull did: actors drawn instanced and ordinarily, instanced draws of rigid parts and of skinned
-      * meshes and the instances they drew, the texture buffers the draws read and the texels one could hold. */
+    /** What the last cull did: actors drawn instanced (of them, those whose instances were added again, kept, and
+      * those added from their plan's compiled list, InstancedCull::addPlainInstances()) and ordinarily, instanced
+      * draws of rigid parts and of skinned meshes and the instances they drew, the texture buffers the draws read and
+      * the texels one could hold. */
     struct Statistics
     {
         unsigned actorsInstanced = 0;
         unsigned actorsOrdinary = 0;
         unsigned actorsOutOfView = 0;
         unsigned actorsKept = 0;
+        unsigned actorsCompiled = 0;
         unsigned draws = 0;
         unsigned instances = 0;
         unsigned skinnedDraws = 0;
@@ -311,6 +317,7 @@ private:
         };
         Kind kind;
         bool wrote;      // data written (the frame marked for upload)
+        bool compiled;   // its instances added from its plan's compiled list
         unsigned thread; // whose scratch holds its runs and data
         unsigned firstRun;
         unsigned numRuns;
@@ -440,14 +447,29 @@ private:
     static void compilePlainInstances(InstancedCullState::PlanVerdict& verdict);
     /** For a compiled plan whose model-view matrices are composed: where this cull would test nothing below the
       * top joints (no mask rules out a node, no top joint is a small feature and the small-feature proof holds below
-      * each, near and far not computed, every batch's region has room, nothing recorded), adds each drawable's
-      * instance straight from the compiled list, as the steps would add them; returns false, having added nothing,
-      * where it cannot. */
+      * each; with near and far computed and the frustum culling, every top step's sphere wholly inside it, so that no
+      * drawable's box is tested; every batch's region has room, nothing recorded), adds each drawable's instance
+      * straight from the compiled list, as the steps would add them, with near and far from its box where computed;
+      * returns false, having added nothing, where it cannot. */
     bool addPlainInstances(const InstancedCullState::PlanVerdict& verdict);
     /** addPlainInstances()'s writes, each instance where its batch's region has room (it checked), in the buffer
-      * texels, from the actor's frames modelViews. */
+      * texels, from the actor's frames modelViews; near and far gathered into depths, where computed (else null). */
     static void writePlainInstances(const InstancedCullState::PlanVerdict& verdict, const osg::Matrixd* modelViews,
-                                    InstancedCullState::Batch* batches, float* texels);
+                                    InstancedCullState::Batch* batches, float* texels, DepthRange* depths);
+    /** writePlainInstances()'s loop, with near and far gathered (WithDepths) or not, inlined into each of its
+      * clones. */
+    template <bool WithDepths>
+    static void writeEachPlainInstance(const InstancedCullState::PlanVerdict& verdict, const osg::Matrixd* modelViews,
+                                       InstancedCullState::Batch* batches, float* texels, DepthRange* depths);
+    /** The frustum's planes moved into the actor's frame (_scratch->actorFramePlanes), where the visitor tests the
+      * top steps' spheres. */
+    void moveFrustumIntoActorFrame();
+    /** Whether a top step's sphere lies wholly inside the frustum (the planes moved into the actor's frame), so that
+      * the visitor tests nothing below it against the frustum. */
+    bool isInsideTop(const Step& step) const
+    {
+        return step.cullingActive && isWhollyInside(step.node->getBound(), _scratch->actorFramePlanes);
+    }
     /** Whether the kept instances of an actor with these counters may hold for this cull (its model-view matrix
       * still to compare). */
     bool mayReplay(const ActorCullState::InstancedVerdict& kept, const ActorCullState::Versions& versions) const
@@ -511,6 +533,15 @@ private:
     static bool hasNoDepth(const osg::BoundingBox& box, const osg::Matrixd& modelView)
     {
         return box.valid() && osg::isNaN(eyeDepth(box.center(), modelView));
+    }
+    /** What the visitor does with a drawable of this box that it did not cull against the frustum, in a frame of this
+      * model-view matrix: with near and far computed (depths, else null), near and far from its box, the drawable
+      * dropped where it lies wholly behind the eye; then dropped where its depth is not a number. Whether it is
+      * drawn. */
+    static bool isDrawn(const osg::BoundingBox& box, const osg::Matrixd& modelView, DepthRange* depths)
+    {
+        if (depths && box.valid() && !depths->addBox(box, modelView)) return false;
+        return !hasNoDepth(box, modelView);
     }
     /** Gives each batch its region in a frame's buffer, as large as its data of the previous cull. */
     void placeBatches(unsigned textureUnit);

@@ -99,6 +99,7 @@ bool InstancedCull::cullInParallel(osg::Group& group, const Threads& threads)
         {
             ++statistics.actorsInstanced;
             if (outcome.kind == ActorOutcome::KEPT) ++statistics.actorsKept;
+            if (outcome.compiled) ++statistics.actorsCompiled;
             InstancedCullState::ActorScratch& scratch = _state._scratch[outcome.thread];
             if (outcome.seen != ~0u) noteSeen(actor, scratch.seenModelViews[outcome.seen]);
             if (_computeNearFar)
@@ -203,6 +204,7 @@ void InstancedCull::cullChildInto(ActorNode& actor, ActorOutcome& outcome)
     outcome.firstRun = static_cast<unsigned>(_scratch->runs.size());
     outcome.firstData = _scratch->data.size();
     outcome.seen = ~0u;
+    outcome.compiled = false;
     outcome.skinDepths = DepthRange();
     outcome.depths = DepthRange();
     _outcome = &outcome;
