@@ -3,8 +3,9 @@
 # (build-asan/, shared with scripts/test-sanitizers.sh asan: after it, nothing is left to build) and runs each.
 #
 #   scripts/fuzz.sh          the short run (CI, scripts/test.sh): each target for OSGACTOR_FUZZ_SECONDS on one core,
-#                            starting from its committed corpus (fuzz/corpus/<target>/), the project's data and the
-#                            saved findings, copied into a temporary folder: nothing is written to the repository.
+#                            OSGACTOR_FUZZ_JOBS targets at a time (default: every core), starting from its committed
+#                            corpus (fuzz/corpus/<target>/), the project's data and the saved findings, copied into a
+#                            temporary folder: nothing is written to the repository.
 #   scripts/fuzz.sh --long   the long run, for a many-core machine and hours: each target in turn with -fork across
 #                            OSGACTOR_FUZZ_JOBS processes (default: every core) for OSGACTOR_FUZZ_SECONDS (default
 #                            3600), on a working corpus kept between runs ($build/fuzz-work/<target>/); then the
@@ -19,7 +20,8 @@
 # (build-asan/fuzz-artifacts/), to be added to tests/robustness/inputs/<parser>/ once fixed (docs/robustness.md).
 #   OSGACTOR_FUZZ_SECONDS  seconds per target (default 60 short, 3600 long)
 #   OSGACTOR_FUZZ_TARGETS  which targets (default: all of them)
-#   OSGACTOR_FUZZ_JOBS     long run: parallel fuzzing processes per target (default: nproc)
+#   OSGACTOR_FUZZ_JOBS     short run: targets fuzzed at once; long run: parallel fuzzing processes per target
+#                          (default: nproc)
 #   OSGACTOR_ASAN_BUILD_DIR, OSGACTOR_JOBS
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -120,23 +122,47 @@ coverage() {
                              100 * covered[f] / total[f] }' | sort
 }
 
-failed=()
-for target in "${targets[@]}"; do
-    log="$work/$target.log"
-    case "$mode" in
-    short)
-        corpus="$work/$target"
-        copy_seeds "$target" "$corpus"
+# One target's short run, on one core: what it says goes to $work/<target>.said, and the file $work/<target>.failed
+# is made if it failed.
+fuzz_short() {
+    local target="$1" corpus="$work/$1" log="$work/$1.log"
+    copy_seeds "$target" "$corpus"
+    {
         echo "fuzz: $target for ${seconds}s on $(ls "$corpus" | wc -l) inputs"
         if ! "$build/bin/fuzz_$target" $(fuzz_options "$target") -max_total_time="$seconds" -print_final_stats=1 \
                 "$corpus" >"$log" 2>&1; then
             tail -n 60 "$log"
-            failed+=("$target")
+            touch "$work/$target.failed"
         else
             grep -E '^stat::(number_of_executed_units|new_units_added)' "$log" | tr '\n' ' '
             echo
         fi
-        ;;
+    } >"$work/$target.said" 2>&1
+}
+
+failed=()
+if [ "$mode" = short ]; then
+    # The targets side by side, OSGACTOR_FUZZ_JOBS at a time: each still fuzzes for its seconds on one core.
+    echo "fuzz: ${#targets[@]} targets, ${seconds}s each, $fuzz_jobs at a time"
+    running=0
+    for target in "${targets[@]}"; do
+        if [ "$running" -ge "$fuzz_jobs" ]; then
+            wait -n
+            running=$((running - 1))
+        fi
+        fuzz_short "$target" &
+        running=$((running + 1))
+    done
+    wait
+    for target in "${targets[@]}"; do
+        cat "$work/$target.said"
+        [ ! -e "$work/$target.failed" ] || failed+=("$target")
+    done
+fi
+for target in "${targets[@]}"; do
+    log="$work/$target.log"
+    case "$mode" in
+    short) ;;
     long)
         corpus="$build/fuzz-work/$target"
         copy_seeds "$target" "$corpus"
