@@ -37,43 +37,6 @@ public:
     unsigned actorsCompiled() const { return _cullState->getStatistics().actorsCompiled; }
 };
 
-/** A drawn part: its drawable and its model-view matrix as floats. */
-using Instance = std::pair<const osg::Drawable*, std::array<float, 16>>;
-
-/** The instances of a cull's instanced leaves, sorted. */
-std::vector<Instance> instancesOf(const std::vector<CulledLeaf>& leaves)
-{
-    std::vector<Instance> instances;
-    for (const CulledLeaf& leaf : leaves)
-    {
-        const auto* draw = dynamic_cast<const detail::InstancedDraw*>(leaf.drawable);
-        if (!draw) continue;
-        const std::vector<float> texels = texelsDrawnBy(leaf);
-        for (unsigned i = 0; i < draw->getNumInstances(); ++i)
-        {
-            Instance instance{draw->getGeometry(), {}};
-            std::copy_n(texels.begin() + 16 * i, 16, instance.second.begin());
-            instances.push_back(instance);
-        }
-    }
-    std::sort(instances.begin(), instances.end());
-    return instances;
-}
-
-/** The ordinary traversal's leaves as instances: each matrix rounded to floats, as OpenGL takes it; sorted. */
-std::vector<Instance> ordinaryInstancesOf(const std::vector<CulledLeaf>& leaves)
-{
-    std::vector<Instance> instances;
-    for (const CulledLeaf& leaf : leaves)
-    {
-        Instance instance{leaf.drawable, {}};
-        for (int k = 0; k < 16; ++k) instance.second[k] = static_cast<float>(leaf.modelView[k]);
-        instances.push_back(instance);
-    }
-    std::sort(instances.begin(), instances.end());
-    return instances;
-}
-
 /** The test figure with a marker, one geode below four joints: one batch of four instances an actor, which the
   * compiled list and the steps must add in the plan's order. */
 osg::ref_ptr<ActorNode> makeMarkedFigure()

@@ -3,6 +3,7 @@
 // cull's settings), as the cull as one replays its calls. Each instance must stay the ordinary traversal's drawable at
 // its model-view matrix rounded to floats: frame after frame of a still crowd, and after the camera or a pose moves.
 #include "CullProbe"
+#include "InstancedCullComparison"
 #include "render/TestFigure.h"
 
 #include <osgActor/ActorNode>
@@ -24,46 +25,6 @@ using namespace osgActor;
 using namespace osgActor::test;
 
 namespace {
-
-/** A drawn part: its drawable and its model-view matrix as floats (OSG's rows one after the other). */
-using Instance = std::pair<const osg::Drawable*, std::array<float, 16>>;
-
-/** The instances of the instanced leaves, read from the frame's texture buffer of matrices, sorted. */
-std::vector<Instance> instancesOf(const std::vector<CulledLeaf>& leaves)
-{
-    std::vector<Instance> instances;
-    for (const CulledLeaf& leaf : leaves)
-    {
-        const auto* draw = dynamic_cast<const detail::InstancedDraw*>(leaf.drawable);
-        if (!draw || leaf.states.empty()) continue;
-        const auto* buffer = dynamic_cast<const osg::TextureBuffer*>(leaf.states.back()->getTextureAttribute(
-            InstancedActorGroup::kInstanceTextureUnit, osg::StateAttribute::TEXTURE));
-        if (!buffer || !buffer->getImage()) continue;
-        const float* texels = reinterpret_cast<const float*>(buffer->getImage()->data());
-        for (unsigned i = 0; i < draw->getNumInstances(); ++i)
-        {
-            Instance instance{draw->getGeometry(), {}};
-            std::copy_n(texels + 4 * draw->getBase() + 16 * i, 16, instance.second.begin());
-            instances.push_back(instance);
-        }
-    }
-    std::sort(instances.begin(), instances.end());
-    return instances;
-}
-
-/** The ordinary traversal's leaves as instances: each matrix rounded to floats, as OpenGL takes it. */
-std::vector<Instance> ordinaryInstancesOf(const std::vector<CulledLeaf>& leaves)
-{
-    std::vector<Instance> instances;
-    for (const CulledLeaf& leaf : leaves)
-    {
-        Instance instance{leaf.drawable, {}};
-        for (int k = 0; k < 16; ++k) instance.second[k] = static_cast<float>(leaf.modelView[k]);
-        instances.push_back(instance);
-    }
-    std::sort(instances.begin(), instances.end());
-    return instances;
-}
 
 /** Four test figures, posed apart, under an instanced group and, the same nodes, under a plain group culled node by
   * node; near and far not computed (with them, nothing is kept). */
