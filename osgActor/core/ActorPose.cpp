@@ -198,6 +198,7 @@ unsigned ActorPose::updateLocalMatrices()
     _anyDirty = false;
     _anyModelStale = _anyModelStale || numRebuilt > 0;
     _anyLocalChanged = _anyLocalChanged || numRebuilt > 0;
+    _allLocalsChanged = _allLocalsChanged || (numRebuilt == _numJoints && numRebuilt > 0);
     _totalRecomputed += numRebuilt;
     return numRebuilt;
 }

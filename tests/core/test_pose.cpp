@@ -132,6 +132,36 @@ TEST(ActorPose, ChangedLocalsAreConsumedOnce)
     EXPECT_EQ(joints.size(), 2u);
 }
 
+TEST(ActorPose, EveryLocalRebuiltIsReportedInOrderWithItsMatrixThenForgotten)
+{
+    // Every joint rebuilt (as by a clip playing), then a few more before the changes are consumed: each joint once,
+    // in order, with the matrix FK wrote; then nothing until a joint changes again, and then only that joint.
+    ActorPose pose(makeArm());
+    pose.updateMatrices();
+    pose.consumeChangedLocals([](unsigned, const double*) {});
+    pose.markAllJointsDirty();
+    EXPECT_EQ(pose.updateMatrices(), 5u);
+    pose.setDof(3, 0.7);
+    EXPECT_EQ(pose.updateMatrices(), 1u);
+    std::vector<unsigned> joints;
+    std::vector<const double*> matrices;
+    pose.consumeChangedLocals([&](unsigned joint, const double* matrix) {
+        joints.push_back(joint);
+        matrices.push_back(matrix);
+    });
+    EXPECT_EQ(joints, (std::vector<unsigned>{0, 1, 2, 3, 4}));
+    for (unsigned joint = 0; joint < 5 && joint < matrices.size(); ++joint)
+        EXPECT_EQ(matrices[joint], pose.getLocalMatrixTargets()[joint]) << "joint " << joint;
+    EXPECT_FALSE(pose.hasChangedLocals());
+    joints.clear();
+    pose.consumeChangedLocals([&](unsigned joint, const double*) { joints.push_back(joint); });
+    EXPECT_TRUE(joints.empty());
+    pose.setDof(6, 0.05);
+    pose.updateMatrices();
+    pose.consumeChangedLocals([&](unsigned joint, const double*) { joints.push_back(joint); });
+    EXPECT_EQ(joints, (std::vector<unsigned>{4})) << "only the joint that changed since";
+}
+
 TEST(ActorPose, CopiesAreIndependent)
 {
     ActorPose a(makeArm());
