@@ -582,6 +582,9 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     plan.composeModelViews(modelViews.data());
     _actorDepths = DepthRange();
     _skinDepths = DepthRange();
+    // With near and far computed the frustum is tested in the actor's frame (the top steps' spheres, and the boxes
+    // below one not wholly inside): its planes moved there once, for the compiled list and the steps alike.
+    if (_computeNearFar && _frustumCulling) moveFrustumIntoActorFrame();
     if (!addPlainInstances(verdict)) cullSteps(verdict);
     if (_computeNearFar)
     {
@@ -609,8 +612,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
     // With near and far computed each drawable's box is tested against the frustum (addDrawable()), but below a top
     // step whose sphere lies wholly inside every plane, as ActorCullState::prepareDrawablesByBounds() does: the
     // visitor tests that sphere so (the planes moved into the actor's frame) and then tests no plane below it.
-    const bool boxesTested = _computeNearFar && _frustumCulling;
-    if (boxesTested) moveFrustumIntoActorFrame();
+    const bool boxesTested = _computeNearFar && _frustumCulling; // the planes moved by cullActor()
     std::size_t topEnd = 0; // the end of the top step the steps are below
     bool insideTop = false; // its sphere wholly inside the frustum
     for (std::size_t i = 0; i < steps.size();)
@@ -689,7 +691,7 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
         return false;
     if (_computeNearFar && _frustumCulling)
     {
-        moveFrustumIntoActorFrame();
+        // The planes in the actor's frame (cullActor()).
         const std::vector<Step>& steps = verdict.plan->getSteps();
         for (unsigned i : verdict.plan->getTopSteps())
             if (!isInsideTop(steps[i])) return false;

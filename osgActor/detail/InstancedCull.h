@@ -12,9 +12,10 @@
 // joints (no mask rules out a node, no small feature below them, and, while near and far are computed, every top
 // joint's sphere wholly inside the frustum, so that no drawable's box is tested) adds its drawables from its plan's
 // compiled list in one loop, with their near and far in the same loop, in the order and with the arithmetic the steps
-// would (addPlainInstances()). The actors that cannot be taken so get the ordinary traversal, in child order. Then each batch becomes one leaf: an InstancedDraw of the drawable for all its instances, under the geode's
-// and the drawable's state sets and the frame's state set (the program and the texture buffer of all instances'
-// matrices, as floats, 4 texels each). A skinned mesh in the actor's frame (InstancedSkin.h) adds one instance to the
+// would (addPlainInstances()). The actors that cannot be taken so get the ordinary traversal, in child order. Then
+// each batch becomes one leaf: an InstancedDraw of the drawable for all its instances, under the geode's and the
+// drawable's state sets and the frame's state set (the program and the texture buffer of all instances' matrices, as
+// floats, 4 texels each). A skinned mesh in the actor's frame (InstancedSkin.h) adds one instance to the
 // batch of its (geode state set, mesh): its model-view matrix and its palette, drawn by one instanced draw of the
 // mesh's bind-pose geometry under the mesh's instanced program, in the same texture buffer after the rigid parts'
 // matrices.
