@@ -242,6 +242,8 @@ InstancedCull::InstancedCull(osgUtil::CullVisitor& cv, InstancedCullState& state
     if (!_culledInParallel) cullSerially(group);
     if (_overflowed) gatherOverflow(textureUnit);
     emitBatches();
+    std::lock_guard<std::mutex> lock(_state._publishedMutex);
+    _state._published = _state._statistics;
 }
 
 InstancedCull::InstancedCull(const InstancedCull& cull, unsigned thread) : InstancedCull(cull)

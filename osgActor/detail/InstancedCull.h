@@ -55,6 +55,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <unordered_map>
 #include <vector>
 
@@ -140,7 +141,8 @@ public:
     bool tryAcquire() { return !_busy.test_and_set(std::memory_order_acquire); }
     void release() { _busy.clear(std::memory_order_release); }
 
-    /** What the last cull did: actors drawn instanced (of them, those whose instances were added again, kept, and
+    /** What the last finished cull did (a copy made as it ends, under a lock: another camera's cull thread may be
+      * counting the next while the application reads): actors drawn instanced (of them, those whose instances were added again, kept, and
       * those added from their plan's compiled list, InstancedCull::addPlainInstances()) and ordinarily, instanced
       * draws of rigid parts and of skinned meshes and the instances they drew, the texture buffers the draws read and
       * the texels one could hold. */
@@ -158,7 +160,11 @@ public:
         unsigned buffers = 0;
         unsigned texelLimit = 0;
     };
-    Statistics getStatistics() const { return _statistics; }
+    Statistics getStatistics() const
+    {
+        std::lock_guard<std::mutex> lock(_publishedMutex);
+        return _published;
+    }
 
     /** The texels one buffer may hold: the contexts' limits, and a cap (0: none). */
     InstanceBufferLimit& getBufferLimit() { return *_limit; }
@@ -249,7 +255,10 @@ private:
       * buffer holds, were given (once per group). */
     bool _splitNoticed = false;
     bool _oversizeNoticed = false;
+    /** The statistics the cull in progress counts, and those of the last finished one. */
     Statistics _statistics;
+    Statistics _published;
+    mutable std::mutex _publishedMutex;
     std::unordered_map<const ActorCullPlan*, PlanVerdict> _verdicts;
     // The working space of one cull, kept so that a steady frame allocates nothing.
     /** A run of an actor's instances of one batch in the parallel cull (InstancedCull::cullInParallel()), and where

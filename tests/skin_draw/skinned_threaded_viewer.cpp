@@ -99,12 +99,20 @@ int main(int argc, char** argv)
     }
     viewer.getCamera()->setViewMatrixAsLookAt(osg::Vec3d(1.2, -5.0, 1.5), osg::Vec3d(1.2, 0.8, 0.6),
                                               osg::Vec3d(0, 0, 1));
+    // With "instanced": the culls, among those seen finished after a frame, that drew the GPU-skinned men instanced
+    // and the others ordinarily. (Under CullThreadPerCamera... the cull that finished last may be one that met the
+    // actors while the other camera culled them, and took them all ordinarily, by design.)
+    unsigned mixedCulls = 0;
     for (int frame = 0; frame < frames && !viewer.done(); ++frame)
     {
         // Between frames, on the main thread (OSG's update thread): an actor changes path.
         ActorNode* actor = static_cast<ActorNode*>(actors->getChild(static_cast<unsigned>(frame % numSkinned)));
         setSkinningPath(*actor, frame % 3 ? SkinnedMesh::CPU_SKINNING : SkinnedMesh::GPU_SKINNING);
         viewer.frame();
+        if (!instanced) continue;
+        const InstancedActorGroup::Statistics statistics = static_cast<InstancedActorGroup&>(*actors).getStatistics();
+        if (statistics.skinnedDraws > 0 && statistics.skinnedInstances > 0 && statistics.actorsOrdinary > 0)
+            ++mixedCulls;
     }
     viewer.stopThreading();
     const SkinnedMesh& mesh = *read.skinnedMeshes[0];
@@ -126,12 +134,13 @@ int main(int argc, char** argv)
     if (instanced)
     {
         // The group's cull takes its actors itself (a camera whose cull meets it while another culls it gets the
-        // ordinary traversal): the last cull drew the GPU-skinned men instanced and the others ordinarily.
+        // ordinary traversal): culls drew the GPU-skinned men instanced and the others ordinarily.
         const InstancedActorGroup::Statistics statistics = static_cast<InstancedActorGroup&>(*actors).getStatistics();
         std::cout << "last cull: " << statistics.actorsInstanced << " actors instanced, " << statistics.actorsOrdinary
                   << " ordinarily, " << statistics.actorsOutOfView << " out of view, " << statistics.skinnedDraws
-                  << " skinned draws of " << statistics.skinnedInstances << " instances\n";
-        if (statistics.skinnedDraws == 0 || statistics.skinnedInstances == 0 || statistics.actorsOrdinary == 0)
+                  << " skinned draws of " << statistics.skinnedInstances << " instances; " << mixedCulls
+                  << " frames ended with such a cull\n";
+        if (mixedCulls == 0)
         {
             std::cerr << "the skinned meshes were not drawn instanced\n";
             return 1;
