@@ -1,11 +1,13 @@
 #include <osgActor/ActorGroup>
 #include <osgActor/core/detail/WorkerPool>
 #include <osgActor/detail/ActorCull.h>
+#include <osgActor/detail/OwnBounds.h>
 
 #include <OpenThreads/Thread>
 #include <osg/FrameStamp>
 #include <osgUtil/CullVisitor>
 
+#include <typeinfo>
 #include <unordered_map>
 
 namespace osgActor {
@@ -133,6 +135,24 @@ void ActorGroup::traverse(osg::NodeVisitor& nv)
 {
     osgUtil::CullVisitor* cv = nv.getVisitorType() == osg::NodeVisitor::CULL_VISITOR ? nv.asCullVisitor() : nullptr;
     if (!cv || !cullActorsInParallel(*cv)) osg::Group::traverse(nv);
+}
+
+osg::BoundingSphere ActorGroup::computeBound() const
+{
+    const unsigned numChildren = getNumChildren();
+    if (numChildren >= _minActorsForParallelCull && numChildren > 0)
+    {
+        // The threads as a cull takes them: not while the update or another camera's cull has them, nor within a
+        // cull of this group (its traversal asks bounds below).
+        ActorGroup& group = const_cast<ActorGroup&>(*this);
+        CullThreads threads(group);
+        if (WorkerPool* workers = threads.get())
+            workers->parallelFor(numChildren, [&group](unsigned i) {
+                osg::Node& child = *group._children[i];
+                if (typeid(child) == typeid(ActorNode)) detail::computeOwnBound(static_cast<ActorNode&>(child));
+            });
+    }
+    return osg::Group::computeBound();
 }
 
 ActorGroup::CullThreads::CullThreads(ActorGroup& group) : _group(group), _flagTaken(false), _pool(nullptr)
