@@ -5,7 +5,8 @@
 #      of 1000 and 10,000 against osgAnimation and plain OSG, and osgActor's GPU skinning against its CPU skinning
 #      on that GPU (images);
 #   2. the update and cull of osgactorbench at 1000 actors, and the ActorGroup's update of 16,000 on 1, 2, 4, ...
-#      threads up to the machine's cores (one crowd for the sweep: taking 16,000 apart costs minutes in OSG);
+#      threads up to the machine's cores (one crowd for the sweep: taking 16,000 apart costs minutes in OSG); the
+#      update + cull of 1000 actors on the same thread counts, culled as one and instanced (issue 28's target);
 #   3. CPU skinning, vertices per second on one core.
 # Usage: scripts/gpu-measure.sh [BIN_DIR [OUT_DIR]]   (defaults: build/bin, gpu-measure)
 # Writes OUT_DIR/measure.log (everything printed) and OUT_DIR/images.tar (the frames the GPU drew).
@@ -40,5 +41,8 @@ run timeout 110 "$bin/osgactor_gpu_draw_bench" --actors=10000 --seconds=1.5 --th
     --cesium-man="$root/data/models/CesiumMan/CesiumMan.gltf"
 (cd "$out" && run timeout 170 "$bin/osgactorbench" --actors=1000,16000 --threads="$threads" \
     --benchmark_filter='^(update|update_cull)/(osgActor_all|osgActor_idle|osgAnimation|plainOSG)/1000$|^parallel/')
+(cd "$out" && run timeout 90 "$bin/osgactorbench" --actors=1000 --threads="$threads" \
+    --benchmark_filter='^(parallel_cull|parallel_cull_instanced)/' --benchmark_repetitions=3 \
+    --benchmark_report_aggregates_only=true)
 run timeout 30 "$bin/osgactor_skin_bench" --benchmark_filter='lbs_k4_pn/262144|frame/'
 (cd "$out/images" && tar cf "$out/images.tar" .) && rm -r "$out/images"
