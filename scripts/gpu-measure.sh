@@ -41,7 +41,8 @@ run timeout 110 "$bin/osgactor_gpu_draw_bench" --actors=10000 --seconds=1.5 --th
     --cesium-man="$root/data/models/CesiumMan/CesiumMan.gltf"
 (cd "$out" && run timeout 170 "$bin/osgactorbench" --actors=1000,16000 --threads="$threads" \
     --benchmark_filter='^(update|update_cull)/(osgActor_all|osgActor_idle|osgAnimation|plainOSG)/1000$|^parallel/')
-(cd "$out" && run timeout 90 "$bin/osgactorbench" --actors=1000 --threads="$threads" \
+mkdir -p "$out/cull-sweep"
+(cd "$out" && run env OSGACTOR_BENCH_OUT="$out/cull-sweep" timeout 90 "$bin/osgactorbench" --actors=1000 --threads="$threads" \
     --benchmark_filter='^(parallel_cull|parallel_cull_instanced)/' --benchmark_repetitions=3 \
     --benchmark_report_aggregates_only=true)
 run timeout 30 "$bin/osgactor_skin_bench" --benchmark_filter='lbs_k4_pn/262144|frame/'
