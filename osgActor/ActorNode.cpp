@@ -4,6 +4,7 @@
 #include <osgActor/core/LocalMatricesJob>
 #include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/AffineBound.h>
+#include <osgActor/detail/ChildrenBound.h>
 #include <osgActor/detail/PoseFollower.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/Prefetch.h>
@@ -173,7 +174,8 @@ osg::BoundingSphere ActorNode::computeBound() const
     _boundVersion.fetch_add(1, std::memory_order_relaxed);
     // Computed at every frame where the root joint translates: without OSG's generic steps for this very class (a
     // subclass may compute its matrix otherwise).
-    return typeid(*this) == typeid(ActorNode) ? detail::matrixTransformBound(*this) : osg::MatrixTransform::computeBound();
+    if (typeid(*this) != typeid(ActorNode)) return osg::MatrixTransform::computeBound();
+    return detail::matrixTransformBound(*this, detail::childrenBound(_children));
 }
 
 void ActorNode::setDefinition(ActorDefinitionPtr definition)

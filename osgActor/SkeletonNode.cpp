@@ -1,6 +1,7 @@
 #include <osgActor/SkeletonNode>
 #include <osgActor/ActorNode>
 #include <osgActor/detail/AffineBound.h>
+#include <osgActor/detail/ChildrenBound.h>
 #include <osgActor/detail/CullArithmetic.h>
 #include <osgActor/detail/PlacedSkeletonNode.h>
 #include <osgActor/detail/SkeletonNodeAccess.h>
@@ -100,10 +101,22 @@ osg::BoundingSphere SkeletonNode::computeBound() const
         // wrongly only takes OSG's way.
         const std::type_info* const type = &typeid(*this);
         const bool plainClass = type == &typeid(SkeletonNode) || type == &typeid(detail::PlacedSkeletonNode);
-        const osg::BoundingSphere bound =
-            plainClass ? detail::matrixTransformBound(*this) : osg::MatrixTransform::computeBound();
-        noteSubtreeShape(isRigidMatrix(_matrix.ptr()));
-        return bound;
+        if (!plainClass)
+        {
+            const osg::BoundingSphere bound = osg::MatrixTransform::computeBound();
+            noteSubtreeShape(isRigidMatrix(_matrix.ptr()));
+            return bound;
+        }
+        // The subtree's shape noted in the union's one visit of the children, each child transform's after its bound
+        // is computed (as noteSubtreeShape() does).
+        bool subtreeRigid = isRigidMatrix(_matrix.ptr());
+        double reachBelow = 0.0;
+        const osg::BoundingSphere children = detail::childrenBound(_children, [&](const osg::Transform& transform) {
+            detail::SkeletonNodeAccess::noteChildShape(transform, subtreeRigid, reachBelow);
+        });
+        _subtreeRigid = subtreeRigid;
+        _reachBelow = reachBelow;
+        return detail::matrixTransformBound(*this, children);
     }
     // The joint turns about its own origin, so a ball about that origin that holds every child's bound holds it in
     // any rotation: its radius is the farthest reach of a child's sphere. Children are taken as osg::Group takes

@@ -11,55 +11,23 @@
 #include <osg/BoundingSphere>
 #include <osg/MatrixTransform>
 
-#include <cmath>
-
 namespace osgActor {
 namespace detail {
 
-/** A point in a node's frame moved into its parent's by the node's affine matrix (OSG's row-vector order), each
-  * coordinate summed in Matrixd::preMult(const Vec3f&)'s order. */
-inline osg::Vec3f movedByAffine(const osg::Vec3f& v, const osg::Matrixd& m)
-{
-    return osg::Vec3f(static_cast<float>(m(0, 0) * v.x() + m(1, 0) * v.y() + m(2, 0) * v.z() + m(3, 0)),
-                      static_cast<float>(m(0, 1) * v.x() + m(1, 1) * v.y() + m(2, 1) * v.z() + m(3, 1)),
-                      static_cast<float>(m(0, 2) * v.x() + m(1, 2) * v.y() + m(2, 2) * v.z() + m(3, 2)));
-}
-
 /** Moves sphere (the children's, in the node's frame) into the parent's frame as osg::Transform::computeBound() does
   * for a relative frame whose local-to-world matrix is matrix: the centre moved, the radius the farthest of the
-  * three points a radius off the centre along the axes, moved. false, the sphere untouched, where the matrix is not
-  * affine or the sphere not finite: the caller then asks OSG. An invalid sphere stays as it is (true). */
-inline bool moveBoundByAffine(osg::BoundingSphere& sphere, const osg::Matrixd& matrix)
-{
-    if (!sphere.valid()) return true;
-    if (matrix(0, 3) != 0.0 || matrix(1, 3) != 0.0 || matrix(2, 3) != 0.0 || matrix(3, 3) != 1.0) return false;
-    const osg::Vec3f centre = sphere.center();
-    const float radius = sphere.radius();
-    if (!std::isfinite(centre.x()) || !std::isfinite(centre.y()) || !std::isfinite(centre.z()) ||
-        !std::isfinite(radius))
-        return false;
-    osg::Vec3f xdash = centre, ydash = centre, zdash = centre;
-    xdash.x() += radius;
-    ydash.y() += radius;
-    zdash.z() += radius;
-    const osg::Vec3f moved = movedByAffine(centre, matrix);
-    const float lengthX = (movedByAffine(xdash, matrix) - moved).length();
-    const float lengthY = (movedByAffine(ydash, matrix) - moved).length();
-    const float lengthZ = (movedByAffine(zdash, matrix) - moved).length();
-    float movedRadius = lengthX;
-    if (movedRadius < lengthY) movedRadius = lengthY;
-    if (movedRadius < lengthZ) movedRadius = lengthZ;
-    sphere.set(moved, movedRadius);
-    return true;
-}
+  * three points a radius off the centre along the axes, moved (each coordinate summed in
+  * Matrixd::preMult(const Vec3f&)'s order, rounded to float, the distances in float). false, the sphere untouched,
+  * where the matrix is not affine or the sphere not finite: the caller then asks OSG. An invalid sphere stays as it
+  * is (true). (AffineBound.cpp) */
+bool moveBoundByAffine(osg::BoundingSphere& sphere, const osg::Matrixd& matrix);
 
 /** osg::MatrixTransform::computeBound() for a node whose class computes its local-to-world matrix as
-  * osg::MatrixTransform does (the caller checks its class): the children's sphere (osg::Group's), moved by the
-  * matrix here where it is affine, by OSG otherwise. */
-inline osg::BoundingSphere matrixTransformBound(const osg::MatrixTransform& node)
+  * osg::MatrixTransform does (the caller checks its class), given its children's sphere as osg::Group computes it
+  * (detail::childrenBound()): that sphere moved by the matrix here where it is affine, by OSG otherwise. */
+inline osg::BoundingSphere matrixTransformBound(const osg::MatrixTransform& node, osg::BoundingSphere childrenSphere)
 {
-    osg::BoundingSphere sphere = node.osg::Group::computeBound();
-    if (moveBoundByAffine(sphere, node.getMatrix())) return sphere;
+    if (moveBoundByAffine(childrenSphere, node.getMatrix())) return childrenSphere;
     return node.osg::MatrixTransform::computeBound();
 }
 
