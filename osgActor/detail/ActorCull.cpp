@@ -52,10 +52,10 @@ ActorCullState::ActorCullState() : _holder(nullptr), _planVersion(0), _replayabl
     _busy.clear();
 }
 
-const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned planVersion, bool prefetch)
+const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned planVersion, bool composing)
 {
+    _composing = composing;
     const bool kept = _plan && _planVersion == planVersion;
-    if (kept && prefetch) _plan->prefetchJoints();
     if (!kept || !_plan->isCurrent())
     {
         _plan = new ActorCullPlan(actor); // made while the old one lives: never at its address
@@ -94,7 +94,7 @@ void ActorCullState::prefetchAhead(AheadStage stage)
                     prefetchLine<true>(call.matrix);
                 }
             break;
-        case AHEAD_NODES: plan->prefetchCheckedNodes(); break;
+        case AHEAD_NODES: plan->prefetchCheckedNodes(_composing); break;
         default: break;
         }
     }
@@ -276,8 +276,9 @@ void ActorCullState::prepare(const Key& key, const ActorCullView& view, const os
     const osg::Matrixd& actorModelView = key.actorModelView;
     const bool planKept = _plan && _planVersion == versions.plan;
     bool replayable = planKept && _replayable && _versions == versions && _key == key;
-    // The joints' matrices and bounds are read after the plan is checked: ask for them now, with the flags the
-    // check reads, so that all the fetches overlap.
+    // Not a replay: the joints' matrices are composed after the plan is checked, which the look-ahead of the actor's
+    // next cull is told (the crowd's look-ahead asked for them with the flags the check reads, if the actor's last
+    // cull composed them too).
     const ActorCullPlan* kept = _plan.get();
     currentPlan(actor, versions.plan, !replayable);
     if (_plan.get() != kept) replayable = false;

@@ -145,9 +145,10 @@ public:
 
     /** The plan of the actor's children: the one kept if the actor's plan version is the same and it is current, or
       * a new one (then the kept calls are not replayed). For the cull that holds the state (tryAcquire()); the
-      * instanced cull (InstancedCull) goes by it too. prefetch: ask for the kept plan's joints first, so that their
-      * fetches overlap those of the check. */
-    const ActorCullPlan& currentPlan(osg::Group& actor, unsigned planVersion, bool prefetch = false);
+      * instanced cull (InstancedCull) goes by it too. composing: the cull goes on to compose the joints' matrices
+      * (it is no replay), which the look-ahead of the actor's next cull then asks for with the nodes' flags, as an
+      * actor moving now most likely still moves then. */
+    const ActorCullPlan& currentPlan(osg::Group& actor, unsigned planVersion, bool composing = false);
 
     /** For the look-ahead of a crowd's cull (ActorNode::prefetchCullAhead()): the stages of what a replay of this
       * actor's cull reads, each fetched once the one before it is in the caches. */
@@ -254,6 +255,8 @@ private:
       * actorModelView is the actor's matrix composed with it as the visitor composes it (an ActorNode in a relative
       * frame): while the actor's matrix stays (its bound is not recomputed) the replay compares this one alone. */
     bool _entryKnown = false;
+    /** The last cull composed the joints' matrices (currentPlan()): prefetchAhead() asks for them too. */
+    bool _composing = false;
     Versions _versions;
     /** The near and far distances the kept calls' drawables gave, merged into the visitor's after the calls, where
       * prepare() gathered them (near and far from bounding volumes, no ordinary subtree); empty otherwise. */

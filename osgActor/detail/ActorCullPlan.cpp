@@ -123,43 +123,98 @@ void hold(std::vector<osg::ref_ptr<osg::Node>>& held, osg::Node& node)
     held.push_back(&node);
 }
 
-/** The bytes in which blocks of ActorCullPlan::kNodeFlagBytes differ, gathered over many pairs with no branch,
-  * sixteen bytes at a time where the compiler has vectors (a byte order that never changes the answer). */
-class BlockDifference
+/** A block of ActorCullPlan::kNodeFlagBytes held in registers: one vector where the compiler has them (one register
+  * in the x86-64-v3 clones of OSGACTOR_HOT_PATH, two elsewhere), words otherwise. The operations are bytewise, so
+  * the words' order never changes an answer; they return nothing, so no vector crosses a call. */
+class Block
 {
 public:
-    /** The bytes of a and b that differ where mask is set. */
-    void add(const unsigned char* a, const unsigned char* b, const unsigned char* mask)
-    {
-        // Word by word into registers (an array would be stored on the stack first).
-        for (std::size_t offset = 0; offset < ActorCullPlan::kNodeFlagBytes; offset += sizeof(Words))
-        {
-            Words x, y, m;
-            std::memcpy(&x, a + offset, sizeof(Words));
-            std::memcpy(&y, b + offset, sizeof(Words));
-            std::memcpy(&m, mask + offset, sizeof(Words));
-            _difference |= (x ^ y) & m;
-        }
-    }
-    bool any() const
-    {
+    Block() { std::memset(&_words, 0, sizeof(Words)); }
+    explicit Block(const unsigned char* bytes) { std::memcpy(&_words, bytes, sizeof(Words)); }
 #if defined(__GNUC__)
-        return (_difference[0] | _difference[1]) != 0;
+    void operator^=(const Block& other) { _words ^= other._words; }
+    void operator|=(const Block& other) { _words |= other._words; }
+    void operator&=(const Block& other) { _words &= other._words; }
 #else
-        return _difference != 0;
+    void operator^=(const Block& other)
+    {
+        for (std::size_t w = 0; w < kWords; ++w) _words[w] ^= other._words[w];
+    }
+    void operator|=(const Block& other)
+    {
+        for (std::size_t w = 0; w < kWords; ++w) _words[w] |= other._words[w];
+    }
+    void operator&=(const Block& other)
+    {
+        for (std::size_t w = 0; w < kWords; ++w) _words[w] &= other._words[w];
+    }
 #endif
+    bool isZero() const
+    {
+        Word any = 0;
+        for (std::size_t w = 0; w < kWords; ++w) any |= _words[w];
+        return any == 0;
     }
 
 private:
+    typedef std::uint64_t Word;
+    static constexpr std::size_t kWords = ActorCullPlan::kNodeFlagBytes / sizeof(Word);
+    static_assert(ActorCullPlan::kNodeFlagBytes % sizeof(Word) == 0, "whole words a block");
 #if defined(__GNUC__)
-    typedef std::uint64_t Words __attribute__((vector_size(16)));
-    Words _difference = {0, 0};
+    typedef Word Words __attribute__((vector_size(ActorCullPlan::kNodeFlagBytes)));
 #else
-    typedef std::uint64_t Words;
-    Words _difference = 0;
+    typedef Word Words[kWords];
 #endif
-    static_assert(ActorCullPlan::kNodeFlagBytes % sizeof(Words) == 0, "whole words a block");
+    Words _words;
 };
+
+static_assert(osg::Transform::RELATIVE_RF == 0, "a checked joint's frame is RELATIVE_RF while the frames' OR is 0");
+
+/** Whether every node's flag block is flags where mask is set, and its frame RELATIVE_RF (a checked joint's, as it
+  * was planned). The blocks' bitwise OR and AND, both started from flags, are flags there only if every block is: a
+  * bit set in a block but not in flags shows in the OR, a bit clear in a block but set in flags in the AND. So a node
+  * costs two operations on its block, taken from memory once, and one on its frame, with no branch: the loads of one
+  * node do not wait on the comparison of the one before. Most actors' joints all have the same flags. */
+OSGACTOR_HOT_PATH bool allBlocksAre(const SkeletonNode* const* nodes, std::size_t numNodes, const unsigned char* flags,
+                                    const unsigned char* mask)
+{
+    const Block expected(flags);
+    Block any = expected, all = expected;
+    unsigned frames = 0;
+    for (std::size_t j = 0; j < numNodes; ++j)
+    {
+        const Block block(NodeFlags::flagBlock(*nodes[j]));
+        any |= block;
+        all &= block;
+        frames |= static_cast<unsigned>(nodes[j]->getReferenceFrame());
+    }
+    any ^= expected;
+    all ^= expected;
+    any |= all;
+    any &= Block(mask);
+    return any.isZero() && frames == 0;
+}
+
+/** Asks for the lines of each node's flag block and reference frame (LinesPlaced: one line, that the block starts;
+  * else the block's first and the frame's) and, Matrices, its matrix's (LinesPlaced: two, that it starts). */
+template <bool LinesPlaced, bool Matrices>
+void prefetchJointLines(const SkeletonNode* const* nodes, std::size_t numNodes)
+{
+    static_assert(2 * ActorCullPlan::kNodeFlagBytes <= 64, "a block and its reference frame within a line it starts");
+    for (std::size_t j = 0; j < numNodes; ++j)
+    {
+        const unsigned char* const block = NodeFlags::flagBlock(*nodes[j]);
+        prefetchLine(block);
+        if (!LinesPlaced) prefetchLine(block + 2 * ActorCullPlan::kNodeFlagBytes - 1);
+        if (Matrices)
+        {
+            const char* const matrix = reinterpret_cast<const char*>(nodes[j]->getMatrix().ptr());
+            prefetchLine(matrix);
+            if (!LinesPlaced) prefetchLine(matrix + 64);
+            prefetchLine(matrix + sizeof(osg::Matrixd) - 1);
+        }
+    }
+}
 
 
 } // namespace
@@ -179,13 +234,16 @@ ActorCullPlan::ActorCullPlan(osg::Group& actor)
     for (unsigned i = 0; i < actor.getNumChildren(); ++i) addChild(*actor.getChild(i), -1);
     std::unordered_set<const osg::Referenced*>().swap(_checked);
     JointFlagsIndex().swap(_distinctJointFlags);
-    _packed.pack(_jointCheckNodes, _jointCheckFlags, _jointFlags, _checks, _geodeChildren);
+    noteShape();
+    std::vector<const osg::Node*> topNodes;
+    for (unsigned i : _topSteps)
+        if (_steps[i].kind == JOINT || _steps[i].kind == GEODE) topNodes.push_back(_steps[i].node);
+    _packed.pack(_joints, _jointCheckNodes, _jointCheckFlags, _jointFlags, _checks, _geodeChildren, topNodes);
     std::vector<const SkeletonNode*>().swap(_jointCheckNodes);
     std::vector<unsigned>().swap(_jointCheckFlags);
     std::vector<JointFlags>().swap(_jointFlags);
     std::vector<NodeCheck>().swap(_checks);
     std::vector<const osg::Node*>().swap(_geodeChildren);
-    noteShape();
 }
 
 namespace {
@@ -207,31 +265,53 @@ void copyTo(unsigned char* block, std::size_t at, const std::vector<T>& values)
 
 } // namespace
 
-void ActorCullPlan::PackedChecks::pack(const std::vector<const SkeletonNode*>& jointNodes,
+void ActorCullPlan::PackedChecks::pack(const std::vector<Joint>& joints,
+                                       const std::vector<const SkeletonNode*>& jointNodes,
                                        const std::vector<unsigned>& jointFlagIndices,
                                        const std::vector<JointFlags>& jointFlags, const std::vector<NodeCheck>& checks,
-                                       const std::vector<const osg::Node*>& geodeChildren)
+                                       const std::vector<const osg::Node*>& geodeChildren,
+                                       const std::vector<const osg::Node*>& topNodes)
 {
     static_assert(std::is_trivially_copyable<NodeCheck>::value && std::is_trivially_copyable<JointFlags>::value,
                   "copied as bytes");
     _numJoints = static_cast<unsigned>(jointNodes.size());
     _numChecks = static_cast<unsigned>(checks.size());
+    _numTopNodes = static_cast<unsigned>(topNodes.size());
     _allAlike = jointFlags.size() == 1;
-    _blocksStartLines = std::all_of(jointNodes.begin(), jointNodes.end(), [](const SkeletonNode* node) {
-        return reinterpret_cast<std::uintptr_t>(NodeFlags::flagBlock(*node)) % sizeof(CacheLine) == 0;
+    const auto startsLine = [](const void* address) {
+        return reinterpret_cast<std::uintptr_t>(address) % sizeof(CacheLine) == 0;
+    };
+    _linesPlaced = std::all_of(jointNodes.begin(), jointNodes.end(), [&](const SkeletonNode* node) {
+        return startsLine(NodeFlags::flagBlock(*node)) && startsLine(node->getMatrix().ptr());
     });
     _byteIndices = jointFlags.size() <= 256;
     const std::size_t numIndices = _allAlike ? 0 : jointNodes.size();
+    _numFrames = static_cast<unsigned>(joints.size());
+    std::vector<const SkeletonNode*> frameNodes;
+    std::vector<int> frameParents;
+    for (const Joint& joint : joints)
+    {
+        frameNodes.push_back(joint.node);
+        frameParents.push_back(joint.parent);
+    }
     std::size_t size = 0;
-    placeAfter<const SkeletonNode*>(size, jointNodes.size());
+    placeAfter<const SkeletonNode*>(size, frameNodes.size());
+    _frameParentsAt = static_cast<unsigned>(placeAfter<int>(size, frameParents.size()));
+    // The checked joints are the planned ones, in the same order, unless some were checked field by field.
+    _jointNodesAt = frameNodes == jointNodes
+                        ? 0u
+                        : static_cast<unsigned>(placeAfter<const SkeletonNode*>(size, jointNodes.size()));
     _flagIndicesAt = static_cast<unsigned>(_byteIndices ? placeAfter<unsigned char>(size, numIndices)
                                                         : placeAfter<unsigned>(size, numIndices));
     _jointFlagsAt = static_cast<unsigned>(placeAfter<JointFlags>(size, jointFlags.size()));
     _checksAt = static_cast<unsigned>(placeAfter<NodeCheck>(size, checks.size()));
     _geodeChildrenAt = static_cast<unsigned>(placeAfter<const osg::Node*>(size, geodeChildren.size()));
+    _topNodesAt = static_cast<unsigned>(placeAfter<const osg::Node*>(size, topNodes.size()));
     _lines.assign((size + sizeof(CacheLine) - 1) / sizeof(CacheLine), CacheLine());
     unsigned char* const block = reinterpret_cast<unsigned char*>(_lines.data());
-    copyTo(block, 0, jointNodes);
+    copyTo(block, 0, frameNodes);
+    copyTo(block, _frameParentsAt, frameParents);
+    if (_jointNodesAt != 0) copyTo(block, _jointNodesAt, jointNodes);
     if (_allAlike)
     {
         // No index: every joint had the first flags.
@@ -244,6 +324,7 @@ void ActorCullPlan::PackedChecks::pack(const std::vector<const SkeletonNode*>& j
     copyTo(block, _jointFlagsAt, jointFlags);
     copyTo(block, _checksAt, checks);
     copyTo(block, _geodeChildrenAt, geodeChildren);
+    copyTo(block, _topNodesAt, topNodes);
 }
 
 void ActorCullPlan::noteShape()
@@ -336,7 +417,7 @@ bool ActorCullPlan::addJointCheck(const SkeletonNode& node)
     JointFlags flags;
     const unsigned char* const block = NodeFlags::flagBlock(node);
     for (std::size_t i = 0; i < kNodeFlagBytes; ++i) flags.nodeFlags[i] = block[i] & _flagMask[i];
-    flags.referenceFrame = node.getReferenceFrame();
+    // Its frame, RELATIVE_RF (a plain joint), is not kept: the check is that every checked joint's still is.
     // Most joints have the flags of the joint checked before them; others are found in a hash map while planning: an
     // actor may have as many distinct ones as joints (a state set each). Not emplace(), which allocates an entry
     // before it looks.
@@ -356,16 +437,14 @@ bool ActorCullPlan::addJointCheck(const SkeletonNode& node)
 
 bool ActorCullPlan::JointFlags::operator==(const JointFlags& other) const
 {
-    return referenceFrame == other.referenceFrame && std::memcmp(nodeFlags, other.nodeFlags, kNodeFlagBytes) == 0;
+    return std::memcmp(nodeFlags, other.nodeFlags, kNodeFlagBytes) == 0;
 }
 
 std::size_t ActorCullPlan::JointFlagsHash::operator()(const JointFlags& flags) const
 {
-    // FNV-1a over the block's bytes, then the frame.
+    // FNV-1a over the block's bytes.
     std::uint64_t hash = 14695981039346656037ull;
-    const auto mix = [&hash](unsigned byte) { hash = (hash ^ (byte & 0xffu)) * 1099511628211ull; };
-    for (unsigned char byte : flags.nodeFlags) mix(byte);
-    for (unsigned shift = 0; shift < 32; shift += 8) mix(static_cast<unsigned>(flags.referenceFrame) >> shift);
+    for (unsigned char byte : flags.nodeFlags) hash = (hash ^ byte) * 1099511628211ull;
     return static_cast<std::size_t>(hash);
 }
 
@@ -407,19 +486,20 @@ namespace {
 
 // Built for x86-64-v3 too (four doubles a lane): every actor's every joint goes through it at every cull. The file is
 // compiled without contracting products and sums into fused multiply-adds, so each clone gives the same bits.
-OSGACTOR_HOT_PATH void composeJointModelViews(const ActorCullPlan::Joint* joints, std::size_t numJoints,
-                                              osg::Matrixd* modelViews)
+OSGACTOR_HOT_PATH void composeJointModelViews(const SkeletonNode* const* nodes, const int* parents,
+                                              std::size_t numJoints, osg::Matrixd* modelViews)
 {
     for (std::size_t j = 0; j < numJoints; ++j)
-        composeModelView(joints[j].node->getMatrix().ptr(),
-                         modelViews[static_cast<std::size_t>(joints[j].parent + 1)].ptr(), modelViews[j + 1].ptr());
+        composeModelView(nodes[j]->getMatrix().ptr(), modelViews[static_cast<std::size_t>(parents[j] + 1)].ptr(),
+                         modelViews[j + 1].ptr());
 }
 
 } // namespace
 
 void ActorCullPlan::composeModelViews(osg::Matrixd* modelViews) const
 {
-    composeJointModelViews(_joints.data(), _joints.size(), modelViews);
+    // From the packed arrays, which the check has just read or which were asked for with it: not from _joints.
+    composeJointModelViews(_packed.frameNodes(), _packed.frameParents(), _packed.numFrames(), modelViews);
 }
 
 bool ActorCullPlan::provesNoSmallFeatureBelow(const Step& step, const osg::Vec4& actorVector, float pixelSize) const
@@ -508,17 +588,6 @@ void ActorCullPlan::notePathNeeded()
     for (unsigned index : _open) _steps[index].pathNeeded = true;
 }
 
-void ActorCullPlan::prefetchJoints() const
-{
-    for (const Joint& joint : _joints)
-    {
-        const SkeletonNode& node = *joint.node;
-        prefetchForRead(NodeFlags::flagBlock(node), 2 * kNodeFlagBytes);
-        prefetchForRead(node.getMatrix().ptr(), sizeof(osg::Matrixd));
-        prefetchForRead(NodeFlags::boundAddress(node), sizeof(osg::BoundingSphere) + sizeof(bool));
-    }
-}
-
 namespace {
 
 template <class T>
@@ -535,36 +604,32 @@ void ActorCullPlan::prefetchChecks() const
     prefetchArray(_stateChecks);
 }
 
-void ActorCullPlan::prefetchCheckedNodes() const
+void ActorCullPlan::prefetchCheckedNodes(bool matrices) const
 {
-    // A joint's flag block and what follows it, where osg::Transform keeps its reference frame: its first and last
-    // line.
-    static_assert(2 * kNodeFlagBytes <= 64, "a block and its reference frame within a line that the block starts");
     const SkeletonNode* const* nodes = _packed.jointNodes();
     const std::size_t n = _packed.numJoints();
-    if (_packed.blocksStartLines())
-        for (std::size_t j = 0; j < n; ++j) prefetchLine(NodeFlags::flagBlock(*nodes[j]));
+    if (_packed.linesPlaced())
+        matrices ? prefetchJointLines<true, true>(nodes, n) : prefetchJointLines<true, false>(nodes, n);
     else
-        for (std::size_t j = 0; j < n; ++j)
-        {
-            const unsigned char* const block = NodeFlags::flagBlock(*nodes[j]);
-            prefetchLine(block);
-            prefetchLine(block + 2 * kNodeFlagBytes - 1);
-        }
+        matrices ? prefetchJointLines<false, true>(nodes, n) : prefetchJointLines<false, false>(nodes, n);
     for (const NodeCheck* check = _packed.checksBegin(); check != _packed.checksEnd(); ++check)
         prefetchLine(NodeFlags::maskAddress(*check->node));
+    // The top steps' spheres, which such a cull tests (small features), where a replay tests the actor's alone.
+    if (matrices)
+        for (const osg::Node* const* node = _packed.topNodesBegin(); node != _packed.topNodesEnd(); ++node)
+            prefetchForRead(NodeFlags::boundAddress(**node), sizeof(osg::BoundingSphere) + sizeof(bool));
 }
 
 bool ActorCullPlan::isCurrent() const
 {
     // The joints compared without a branch, so that their loads overlap; the nodes were asked for ahead, by the
-    // cull of the actors before this one (ActorNode::prefetchCullAhead()) or with the joints' matrices
-    // (prefetchJoints()).
-    // Most actors' joints all have the same flags: then the one block is compared with every node's, held in
-    // registers, and no index is read.
+    // cull of the actors before this one (ActorNode::prefetchCullAhead()).
+    const SkeletonNode* const* nodes = _packed.jointNodes();
+    const std::size_t numJoints = _packed.numJoints();
     const unsigned char* const byteIndices = _packed.byteFlagIndices();
     const unsigned* const wordIndices = _packed.wordFlagIndices();
-    if (!(_packed.allAlike()      ? jointsUnchanged([](std::size_t) { return 0u; })
+    if (numJoints != 0 &&
+        !(_packed.allAlike()      ? allBlocksAre(nodes, numJoints, _packed.jointFlags()[0].nodeFlags, _flagMask)
           : _packed.byteIndices() ? jointsUnchanged([byteIndices](std::size_t j) { return unsigned(byteIndices[j]); })
                                   : jointsUnchanged([wordIndices](std::size_t j) { return wordIndices[j]; })))
         return false;
@@ -578,19 +643,21 @@ bool ActorCullPlan::isCurrent() const
 template <class FlagIndex>
 bool ActorCullPlan::jointsUnchanged(FlagIndex flagIndex) const
 {
-    // Every joint compared, the differences gathered with no branch: the loads of one node do not wait on the
-    // comparison of the one before.
+    // Every joint compared with its own flags, the differences gathered with no branch (the loads of one node do not
+    // wait on the comparison of the one before), the padding between the fields masked out once at the end.
     const SkeletonNode* const* nodes = _packed.jointNodes();
     const JointFlags* seen = _packed.jointFlags();
-    BlockDifference blocks;
-    int frames = 0;
+    Block difference;
+    unsigned frames = 0;
     for (std::size_t j = 0, n = _packed.numJoints(); j < n; ++j)
     {
-        const JointFlags& flags = seen[flagIndex(j)];
-        blocks.add(NodeFlags::flagBlock(*nodes[j]), flags.nodeFlags, _flagMask);
-        frames |= nodes[j]->getReferenceFrame() ^ flags.referenceFrame;
+        Block block(NodeFlags::flagBlock(*nodes[j]));
+        block ^= Block(seen[flagIndex(j)].nodeFlags);
+        difference |= block;
+        frames |= static_cast<unsigned>(nodes[j]->getReferenceFrame());
     }
-    return !blocks.any() && frames == 0;
+    difference &= Block(_flagMask);
+    return difference.isZero() && frames == 0;
 }
 
 bool ActorCullPlan::isUnchanged(const NodeCheck& check) const

@@ -10,7 +10,9 @@
 //  - node masks, state sets, cull callbacks and culling flags, which OSG changes without telling anyone, and the
 //    children of geodes, which are the user's: isCurrent() compares them, every frame, with what the plan saw.
 //    On a skeleton node they lie in 32 bytes of osg::Node, compared at once, and the reference frame just after
-//    them (osg::Transform's first member); the cull of the actors before this one asks for those lines ahead.
+//    them (osg::Transform's first member); most actors' joints have one block alike, and all of them are compared
+//    with it together (allBlocksAre()). The cull of the actors before this one asks for those lines ahead, and for
+//    the joints' matrices where the actor's last cull composed them.
 // A subtree handed to the ordinary traversal is not looked into: the visitor finds what is below it every frame.
 #ifndef OSGACTOR_DETAIL_ACTORCULLPLAN_H
 #define OSGACTOR_DETAIL_ACTORCULLPLAN_H 1
@@ -44,13 +46,13 @@ public:
     static constexpr std::size_t kNodeFlagBytes = 32;
     /** Whether nothing the plan decided from that OSG does not report has changed since it was made. */
     bool isCurrent() const;
-    /** Asks the processor for what a cull of the planned joints reads (their flags, matrices and bounds), so that
-      * the fetches overlap: with many actors the nodes have left the caches since the update. */
-    void prefetchJoints() const;
-    /** Asks for the plan's own arrays that isCurrent() reads, ahead of it. */
+    /** Asks for the plan's own arrays that isCurrent() and composeModelViews() read, ahead of them. */
     void prefetchChecks() const;
-    /** Asks for the nodes' flags that isCurrent() compares (the arrays read, so best once prefetchChecks() is done). */
-    void prefetchCheckedNodes() const;
+    /** Asks for the nodes' flags that isCurrent() compares (the arrays read, so best once prefetchChecks() is done);
+      * matrices: the joints' matrices and the top steps' bounds too, which a cull that is not a replay reads next.
+      * With many actors the nodes have left the caches since the update: a crowd's cull asks for them an actor
+      * ahead (ActorNode::prefetchCullAhead()). */
+    void prefetchCheckedNodes(bool matrices) const;
 
     /** What the cull does at one step, in the visitor's order. A JOINT or GEODE step opens a subtree that ends
       * at step end (exclusive, its closing step end - 1). */
@@ -167,13 +169,13 @@ private:
         osg::Object::DataVariance dataVariance;
     };
 
-    /** What a joint's check compares: its flag block and its reference frame, as the plan saw them. Few distinct
-      * ones per plan (most joints: no callback, no state set, the same mask), each kept once. */
+    /** What a joint's check compares of its flag block, as the plan saw it. Few distinct ones per plan (most
+      * joints: no callback, no state set, the same mask), each kept once. Its reference frame is not kept: a joint
+      * checked so is a plain one (isPlainJoint()), whose frame was RELATIVE_RF, so the check is that it still is. */
     struct JointFlags
     {
         /** The node's flag block, its padding bytes zero (NodeFlags::flagMask()). */
         alignas(16) unsigned char nodeFlags[kNodeFlagBytes];
-        int referenceFrame;
         bool operator==(const JointFlags& other) const;
     };
     struct JointFlagsHash
@@ -182,21 +184,29 @@ private:
     };
     typedef std::unordered_map<JointFlags, unsigned, JointFlagsHash> JointFlagsIndex;
 
-    /** One allocation, cache-line aligned, holding in turn: each checked joint's node; which distinct flags each
-      * had (none where all had the same, as most actors' joints do; a byte each while there are at most 256
-      * distinct ones, else four); the distinct flags; the geodes' and drawables' checks; the geodes' children. */
+    /** One allocation, cache-line aligned, holding in turn: each planned joint's node and its parent's index, which
+      * composeModelViews() reads; each checked joint's node, where those are not the same (they are, unless
+      * osg::Node's layout does not hold a joint's flags in one block); which distinct flags each checked joint had
+      * (none where all had the same, as most actors' joints do; a byte each while there are at most 256 distinct
+      * ones, else four); the distinct flags; the geodes' and drawables' checks; the geodes' children; the nodes of
+      * the steps at the top, whose bounds a cull that is not a replay reads. */
     class PackedChecks
     {
     public:
-        void pack(const std::vector<const SkeletonNode*>& jointNodes, const std::vector<unsigned>& jointFlagIndices,
-                  const std::vector<JointFlags>& jointFlags, const std::vector<NodeCheck>& checks,
-                  const std::vector<const osg::Node*>& geodeChildren);
+        void pack(const std::vector<Joint>& joints, const std::vector<const SkeletonNode*>& jointNodes,
+                  const std::vector<unsigned>& jointFlagIndices, const std::vector<JointFlags>& jointFlags,
+                  const std::vector<NodeCheck>& checks, const std::vector<const osg::Node*>& geodeChildren,
+                  const std::vector<const osg::Node*>& topNodes);
+        std::size_t numFrames() const { return _numFrames; }
+        const SkeletonNode* const* frameNodes() const { return at<const SkeletonNode*>(0); }
+        const int* frameParents() const { return at<int>(_frameParentsAt); }
         std::size_t numJoints() const { return _numJoints; }
-        const SkeletonNode* const* jointNodes() const { return at<const SkeletonNode*>(0); }
+        const SkeletonNode* const* jointNodes() const { return at<const SkeletonNode*>(_jointNodesAt); }
         bool allAlike() const { return _allAlike; }
-        /** Whether every checked joint's flag block starts a cache line (skeleton nodes an actor built, placed so),
-          * so that the block and the reference frame after it are one line. */
-        bool blocksStartLines() const { return _blocksStartLines; }
+        /** Whether every checked joint's flag block and matrix each start a cache line (skeleton nodes an actor
+          * built, placed so: PlacedSkeletonNode), so that the block and the reference frame after it are one line
+          * and the matrix two. */
+        bool linesPlaced() const { return _linesPlaced; }
         bool byteIndices() const { return _byteIndices; }
         const unsigned char* byteFlagIndices() const { return at<unsigned char>(_flagIndicesAt); }
         const unsigned* wordFlagIndices() const { return at<unsigned>(_flagIndicesAt); }
@@ -204,6 +214,8 @@ private:
         const NodeCheck* checksBegin() const { return at<NodeCheck>(_checksAt); }
         const NodeCheck* checksEnd() const { return checksBegin() + _numChecks; }
         const osg::Node* const* geodeChildren() const { return at<const osg::Node*>(_geodeChildrenAt); }
+        const osg::Node* const* topNodesBegin() const { return at<const osg::Node*>(_topNodesAt); }
+        const osg::Node* const* topNodesEnd() const { return topNodesBegin() + _numTopNodes; }
         const void* data() const { return _lines.data(); }
         std::size_t bytes() const { return _lines.size() * sizeof(CacheLine); }
 
@@ -219,13 +231,17 @@ private:
         }
         std::vector<CacheLine> _lines;
         unsigned _numJoints = 0;
+        unsigned _numFrames = 0;
         unsigned _numChecks = 0;
-        unsigned _flagIndicesAt = 0, _jointFlagsAt = 0, _checksAt = 0, _geodeChildrenAt = 0;
+        unsigned _numTopNodes = 0;
+        unsigned _frameParentsAt = 0, _jointNodesAt = 0;
+        unsigned _flagIndicesAt = 0, _jointFlagsAt = 0, _checksAt = 0, _geodeChildrenAt = 0, _topNodesAt = 0;
         bool _allAlike = false;
         bool _byteIndices = true;
-        bool _blocksStartLines = false;
+        bool _linesPlaced = false;
     };
-    /** Whether every checked joint's flags are those it had, flagIndex(j) saying which of the distinct ones. */
+    /** Whether every checked joint's flags are those it had, flagIndex(j) saying which of the distinct ones, and its
+      * frame still RELATIVE_RF. */
     template <class FlagIndex>
     bool jointsUnchanged(FlagIndex flagIndex) const;
     /** Adds a joint's check to the packed ones; false where its flags are not in one block. */

@@ -278,11 +278,11 @@ void InstancedCull::cullSerially(osg::Group& group)
     }
 }
 
-void InstancedCull::prefetchKeptAhead(const osg::Node& node, unsigned ahead) const
+void InstancedCull::prefetchKeptInstances(const osg::Node& node, unsigned ahead) const
 {
     // After the cull state's own members (ahead 4, ActorNode::prefetchCullAhead()): its kept instances' lines, then
     // what they hold, read only while no other thread holds the state.
-    if ((ahead != 3 && ahead != 2) || typeid(node) != typeid(ActorNode)) return;
+    if (typeid(node) != typeid(ActorNode)) return;
     ActorCullState& state = *static_cast<const ActorNode&>(node)._cullState;
     const ActorCullState::InstancedVerdict& kept = state._instancedVerdict;
     if (ahead == 3)
@@ -358,8 +358,8 @@ void InstancedCull::cullChild(ActorNode& actor)
         ActorCullState::InstancedVerdict& kept = actorState._instancedVerdict;
         const ActorCullState::Versions versions =
             ActorCullState::versionsOf(actor._cullPlanVersion, actor._poseVersion, actor._boundVersion);
-        // The joints' matrices and bounds are asked for with the plan's check, or the kept instances where they may
-        // do, so that the fetches overlap.
+        // The kept instances are asked for where they may do, so that their fetches overlap the plan's check (the
+        // joints' matrices, where they are composed, were asked for ahead with the nodes the check reads).
         const bool replayable = mayReplay(kept, versions);
         if (replayable)
         {

@@ -487,8 +487,12 @@ private:
         return kept.kept && kept.serial == _state._serial && kept.view == _state._view && kept.versions == versions;
     }
     /** The kept instances of the actor `ahead` actors after the one culled now, asked for (ActorNode's look-ahead
-      * stages). */
-    void prefetchKeptAhead(const osg::Node& node, unsigned ahead) const;
+      * stages): at stages 3 and 2, the others costing no call. */
+    void prefetchKeptAhead(const osg::Node& node, unsigned ahead) const
+    {
+        if (ahead == 3 || ahead == 2) prefetchKeptInstances(node, ahead);
+    }
+    void prefetchKeptInstances(const osg::Node& node, unsigned ahead) const;
     /** Adds the kept instances of an actor that did not change, if they hold for this cull (the actor's model-view
       * matrix in modelViews[0], the kept one where entryKept); in the parallel cull, notes their runs for the passes
       * that follow. */
