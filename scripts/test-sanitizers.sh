@@ -51,7 +51,7 @@ tsan() {
     export TSAN_OPTIONS="suppressions=$supp/tsan.supp:second_deadlock_stack=1:history_size=4"
     export OSG_NOTIFY_LEVEL=WARN
     "$build/bin/osgactor_node_tests" \
-        --gtest_filter='WorkerPool.*:ActorGroup.*:ActorGroupBounds.*:ActorGroupCull.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*:InstancedParallelCull.*:InstancedFramesInFlight.*:InstancedNearFar.*'
+        --gtest_filter='WorkerPool.*:ActorGroup.*:ActorGroupBounds.*:ActorGroupCull.*:UpdatePolicy.*:CullAsOne.*:CullPlan.*:InstancedParallelCull.*:InstancedFramesInFlight.*:InstancedNearFar.*:InstancedJointEdits.*'
     OSGACTOR_SOAK_FRAMES=400 "$build/bin/osgactor_soak_test"
     local model
     for model in DrawThreadPerContext CullDrawThreadPerContext; do

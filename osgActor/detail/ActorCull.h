@@ -157,7 +157,7 @@ public:
         AHEAD_STATE,      // this state's own members
         AHEAD_PLAN,       // the plan and the kept calls
         AHEAD_PLAN_ARRAYS,// the plan's arrays the check reads
-        AHEAD_NODES       // the nodes the check reads
+        AHEAD_NODES       // the nodes the check reads (and the joints' matrices, where the last cull composed them)
     };
     /** A hint, from any thread: the stages past the first only where no other thread holds the state. */
     void prefetchAhead(AheadStage stage);
