@@ -56,6 +56,10 @@ const ActorCullPlan& ActorCullState::currentPlan(osg::Group& actor, unsigned pla
 {
     _composing = composing;
     const bool kept = _plan && _planVersion == planVersion;
+    // Where no look-ahead asked for the joints (an ActorGroup's cull on its threads, an actor alone, one that was
+    // idle), they are asked for now, so that the fetches of the check and of the matrices overlap.
+    if (kept && composing && !_jointsAskedFor) _plan->prefetchCheckedNodes(true);
+    _jointsAskedFor = false;
     if (!kept || !_plan->isCurrent())
     {
         _plan = new ActorCullPlan(actor); // made while the old one lives: never at its address
@@ -94,7 +98,10 @@ void ActorCullState::prefetchAhead(AheadStage stage)
                     prefetchLine<true>(call.matrix);
                 }
             break;
-        case AHEAD_NODES: plan->prefetchCheckedNodes(_composing); break;
+        case AHEAD_NODES:
+            plan->prefetchCheckedNodes(_composing);
+            _jointsAskedFor = _composing;
+            break;
         default: break;
         }
     }

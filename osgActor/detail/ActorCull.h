@@ -147,7 +147,7 @@ public:
       * a new one (then the kept calls are not replayed). For the cull that holds the state (tryAcquire()); the
       * instanced cull (InstancedCull) goes by it too. composing: the cull goes on to compose the joints' matrices
       * (it is no replay), which the look-ahead of the actor's next cull then asks for with the nodes' flags, as an
-      * actor moving now most likely still moves then. */
+      * actor moving now most likely still moves then; where no look-ahead asked for them, they are asked for here. */
     const ActorCullPlan& currentPlan(osg::Group& actor, unsigned planVersion, bool composing = false);
 
     /** For the look-ahead of a crowd's cull (ActorNode::prefetchCullAhead()): the stages of what a replay of this
@@ -257,6 +257,8 @@ private:
     bool _entryKnown = false;
     /** The last cull composed the joints' matrices (currentPlan()): prefetchAhead() asks for them too. */
     bool _composing = false;
+    /** prefetchAhead() asked for the joints' flags and matrices since the last cull: currentPlan() does not. */
+    bool _jointsAskedFor = false;
     Versions _versions;
     /** The near and far distances the kept calls' drawables gave, merged into the visitor's after the calls, where
       * prepare() gathered them (near and far from bounding volumes, no ordinary subtree); empty otherwise. */
