@@ -387,6 +387,11 @@ void ActorCullPlan::addCheck(Kind kind, osg::Node& node)
         addStateCheck(node.getStateSet());
         return;
     }
+    addNodeCheck(kind, node);
+}
+
+void ActorCullPlan::addNodeCheck(Kind kind, osg::Node& node)
+{
     NodeCheck check;
     check.node = &node;
     check.stateSet = node.getStateSet();
@@ -581,6 +586,10 @@ void ActorCullPlan::addOrdinary(osg::Node& node, int joint)
     hold(_held, node);
     addStep(ORDINARY, node, joint);
     notePathNeeded();
+    // A joint of the actor's own classes handed to the ordinary traversal for what it holds now (a cull callback, an
+    // absolute frame): watched, each field apart, so that undoing that makes a plan that takes it again.
+    const std::type_info& type = typeid(node);
+    if (type == typeid(PlacedSkeletonNode) || type == typeid(SkeletonNode)) addNodeCheck(JOINT, node);
 }
 
 void ActorCullPlan::notePathNeeded()

@@ -253,6 +253,8 @@ private:
     void addOrdinary(osg::Node& node, int joint);
     Step& addStep(Kind kind, osg::Node& node, int joint);
     void addCheck(Kind kind, osg::Node& node);
+    /** The check of a node's fields one by one (NodeCheck), whatever its flags' layout. */
+    void addNodeCheck(Kind kind, osg::Node& node);
     void addStateCheck(const osg::StateSet* state);
     static bool isPlainJoint(const SkeletonNode& joint);
     /** Marks the steps open above the newest one as needing the node path. */

@@ -102,13 +102,18 @@ struct EditedCrowd
         parts = cullInstanced();
         EXPECT_EQ(kept(), actors.size() - 1) << where << ": the undoing not seen";
         EXPECT_EQ(parts, cullOrdinarily()) << where << ": undone";
+        // And back on the actor's own path: its joint taken by a plan again, its instances kept by the still culls.
+        for (int settle = 0; settle < 3; ++settle) parts = cullInstanced();
+        EXPECT_EQ(kept(), actors.size()) << where << ": not kept again after the undoing";
+        EXPECT_EQ(instanced->getStatistics().actorsOrdinary, 0u) << where << ": still culled ordinarily";
+        EXPECT_EQ(parts, cullOrdinarily()) << where << ": settled";
     }
 };
 
 /** Each edit, on the first actor's first joint, a middle one's and the last one's last (the look-ahead of the cull
   * asks for each actor's nodes while culling the one before), each in a crowd of its own: a joint given a cull
-  * callback or an absolute frame is handed to the ordinary traversal, whose plan then holds whatever the joint's
-  * flags (the plan does not look into such a subtree), so that its actor is not kept again after the undoing. */
+  * callback or an absolute frame is handed to the ordinary traversal (the plan does not look into such a subtree)
+  * but still watched, so that after the undoing its actor is instanced and kept again. */
 void expectEveryEditSeen(unsigned threads, osg::Node::NodeMask maskA, osg::Node::NodeMask maskB)
 {
     typedef std::function<void(SkeletonNode&)> Edit;
