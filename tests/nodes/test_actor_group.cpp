@@ -11,26 +11,6 @@
 using namespace osgActor;
 using namespace osgActor::test;
 
-namespace {
-
-/** Swings every DOF with time, with a per-actor phase, so each actor's pose is distinct and predictable. */
-class SwingController : public Controller
-{
-public:
-    explicit SwingController(double phase) : _phase(phase) {}
-    void update(const ControllerContext& context, ControllerTarget& target) override
-    {
-        for (unsigned d = 0; d < target.pose.getNumDofs(); ++d)
-            writeDof(target.pose, d, std::sin(context.time + _phase + d));
-    }
-    std::shared_ptr<Controller> cloneController() const override { return std::make_shared<SwingController>(*this); }
-
-private:
-    double _phase;
-};
-
-} // namespace
-
 TEST(WorkerPool, RunsEveryItemExactlyOnce)
 {
     for (unsigned threads : {1u, 2u, 4u})

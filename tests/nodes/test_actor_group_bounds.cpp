@@ -14,22 +14,6 @@ using namespace osgActor::test;
 
 namespace {
 
-/** Swings the arm's DOFs with time, with a per-actor phase. */
-class SwingController : public Controller
-{
-public:
-    explicit SwingController(double phase) : _phase(phase) {}
-    void update(const ControllerContext& context, ControllerTarget& target) override
-    {
-        for (unsigned d = 0; d < target.pose.getNumDofs(); ++d)
-            writeDof(target.pose, d, std::sin(context.time + _phase + d));
-    }
-    std::shared_ptr<Controller> cloneController() const override { return std::make_shared<SwingController>(*this); }
-
-private:
-    double _phase;
-};
-
 bool sameBits(const osg::BoundingSphere& a, const osg::BoundingSphere& b)
 {
     return std::memcmp(&a, &b, sizeof(osg::BoundingSphere)) == 0;
