@@ -786,7 +786,18 @@ void ActorNode::accept(osg::NodeVisitor& nv)
                               _cullState->release();
                               return done;
                           }();
-    if (!replayed) nv.apply(*this);
+    // Prepared on an ActorGroup's threads: culled without the visitor's pushes and pops where the calls need none.
+    const bool culledPrepared =
+        !replayed && cv && _cullMode == CULL_AS_ONE && !getCullCallback() && !getStateSet() &&
+        getReferenceFrame() == RELATIVE_RF && _cullState->isHeldBy(cv) && [&] {
+            const osg::Matrixd* seenModelView = nullptr;
+            const bool done = detail::ActorCull::cullPreparedBeforeEntering(
+                *cv, *_cullState, *this,
+                detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion), seenModelView);
+            if (seenModelView && _updatePolicy.onlyWhenSeen) noteSeenWithout(*cv, *seenModelView);
+            return done;
+        }();
+    if (!replayed && !culledPrepared) nv.apply(*this);
     nv.popFromNodePath();
 }
 
@@ -802,8 +813,9 @@ void ActorNode::traverse(osg::NodeVisitor& nv)
         return;
     }
     // The visitor found our bound visible to come here.
-    if (_updatePolicy.onlyWhenSeen) noteSeen(nv);
     osgUtil::CullVisitor* cv = nv.asCullVisitor();
+    if (_updatePolicy.onlyWhenSeen && cv)
+        noteSeen(*cv, *cv->getModelViewMatrix(), cv->getCurrentCullingSet().getPixelSizeVector());
     // Held already when an ActorGroup above prepared this cull on its threads: the group gives it back after.
     const bool held = cv && _cullState->isHeldBy(cv);
     if (_cullMode == CULL_AS_ONE && cv && detail::ActorCull::canCullAsOne(*cv) && (held || _cullState->tryAcquire()))
@@ -839,17 +851,22 @@ bool ActorNode::prepareCullWithinGroup(const detail::ActorCullView& view, const 
 
 void ActorNode::releaseCullWithinGroup(const void* visitor) { _cullState->releaseFrom(visitor); }
 
-void ActorNode::noteSeen(osg::NodeVisitor& nv)
+void ActorNode::noteSeenWithout(const osgUtil::CullVisitor& cv, const osg::Matrixd& modelView)
+{
+    noteSeen(cv, modelView,
+             osg::CullingSet::computePixelSizeVector(*cv.getViewport(), *cv.getProjectionMatrix(), modelView));
+}
+
+void ActorNode::noteSeen(const osg::NodeVisitor& nv, const osg::Matrixd& modelView, const osg::Vec4& pixelSizeVector)
 {
     const osg::FrameStamp* stamp = nv.getFrameStamp();
-    osgUtil::CullVisitor* cv = nv.asCullVisitor();
-    if (!stamp || !cv) return;
+    if (!stamp) return;
     // Distance and size at the root joint's origin (the body, which may walk away from the reference point), in
-    // this node's frame, whose model-view matrix the visitor holds now.
+    // this node's frame; the size as osg::CullingSet::clampedPixelSize() computes it.
     const osg::Vec3d root = _skeletonNodes.empty() ? osg::Vec3d() : _skeletonNodes.front()->getMatrix().getTrans();
-    const osg::Vec3d eye = root * *cv->getModelViewMatrix();
+    const osg::Vec3d eye = root * modelView;
     if (!(eye.length() <= _updatePolicy.maxDistance)) return;
-    const float size = cv->clampedPixelSize(osg::Vec3(root), getBound().radius());
+    const float size = std::fabs(getBound().radius() / (osg::Vec3(root) * pixelSizeVector));
     const std::uint64_t frame = static_cast<std::uint64_t>(stamp->getFrameNumber()) + 1u;
     // Several cull threads may see the actor in one frame: keep the largest size of the latest frame.
     std::uint64_t old = _lastSeen.load(std::memory_order_relaxed);

@@ -207,6 +207,21 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
     const ActorCullState::Key key = ActorCullState::keyOf(view, *cv.getModelViewMatrix());
     if (!_state.isPrepared(key, versions))
         _state.prepare(key, view, cv.getCurrentCullingSet().getPixelSizeVector(), actor, versions);
+    // The visitor is in the actor: the model-view matrix below the actor's on its stack is where it entered.
+    const osg::CullStack::MatrixStack& stack = _cv.getModelViewStack();
+    makePreparedCalls(versions, actor, stack.size() >= 2 ? stack._stack.back().get() : nullptr);
+}
+
+ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
+                     const ActorCullState::Versions& versions, const osg::Matrixd& entry)
+    : _cv(cv), _state(state), _plan(nullptr), _nearFarByVisitor(false), _modelViews(nullptr), _open(), _numOpen(0)
+{
+    makePreparedCalls(versions, actor, &entry);
+}
+
+void ActorCull::makePreparedCalls(const ActorCullState::Versions& versions, const osg::Group& actor,
+                                  const osg::Matrixd* entry)
+{
     _state._prepared = false;
     _plan = _state._plan.get();
     if (_state._preparedReplay)
@@ -215,27 +230,15 @@ ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group
         _state._keptDepths.mergeInto(_cv);
         return;
     }
-    _nearFarByVisitor = view.computeNearFar() && !_state._preparedDepthsByBounds;
-    _planesTracked = _nearFarByVisitor && nearFarFromPrimitives(cv);
+    _nearFarByVisitor = _cv.getComputeNearFarMode() != osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR &&
+                        !_state._preparedDepthsByBounds;
+    _planesTracked = _nearFarByVisitor && nearFarFromPrimitives(_cv);
     _modelViews = _state._preparedModelViews.get();
     if (_state._preparedReshape)
         replayReshaped();
     else
         cull();
-    // The visitor is in the actor: the model-view matrix below the actor's on its stack is where it entered.
-    const osg::CullStack::MatrixStack& stack = _cv.getModelViewStack();
-    keepCalls(versions, actor, stack.size() >= 2 ? stack._stack.back().get() : nullptr);
-    _state._keptDepths.mergeInto(_cv);
-}
-
-ActorCull::ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
-                     const ActorCullState::Versions& versions, const osg::Matrixd& entry)
-    : _cv(cv), _state(state), _plan(state._plan.get()), _nearFarByVisitor(false),
-      _modelViews(state._preparedModelViews.get()), _open(), _numOpen(0)
-{
-    _state._prepared = false;
-    replayReshaped();
-    keepCalls(versions, actor, &entry);
+    keepCalls(versions, actor, entry);
     _state._keptDepths.mergeInto(_cv);
 }
 
@@ -566,6 +569,28 @@ bool ActorCull::replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCull
     state.prepare(key, view, pixelSizeVector, actor, versions);
     if (!state._preparedReshape) return false; // prepared for the visitor, which enters the actor and finds it so
     const ActorCull reshaped(cv, state, actor, versions, *cv.getModelViewMatrix());
+    return true;
+}
+
+bool ActorCull::cullPreparedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
+                                           osg::MatrixTransform& actor, const ActorCullState::Versions& versions,
+                                           const osg::Matrixd*& seenModelView)
+{
+    // The calls of a cull prepared for what the visitor holds now need the actor's frame on its stacks only to
+    // traverse a subtree, and its culling set only to compute near and far from primitives: without either, they are
+    // made from the prepared matrices alone (a replay, the kept calls reshaped, or calls made afresh from a plan
+    // without ordinary steps).
+    if (!state._prepared || nearFarFromPrimitives(cv)) return false;
+    const bool traverses = state._preparedReplay ? state._callsTraverse
+                                                 : !state._preparedReshape && state._plan->hasOrdinarySteps();
+    if (traverses) return false;
+    if (!state.isPrepared(ActorCullState::keyOf(ActorCullView(cv), modelViewOnEntering(cv, actor)), versions))
+        return false;
+    // The visitor's own test on its way in (the mask was tested by accept()), its writes included; a culled actor
+    // adds nothing (the group gives back its preparation).
+    if (cv.isCulled(actor)) return true;
+    const ActorCull prepared(cv, state, actor, versions, *cv.getModelViewMatrix());
+    seenModelView = &state._key.actorModelView; // the prepared key's (a replay's is the same)
     return true;
 }
 

@@ -397,6 +397,18 @@ public:
       * having made no call, the cull left prepared for the visitor entering the actor. */
     static bool replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
                                              osg::MatrixTransform& actor, const ActorCullState::Versions& versions);
+    /** For an actor whose cull an ActorGroup prepared on its threads for this visitor (the state held by it), which
+      * the visitor is about to enter (ActorNode::accept(); culled as one, no cull callback or state set, a relative
+      * frame): where the preparation holds for what the visitor holds now and its calls need neither the actor's
+      * frame on the visitor's stacks (no subtree traversed ordinarily) nor its culling set (near and far not
+      * computed from primitives), tests the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is
+      * seen, makes the calls; true then. Otherwise false, having made no call: the visitor enters the actor and
+      * finds the cull prepared. Saves the visitor's pushes and pops of the actor's matrix and culling set, which on
+      * the group's threads are work left on the cull thread. Where the actor is seen, seenModelView points to its
+      * model-view matrix (in the state, while held) after the call, and is left as it was otherwise. */
+    static bool cullPreparedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
+                                           osg::MatrixTransform& actor, const ActorCullState::Versions& versions,
+                                           const osg::Matrixd*& seenModelView);
     /** For the look-ahead of a crowd's cull: asks for the render leaf the visitor will reuse `ahead` leaves from
       * now (from those it kept from its previous cull), which the replay of an actor culled after this one sets. */
     static void prefetchReusedLeaf(const osgUtil::CullVisitor& cv, unsigned ahead);
@@ -405,10 +417,14 @@ private:
     using Step = ActorCullPlan::Step;
     using Call = ActorCullState::Call;
 
-    /** For replayReshapedBeforeEntering(): the calls of the cull prepared, reshaped, without the visitor in the
-      * actor (where it will enter it: the model-view matrix on top of its stack). */
+    /** For replayReshapedBeforeEntering() and cullPreparedBeforeEntering(): the calls of the cull prepared, without
+      * the visitor in the actor (entry: where it would enter it, the model-view matrix on top of its stack). */
     ActorCull(osgUtil::CullVisitor& cv, ActorCullState& state, osg::Group& actor,
               const ActorCullState::Versions& versions, const osg::Matrixd& entry);
+    /** The calls of the cull prepared for this visitor (a replay, the kept calls reshaped, or the plan followed),
+      * kept for the next cull with where the visitor entered the actor (entry; null if not known). */
+    void makePreparedCalls(const ActorCullState::Versions& versions, const osg::Group& actor,
+                           const osg::Matrixd* entry);
     /** The actor's model-view matrix as CullVisitor::apply(osg::Transform&) will compute it (the same bits). */
     static osg::Matrixd modelViewOnEntering(osgUtil::CullVisitor& cv, osg::MatrixTransform& actor);
     /** What the constructors leave for the next cull once the calls are made: the calls and matrices kept for

@@ -316,9 +316,7 @@ bool InstancedCull::isOutOfView(ActorNode& actor)
 
 void InstancedCull::noteSeen(ActorNode& actor, const osg::Matrixd& modelView)
 {
-    _cv.pushModelViewMatrix(new osg::RefMatrix(modelView), osg::Transform::RELATIVE_RF);
-    actor.noteSeen(_cv);
-    _cv.popModelViewMatrix();
+    actor.noteSeenWithout(_cv, modelView);
 }
 
 void InstancedCull::tally(ActorOutcome::Kind kind)

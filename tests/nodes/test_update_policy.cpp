@@ -259,6 +259,59 @@ TEST(UpdatePolicy, ActorGroupsSkipUnseenActorsOnTheirThreads)
     }
 }
 
+TEST(UpdatePolicy, AGroupCullingOnItsThreadsNotesWhatItSeesAsTheSerialCullDoes)
+{
+    // Two groups alike, one culled on its two threads (the actors' culls prepared there, then made without the
+    // visitor entering them), the other serially: figures in a line away from the camera, at full, half and quarter
+    // rate by their size on screen, the last beyond the maximum distance.
+    ActorNode::UpdatePolicy policy;
+    policy.onlyWhenSeen = true;
+    policy.maxDistance = 100.0;
+    policy.halfRateBelowPixels = 60.0f;
+    policy.quarterRateBelowPixels = 30.0f;
+    struct Line
+    {
+        osg::ref_ptr<ActorGroup> group = new ActorGroup;
+        std::vector<osg::ref_ptr<ActorNode>> actors;
+        CullProbe probe{group.get()};
+    };
+    Line lines[2];
+    for (Line& line : lines)
+    {
+        line.group->setNumThreads(2);
+        for (unsigned a = 0; a < 6; ++a)
+        {
+            line.actors.push_back(makeSwingingFigure(osg::Vec3d(0.3 * a, 4.0 * double(1u << a), 0.0), false));
+            line.group->addChild(line.actors.back().get());
+        }
+        line.group->setActorUpdatePolicy(policy);
+        line.probe.lookAt(osg::Vec3d(0.0, -2.0, 1.0), osg::Vec3d(0.0, 10.0, 0.9));
+    }
+    lines[0].group->setMinActorsForParallelCull(1);
+    lines[1].group->setMinActorsForParallelCull(1000);
+    // The updates of frames 9 to 24 counted per actor (a multiple of every period, so each actor's own phase does
+    // not count).
+    std::vector<unsigned> updates[2] = {std::vector<unsigned>(6, 0u), std::vector<unsigned>(6, 0u)};
+    for (unsigned frame = 1; frame <= 24; ++frame)
+        for (unsigned l = 0; l < 2; ++l)
+        {
+            std::vector<unsigned> skippedBefore;
+            for (const osg::ref_ptr<ActorNode>& actor : lines[l].actors)
+                skippedBefore.push_back(actor->getNumUpdatesSkipped());
+            runUpdate(*lines[l].group, frame);
+            lines[l].probe.cull(frame);
+            for (std::size_t a = 0; a < lines[l].actors.size(); ++a)
+                if (frame >= 9 && lines[l].actors[a]->getNumUpdatesSkipped() == skippedBefore[a]) ++updates[l][a];
+        }
+    EXPECT_EQ(lines[0].group->getNumParallelCulls(), 24u);
+    EXPECT_EQ(lines[1].group->getNumParallelCulls(), 0u);
+    EXPECT_EQ(updates[0], updates[1]);
+    // The test can fail: every rate is met (every frame, every second, every fourth, none).
+    EXPECT_EQ(updates[1], (std::vector<unsigned>{16u, 16u, 16u, 8u, 4u, 0u}));
+    // Those updated every frame, and the one never seen, hold the same poses in both.
+    for (std::size_t a : {0u, 1u, 2u, 5u}) expectSamePose(*lines[0].actors[a], *lines[1].actors[a]);
+}
+
 TEST(UpdatePolicy, AnActorFileGivesTheActorItsCullModeAndUpdatePolicyAndTakesThemBack)
 {
     std::istringstream text("osgactor 1\nactor arm {\n  cull node_by_node\n  update_policy {\n    only_when_seen\n"
