@@ -706,16 +706,10 @@ bool InstancedCull::addPlainInstances(const InstancedCullState::PlanVerdict& ver
         // batches move).
         InstancedCullState::InstanceData& data = _scratch->data;
         const std::size_t start = data.size();
-        float* out = data.extend(16 * verdict.plainInstances.size());
-        for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
-        {
-            const osg::Matrixd& modelView = _scratch->modelViews[instance.frame];
-            if (!isDrawn(instance.drawable->getBoundingBox(), modelView, depths)) continue;
-            writeInstanceMatrix(modelView, out);
-            out += 16;
-            addToRuns(instance.batch);
-        }
-        data.shrink(start + std::size_t(out - (data.data() + start)));
+        float* const first = data.extend(16 * verdict.plainInstances.size());
+        const float* const end = appendPlainInstances(verdict, _scratch->modelViews.data(), first, _scratch->runs,
+                                                      _outcome->firstRun, depths);
+        data.shrink(start + std::size_t(end - first));
         _wroteTexels = true;
         _outcome->compiled = true;
         return true;
@@ -757,6 +751,33 @@ inline void InstancedCull::writeEachPlainInstance(const InstancedCullState::Plan
         writeInstanceMatrix(modelView, texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count));
         ++batch.count;
     }
+}
+
+// Built for x86-64-v3 too, as writePlainInstances(): the parallel cull's every instance of a moving crowd.
+OSGACTOR_HOT_PATH float* InstancedCull::appendPlainInstances(const InstancedCullState::PlanVerdict& verdict,
+                                                             const osg::Matrixd* modelViews, float* out,
+                                                             std::vector<InstancedCullState::ActorRun>& runs,
+                                                             std::size_t firstRun, DepthRange* depths)
+{
+    return depths ? appendEachPlainInstance<true>(verdict, modelViews, out, runs, firstRun, depths)
+                  : appendEachPlainInstance<false>(verdict, modelViews, out, runs, firstRun, nullptr);
+}
+
+template <bool WithDepths>
+inline float* InstancedCull::appendEachPlainInstance(const InstancedCullState::PlanVerdict& verdict,
+                                                     const osg::Matrixd* modelViews, float* out,
+                                                     std::vector<InstancedCullState::ActorRun>& runs,
+                                                     std::size_t firstRun, DepthRange* depths)
+{
+    for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
+    {
+        const osg::Matrixd& modelView = modelViews[instance.frame];
+        if (!isDrawn(instance.drawable->getBoundingBox(), modelView, WithDepths ? depths : nullptr)) continue;
+        writeInstanceMatrix(modelView, out);
+        out += 16;
+        countIntoRuns(runs, firstRun, instance.batch);
+    }
+    return out;
 }
 
 bool InstancedCull::keptEntry(const ActorNode& actor, const ActorCullState::InstancedVerdict& kept,
@@ -891,14 +912,7 @@ float* InstancedCull::appendInstance(unsigned batch)
     return _scratch->data.extend(4 * std::size_t(_state._batches[batch].texels));
 }
 
-void InstancedCull::addToRuns(unsigned batch)
-{
-    std::vector<InstancedCullState::ActorRun>& runs = _scratch->runs;
-    if (runs.size() > _outcome->firstRun && runs.back().batch == batch)
-        ++runs.back().count;
-    else
-        runs.push_back({batch, 1u, 0u});
-}
+void InstancedCull::addToRuns(unsigned batch) { countIntoRuns(_scratch->runs, _outcome->firstRun, batch); }
 
 void InstancedCull::addSkinned(const SkinnedMeshInstance& instance, unsigned b)
 {

@@ -471,6 +471,16 @@ private:
     template <bool WithDepths>
     static void writeEachPlainInstance(const InstancedCullState::PlanVerdict& verdict, const osg::Matrixd* modelViews,
                                        InstancedCullState::Batch* batches, float* texels, DepthRange* depths);
+    /** The parallel cull's form of writePlainInstances(): each instance drawn after the one before from out (the
+      * thread's scratch), counted into the actor's runs (those of runs from firstRun on); returns the end. */
+    static float* appendPlainInstances(const InstancedCullState::PlanVerdict& verdict, const osg::Matrixd* modelViews,
+                                       float* out, std::vector<InstancedCullState::ActorRun>& runs,
+                                       std::size_t firstRun, DepthRange* depths);
+    template <bool WithDepths>
+    static float* appendEachPlainInstance(const InstancedCullState::PlanVerdict& verdict,
+                                          const osg::Matrixd* modelViews, float* out,
+                                          std::vector<InstancedCullState::ActorRun>& runs, std::size_t firstRun,
+                                          DepthRange* depths);
     /** The frustum's planes moved into the actor's frame (_scratch->actorFramePlanes), where the visitor tests the
       * top steps' spheres. */
     void moveFrustumIntoActorFrame();
@@ -542,6 +552,14 @@ private:
     float* appendInstance(unsigned batch);
     /** Counts the actor's next instance of a batch into its runs in the thread's scratch. */
     void addToRuns(unsigned batch);
+    /** The same into an actor's runs (those of runs from firstRun on). */
+    static void countIntoRuns(std::vector<InstancedCullState::ActorRun>& runs, std::size_t firstRun, unsigned batch)
+    {
+        if (runs.size() > firstRun && runs.back().batch == batch)
+            ++runs.back().count;
+        else
+            runs.push_back({batch, 1u, 0u});
+    }
     /** Whether the visitor drops a drawable of this box in a frame of this model-view matrix: its depth not a
       * number. */
     static bool hasNoDepth(const osg::BoundingBox& box, const osg::Matrixd& modelView)
