@@ -772,33 +772,30 @@ void ActorNode::accept(osg::NodeVisitor& nv)
     // The actors after this one among its siblings, fetched ahead (a crowd's cull is bound by memory latency).
     if (cv && _cullMode == CULL_AS_ONE) prefetchSiblingsAhead(nv);
     // Only where the visitor would do nothing but test the bound, push the actor's frame and cull it as one: no cull
-    // callback or state set here, a relative frame, no update policy noting the view, no ActorGroup's preparation.
-    const bool replayed = cv && _cullMode == CULL_AS_ONE && !_updatePolicy.onlyWhenSeen && !getCullCallback() &&
-                          !getStateSet() && getReferenceFrame() == RELATIVE_RF && !_cullState->isHeldBy(cv) &&
-                          detail::ActorCull::canCullAsOne(*cv) && _cullState->tryAcquire() &&
-                          [&] {
-                              getBound(); // as the ordinary way computes it first: a recomputed bound is a change
-                              const detail::ActorCullState::Versions versions =
-                                  detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion);
-                              const bool done =
-                                  detail::ActorCull::replayBeforeEntering(*cv, *_cullState, *this, versions) ||
-                                  detail::ActorCull::replayReshapedBeforeEntering(*cv, *_cullState, *this, versions);
-                              _cullState->release();
-                              return done;
-                          }();
-    // Prepared on an ActorGroup's threads: culled without the visitor's pushes and pops where the calls need none.
-    const bool culledPrepared =
-        !replayed && cv && _cullMode == CULL_AS_ONE && !getCullCallback() && !getStateSet() &&
-        getReferenceFrame() == RELATIVE_RF && _cullState->isHeldBy(cv) && [&] {
-            const osg::Matrixd* seenModelView = nullptr;
-            const bool done = detail::ActorCull::cullPreparedBeforeEntering(
-                *cv, *_cullState, *this,
-                detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion), seenModelView);
-            if (seenModelView && _updatePolicy.onlyWhenSeen) noteSeenWithout(*cv, *seenModelView);
-            return done;
-        }();
-    if (!replayed && !culledPrepared) nv.apply(*this);
+    // callback or state set here, a relative frame.
+    const bool culledBeforeEntering = cv && _cullMode == CULL_AS_ONE && !getCullCallback() && !getStateSet() &&
+                                      getReferenceFrame() == RELATIVE_RF && cullBeforeEntering(*cv);
+    if (!culledBeforeEntering) nv.apply(*this);
     nv.popFromNodePath();
+}
+
+bool ActorNode::cullBeforeEntering(osgUtil::CullVisitor& cv)
+{
+    // Held already when an ActorGroup above prepared this cull on its threads: the group gives it back after.
+    const bool held = _cullState->isHeldBy(&cv);
+    if (!held && (!detail::ActorCull::canCullAsOne(cv) || !_cullState->tryAcquire())) return false;
+    getBound(); // as the ordinary way computes it first: a recomputed bound is a change
+    const detail::ActorCullState::Versions versions =
+        detail::ActorCullState::versionsOf(_cullPlanVersion, _poseVersion, _boundVersion);
+    const osg::Matrixd* seenModelView = nullptr;
+    const bool done =
+        held ? detail::ActorCull::cullPreparedBeforeEntering(cv, *_cullState, *this, versions, seenModelView)
+             : detail::ActorCull::replayBeforeEntering(cv, *_cullState, *this, versions, seenModelView) ||
+                   detail::ActorCull::replayReshapedBeforeEntering(cv, *_cullState, *this, versions, seenModelView);
+    // What traverse() would note, from the matrix in the state: while it is held.
+    if (seenModelView && _updatePolicy.onlyWhenSeen) noteSeenWithout(cv, *seenModelView);
+    if (!held) _cullState->release();
+    return done;
 }
 
 void ActorNode::traverse(osg::NodeVisitor& nv)

@@ -514,7 +514,7 @@ inline osg::Matrixd ActorCull::modelViewOnEntering(osgUtil::CullVisitor& cv, osg
 }
 
 bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
-                                     const ActorCullState::Versions& versions)
+                                     const ActorCullState::Versions& versions, const osg::Matrixd*& seenModelView)
 {
     // What ActorCull's constructor would find, ahead: kept calls for this key and these counters, the plan current.
     // Near and far computed from primitives take the current culling set's frustum, the actor's when entered: only
@@ -544,12 +544,14 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     {
         replayCalls(cv, state._calls);
         state._keptDepths.mergeInto(cv);
+        seenModelView = &state._key.actorModelView;
     }
     return true;
 }
 
 bool ActorCull::replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
-                                             osg::MatrixTransform& actor, const ActorCullState::Versions& versions)
+                                             osg::MatrixTransform& actor, const ActorCullState::Versions& versions,
+                                             const osg::Matrixd*& seenModelView)
 {
     // What prepare() needs to reshape the kept calls, ahead (it checks them all again): a kept plan, complete calls
     // of a shape that holds for other matrices, no near and far computed from primitives (the actor's culling set
@@ -569,6 +571,7 @@ bool ActorCull::replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCull
     state.prepare(key, view, pixelSizeVector, actor, versions);
     if (!state._preparedReshape) return false; // prepared for the visitor, which enters the actor and finds it so
     const ActorCull reshaped(cv, state, actor, versions, *cv.getModelViewMatrix());
+    seenModelView = &state._key.actorModelView; // the prepared key's
     return true;
 }
 

@@ -385,9 +385,11 @@ public:
       * plan), none of them traverses a subtree (which would need the actor's frame on the visitor's stacks) and near
       * and far are not computed from primitives, tests the actor's bound as CullVisitor::apply(osg::Transform&) does
       * and, if it is seen, makes the calls again and merges the near and far its drawables gave (the same: the same
-      * matrices); true then. false, having made no call, where the visitor must enter the actor. */
+      * matrices); true then. false, having made no call, where the visitor must enter the actor. Where the actor is
+      * seen, seenModelView points to its model-view matrix (in the state, while held) after the call, and is left as
+      * it was otherwise; so for the two below. */
     static bool replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state, osg::MatrixTransform& actor,
-                                     const ActorCullState::Versions& versions);
+                                     const ActorCullState::Versions& versions, const osg::Matrixd*& seenModelView);
     /** The same for an actor that moved (its pose or its place): where its last cull's calls keep their shape for
       * what the visitor holds now (the same plan and view but for the actor's model-view matrix, no test needed
       * below its top joints, no depth not a number, near and far not computed from primitives, and, where they are
@@ -396,7 +398,8 @@ public:
       * (replayReshaped()) and merges the near and far gathered with the new matrices; true then. Otherwise false,
       * having made no call, the cull left prepared for the visitor entering the actor. */
     static bool replayReshapedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
-                                             osg::MatrixTransform& actor, const ActorCullState::Versions& versions);
+                                             osg::MatrixTransform& actor, const ActorCullState::Versions& versions,
+                                             const osg::Matrixd*& seenModelView);
     /** For an actor whose cull an ActorGroup prepared on its threads for this visitor (the state held by it), which
       * the visitor is about to enter (ActorNode::accept(); culled as one, no cull callback or state set, a relative
       * frame): where the preparation holds for what the visitor holds now and its calls need neither the actor's
@@ -404,8 +407,7 @@ public:
       * computed from primitives), tests the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is
       * seen, makes the calls; true then. Otherwise false, having made no call: the visitor enters the actor and
       * finds the cull prepared. Saves the visitor's pushes and pops of the actor's matrix and culling set, which on
-      * the group's threads are work left on the cull thread. Where the actor is seen, seenModelView points to its
-      * model-view matrix (in the state, while held) after the call, and is left as it was otherwise. */
+      * the group's threads are work left on the cull thread. */
     static bool cullPreparedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
                                            osg::MatrixTransform& actor, const ActorCullState::Versions& versions,
                                            const osg::Matrixd*& seenModelView);
