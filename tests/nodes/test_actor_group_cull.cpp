@@ -14,6 +14,8 @@
 
 #include <gtest/gtest.h>
 
+#include <random>
+
 using namespace osgActor;
 using namespace osgActor::test;
 
@@ -188,3 +190,73 @@ TEST(ActorGroupCull, KeepsTheActorsOfAnotherCamerasCullOrdinary)
     expectSameLeaves(innerLeaves, inner.cull(8), "inner cull against node by node");
 }
 
+
+TEST(ActorGroupCull, GivesTheSerialRenderGraphThroughEditsBetweenFrames)
+{
+    // Edits a user makes between frames, drawn at random (a fixed seed): poses, places, an actor's state set, cull
+    // callback or mask, a joint's mask or hiding; the views and ways of computing near and far in turn. After each, the cull on the
+    // group's threads (each actor's prepared calls made before the visitor enters it, where they can be) gives the
+    // serial cull's render graph and near and far.
+    GroupCrowd crowd(24);
+    crowd.group->setMinActorsForParallelCull(1);
+    CullProbe probe(crowd.group.get());
+    const osg::Vec3d eyes[] = {osg::Vec3d(4.0, -12.0, 2.0), osg::Vec3d(1.1, -1.6, 1.2), osg::Vec3d(4.0, -160.0, 1.0)};
+    const osg::Vec3d centres[] = {osg::Vec3d(4.0, 1.5, 0.9), osg::Vec3d(1.1, 0.0, 1.0), osg::Vec3d(4.0, 0.0, 0.9)};
+    const osg::CullSettings::ComputeNearFarMode modes[] = {osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES,
+                                                           osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR,
+                                                           osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES};
+    osg::ref_ptr<osg::StateSet> unlit = new osg::StateSet;
+    unlit->setMode(GL_LIGHTING, osg::StateAttribute::OFF);
+    osg::ref_ptr<osg::NodeCallback> passing = new osg::NodeCallback; // traverses, as a user's logging callback would
+    const char* joints[] = {"l_elbow", "r_knee", "head", "chest", "pelvis"};
+    std::mt19937 random(28);
+    const auto pick = [&random](unsigned count) { return unsigned(random() % count); };
+    unsigned frame = 0;
+    std::size_t drawn = 0;
+    for (unsigned step = 0; step < 60; ++step)
+    {
+        SCOPED_TRACE("step " + std::to_string(step));
+        for (unsigned e = 0, edits = 1 + pick(3); e < edits; ++e)
+        {
+            ActorNode& actor = *crowd.actors[pick(unsigned(crowd.actors.size()))];
+            switch (pick(6))
+            {
+            case 0: actor.setStateSet(actor.getStateSet() ? nullptr : unlit.get()); break;
+            case 1:
+                if (actor.getCullCallback()) actor.setCullCallback(nullptr);
+                else actor.setCullCallback(passing.get());
+                break;
+            case 2: actor.setNodeMask(actor.getNodeMask() ? 0u : ~0u); break;
+            case 3:
+            {
+                SkeletonNode& joint = *actor.getSkeletonNode(joints[pick(5)]);
+                joint.setNodeMask(joint.getNodeMask() ? 0u : ~0u);
+                break;
+            }
+            case 4:
+            {
+                SkeletonNode& joint = *actor.getSkeletonNode(joints[pick(5)]);
+                joint.setHidden(!joint.getHidden());
+                break;
+            }
+            default: actor.setPreTranslation(actor.getPreTranslation() + osg::Vec3d(0.0, 0.0, 0.25)); break;
+            }
+        }
+        // Every view with every way of computing near and far, in turn.
+        probe.lookAt(eyes[step % 3], centres[step % 3]);
+        probe.sceneView().setComputeNearFarMode(modes[(step / 3) % 3]);
+        if (pick(2)) crowd.pose(0.3 * step); // moving, or standing still
+        const unsigned before = crowd.group->getNumParallelCulls();
+        const std::vector<CulledLeaf> parallel = probe.cull(++frame);
+        EXPECT_EQ(crowd.group->getNumParallelCulls(), before + 1);
+        const double parallelNear = probe.calculatedNear(), parallelFar = probe.calculatedFar();
+        crowd.group->setMinActorsForParallelCull(1000);
+        const std::vector<CulledLeaf> serial = probe.cull(++frame);
+        crowd.group->setMinActorsForParallelCull(1);
+        expectSameLeaves(parallel, serial, "parallel against serial");
+        EXPECT_EQ(probe.calculatedNear(), parallelNear);
+        EXPECT_EQ(probe.calculatedFar(), parallelFar);
+        drawn += parallel.size();
+    }
+    EXPECT_GT(drawn, 60u * 24u * 5u); // the test can fail: most of the crowd is drawn at most steps
+}
