@@ -200,8 +200,12 @@ TEST(ActorGroupCull, GivesTheSerialRenderGraphThroughEditsBetweenFrames)
     GroupCrowd crowd(24);
     crowd.group->setMinActorsForParallelCull(1);
     CullProbe probe(crowd.group.get());
-    const osg::Vec3d eyes[] = {osg::Vec3d(4.0, -12.0, 2.0), osg::Vec3d(1.1, -1.6, 1.2), osg::Vec3d(4.0, -160.0, 1.0)};
-    const osg::Vec3d centres[] = {osg::Vec3d(4.0, 1.5, 0.9), osg::Vec3d(1.1, 0.0, 1.0), osg::Vec3d(4.0, 0.0, 0.9)};
+    // All in view, close up on a few near the group's origin and on a few far from it (where the actor's frame and
+    // the group's differ most), from afar.
+    const osg::Vec3d eyes[] = {osg::Vec3d(4.0, -12.0, 2.0), osg::Vec3d(1.1, -1.6, 1.2), osg::Vec3d(7.7, 2.9, 1.2),
+                               osg::Vec3d(4.0, -160.0, 1.0)};
+    const osg::Vec3d centres[] = {osg::Vec3d(4.0, 1.5, 0.9), osg::Vec3d(1.1, 0.0, 1.0), osg::Vec3d(7.7, 4.5, 1.0),
+                                  osg::Vec3d(4.0, 0.0, 0.9)};
     const osg::CullSettings::ComputeNearFarMode modes[] = {osg::CullSettings::COMPUTE_NEAR_FAR_USING_BOUNDING_VOLUMES,
                                                            osg::CullSettings::DO_NOT_COMPUTE_NEAR_FAR,
                                                            osg::CullSettings::COMPUTE_NEAR_FAR_USING_PRIMITIVES};
@@ -243,8 +247,8 @@ TEST(ActorGroupCull, GivesTheSerialRenderGraphThroughEditsBetweenFrames)
             }
         }
         // Every view with every way of computing near and far, in turn.
-        probe.lookAt(eyes[step % 3], centres[step % 3]);
-        probe.sceneView().setComputeNearFarMode(modes[(step / 3) % 3]);
+        probe.lookAt(eyes[step % 4], centres[step % 4]);
+        probe.sceneView().setComputeNearFarMode(modes[(step / 4) % 3]);
         if (pick(2)) crowd.pose(0.3 * step); // moving, or standing still
         const unsigned before = crowd.group->getNumParallelCulls();
         const std::vector<CulledLeaf> parallel = probe.cull(++frame);
@@ -258,5 +262,5 @@ TEST(ActorGroupCull, GivesTheSerialRenderGraphThroughEditsBetweenFrames)
         EXPECT_EQ(probe.calculatedFar(), parallelFar);
         drawn += parallel.size();
     }
-    EXPECT_GT(drawn, 60u * 24u * 5u); // the test can fail: most of the crowd is drawn at most steps
+    EXPECT_GT(drawn, 60u * 24u * 4u); // the test can fail: much of the crowd is drawn at most steps
 }
