@@ -580,13 +580,13 @@ bool ActorCull::cullPreparedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullSt
                                            const osg::Matrixd*& seenModelView)
 {
     // The calls of a cull prepared for what the visitor holds now need the actor's frame on its stacks only to
-    // traverse a subtree, and its culling set only to compute near and far from primitives: without either, they are
-    // made from the prepared matrices alone (a replay, the kept calls reshaped, or calls made afresh from a plan
-    // without ordinary steps).
-    if (!state._prepared || nearFarFromPrimitives(cv)) return false;
-    const bool traverses = state._preparedReplay ? state._callsTraverse
-                                                 : !state._preparedReshape && state._plan->hasOrdinarySteps();
-    if (traverses) return false;
+    // traverse a subtree in that frame, and its culling set only to compute near and far from primitives: without
+    // either, they are made from the prepared matrices alone (a replay, the kept calls reshaped, or calls made afresh;
+    // the kept calls are those of the same plan). A subtree below a joint is traversed with the joint's matrix pushed,
+    // from which, for a relative frame, OSG's CullStack::pushModelViewMatrix() derives the eye and view points (the
+    // reference view point is inherited, the same at the group as in a relative actor) and the culling set (from the
+    // projection's): the same whether or not the actor's frame lies below it.
+    if (!state._prepared || nearFarFromPrimitives(cv) || state._plan->hasOrdinaryStepsInActorFrame()) return false;
     if (!state.isPrepared(ActorCullState::keyOf(ActorCullView(cv), modelViewOnEntering(cv, actor)), versions))
         return false;
     // The visitor's own test on its way in (the mask was tested by accept()), its writes included; a culled actor

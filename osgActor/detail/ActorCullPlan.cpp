@@ -338,6 +338,7 @@ void ActorCullPlan::noteShape()
     {
         const Step& step = _steps[i];
         if (step.kind == ORDINARY) _hasOrdinarySteps = true;
+        if (step.kind == ORDINARY && step.joint < 0) _hasOrdinaryStepsInActorFrame = true;
         if (step.kind != JOINT && step.kind != GEODE && step.kind != DRAWABLE) continue;
         if (std::find(_masks.begin(), _masks.end(), step.mask) == _masks.end()) _masks.push_back(step.mask);
         if (step.kind == DRAWABLE) _drawableSteps.push_back(i);

@@ -117,6 +117,9 @@ public:
     const std::vector<unsigned>& getTopSteps() const { return _topSteps; }
     /** Whether a step gives a subtree the ordinary traversal (which may read or reset the visitor's near and far). */
     bool hasOrdinarySteps() const { return _hasOrdinarySteps; }
+    /** Whether such a step is in the actor's own frame (not below a joint): its traversal needs the actor's frame on
+      * the visitor's stacks, where one below a joint is traversed with the joint's matrix pushed. */
+    bool hasOrdinaryStepsInActorFrame() const { return _hasOrdinaryStepsInActorFrame; }
     /** Whether a cull would test nothing below the top joints' own spheres, so that it culls nothing below them: no
       * joint, geode or drawable ruled out by the visitor's masks, and either no small-feature culling or every step at
       * the top a joint whose sphere is no small feature in the actor's frame (isSmallFeatureAtTop(), the visitor's
@@ -282,6 +285,7 @@ private:
     std::vector<unsigned> _topSteps;
     bool _topStepsAllJoints = true;
     bool _hasOrdinarySteps = false;
+    bool _hasOrdinaryStepsInActorFrame = false;
     std::vector<unsigned> _drawableSteps;
     std::vector<const osg::Node*> _geodesBelow; // runs of Joint::firstGeode, numGeodes
     /** While planning: per checked joint its node and which of _jointFlags it had; the distinct flags (where each
