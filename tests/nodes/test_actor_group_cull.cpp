@@ -83,6 +83,31 @@ void expectSameLeaves(const std::vector<CulledLeaf>& leaves, const std::vector<C
     for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_TRUE(leaves[i] == expected[i]) << what << ", leaf " << i;
 }
 
+/** The leaves of a cull on the group's threads and of a serial one right after it. */
+struct ParallelAndSerial
+{
+    std::vector<CulledLeaf> parallel;
+    std::vector<CulledLeaf> serial;
+};
+
+/** Culls the crowd on the group's threads, then serially, at the next two frames (frame counts them), expecting the
+  * parallel cull to have run and both to give the same near and far. */
+ParallelAndSerial cullBothWays(GroupCrowd& crowd, CullProbe& probe, unsigned& frame)
+{
+    ParallelAndSerial culled;
+    const unsigned before = crowd.group->getNumParallelCulls();
+    culled.parallel = probe.cull(++frame);
+    EXPECT_EQ(crowd.group->getNumParallelCulls(), before + 1);
+    const double parallelNear = probe.calculatedNear(), parallelFar = probe.calculatedFar();
+    const unsigned threshold = crowd.group->getMinActorsForParallelCull();
+    crowd.group->setMinActorsForParallelCull(1000);
+    culled.serial = probe.cull(++frame);
+    crowd.group->setMinActorsForParallelCull(threshold);
+    EXPECT_EQ(probe.calculatedNear(), parallelNear);
+    EXPECT_EQ(probe.calculatedFar(), parallelFar);
+    return culled;
+}
+
 } // namespace
 
 TEST(ActorGroupCull, CullsSeriallyBelowItsThresholdOfActors)
@@ -122,19 +147,14 @@ TEST(ActorGroupCull, GivesTheSerialRenderGraphLeafByLeafFrameAfterFrame)
                 SCOPED_TRACE("view " + std::to_string(view) + ", step " + std::to_string(step));
                 // Moving, then standing still (the actors replay their last cull's calls).
                 if (step < 2) crowd.pose(0.3 * frame);
-                const unsigned before = crowd.group->getNumParallelCulls();
-                const std::vector<CulledLeaf> parallel = probe.cull(++frame);
-                EXPECT_EQ(crowd.group->getNumParallelCulls(), before + 1);
-                const double parallelNear = probe.calculatedNear(), parallelFar = probe.calculatedFar();
+                const ParallelAndSerial culled = cullBothWays(crowd, probe, frame);
+                const std::vector<CulledLeaf>& parallel = culled.parallel;
                 crowd.group->setMinActorsForParallelCull(1000);
-                const std::vector<CulledLeaf> serial = probe.cull(++frame);
-                EXPECT_EQ(probe.calculatedNear(), parallelNear);
-                EXPECT_EQ(probe.calculatedFar(), parallelFar);
                 crowd.setCullMode(ActorNode::CULL_NODE_BY_NODE);
                 const std::vector<CulledLeaf> ordinary = probe.cull(++frame);
                 crowd.setCullMode(ActorNode::CULL_AS_ONE);
                 crowd.group->setMinActorsForParallelCull(1);
-                expectSameLeaves(parallel, serial, "parallel against serial");
+                expectSameLeaves(parallel, culled.serial, "parallel against serial");
                 // Without near and far computed, the cull as one leaves the frustum test of the drawables of an actor
                 // in view to OpenGL (ActorNode::CULL_AS_ONE): close up, more of them reach the render graph.
                 if (computeNearFar || view != 1) expectSameLeaves(parallel, ordinary, "parallel against node by node");
@@ -250,17 +270,9 @@ TEST(ActorGroupCull, GivesTheSerialRenderGraphThroughEditsBetweenFrames)
         probe.lookAt(eyes[step % 4], centres[step % 4]);
         probe.sceneView().setComputeNearFarMode(modes[(step / 4) % 3]);
         if (pick(2)) crowd.pose(0.3 * step); // moving, or standing still
-        const unsigned before = crowd.group->getNumParallelCulls();
-        const std::vector<CulledLeaf> parallel = probe.cull(++frame);
-        EXPECT_EQ(crowd.group->getNumParallelCulls(), before + 1);
-        const double parallelNear = probe.calculatedNear(), parallelFar = probe.calculatedFar();
-        crowd.group->setMinActorsForParallelCull(1000);
-        const std::vector<CulledLeaf> serial = probe.cull(++frame);
-        crowd.group->setMinActorsForParallelCull(1);
-        expectSameLeaves(parallel, serial, "parallel against serial");
-        EXPECT_EQ(probe.calculatedNear(), parallelNear);
-        EXPECT_EQ(probe.calculatedFar(), parallelFar);
-        drawn += parallel.size();
+        const ParallelAndSerial culled = cullBothWays(crowd, probe, frame);
+        expectSameLeaves(culled.parallel, culled.serial, "parallel against serial");
+        drawn += culled.parallel.size();
     }
     EXPECT_GT(drawn, 60u * 24u * 4u); // the test can fail: much of the crowd is drawn at most steps
 }
