@@ -793,7 +793,7 @@ bool ActorNode::cullBeforeEntering(osgUtil::CullVisitor& cv)
              : detail::ActorCull::replayBeforeEntering(cv, *_cullState, *this, versions, seenModelView) ||
                    detail::ActorCull::replayReshapedBeforeEntering(cv, *_cullState, *this, versions, seenModelView);
     // What traverse() would note, from the matrix in the state: while it is held.
-    if (seenModelView && _updatePolicy.onlyWhenSeen) noteSeenWithout(cv, *seenModelView);
+    if (seenModelView && _updatePolicy.onlyWhenSeen) noteSeenInFrame(cv, *seenModelView);
     if (!held) _cullState->release();
     return done;
 }
@@ -848,7 +848,7 @@ bool ActorNode::prepareCullWithinGroup(const detail::ActorCullView& view, const 
 
 void ActorNode::releaseCullWithinGroup(const void* visitor) { _cullState->releaseFrom(visitor); }
 
-void ActorNode::noteSeenWithout(const osgUtil::CullVisitor& cv, const osg::Matrixd& modelView)
+void ActorNode::noteSeenInFrame(const osgUtil::CullVisitor& cv, const osg::Matrixd& modelView)
 {
     noteSeen(cv, modelView,
              osg::CullingSet::computePixelSizeVector(*cv.getViewport(), *cv.getProjectionMatrix(), modelView));

@@ -404,8 +404,8 @@ public:
       * the visitor is about to enter (ActorNode::accept(); culled as one, no cull callback or state set, a relative
       * frame): where the preparation holds for what the visitor holds now and its calls need neither the actor's
       * frame on the visitor's stacks (no subtree traversed ordinarily in the actor's own frame; those below a joint
-      * push the joint's matrix) nor its culling set (near and far not computed from primitives), tests the actor's bound as CullVisitor::apply(osg::Transform&) does and, if it is
-      * seen, makes the calls; true then. Otherwise false, having made no call: the visitor enters the actor and
+      * push the joint's matrix) nor its culling set (near and far not computed from primitives), tests the actor's
+      * bound as CullVisitor::apply(osg::Transform&) does and, if it is seen, makes the calls; true then. Otherwise false, having made no call: the visitor enters the actor and
       * finds the cull prepared. Saves the visitor's pushes and pops of the actor's matrix and culling set, which on
       * the group's threads are work left on the cull thread. */
     static bool cullPreparedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,

@@ -314,11 +314,6 @@ bool InstancedCull::isOutOfView(ActorNode& actor)
            (actor.isCullingActive() && ActorCullView::isCulled(_cv.getCurrentCullingSet(), actor.getBound()));
 }
 
-void InstancedCull::noteSeen(ActorNode& actor, const osg::Matrixd& modelView)
-{
-    actor.noteSeenWithout(_cv, modelView);
-}
-
 void InstancedCull::tally(ActorOutcome::Kind kind)
 {
     if (_outcome)
@@ -557,7 +552,7 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     {
         // Noted on the cull thread, in child order, in the parallel cull.
         if (!_outcome)
-            noteSeen(actor, modelViews[0]);
+            actor.noteSeenInFrame(_cv, modelViews[0]);
         else
         {
             _outcome->seen = static_cast<unsigned>(_scratch->seenModelViews.size());

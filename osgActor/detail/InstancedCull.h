@@ -424,9 +424,6 @@ private:
     void tally(ActorOutcome::Kind kind);
     /** Whether the actor is out of view (its mask, its bound) as the visitor finds it on its way in. */
     bool isOutOfView(ActorNode& actor);
-    /** The update policy's note of the view, with the actor's frame on the visitor's stack, as its own cull makes
-      * it. */
-    void noteSeen(ActorNode& actor, const osg::Matrixd& modelView);
 
     /** Whether the actor node itself lets its children be culled here: its own class, culled as one, no cull
       * callback or state set, a relative frame, culling on. */

@@ -101,7 +101,7 @@ bool InstancedCull::cullInParallel(osg::Group& group, const Threads& threads)
             if (outcome.kind == ActorOutcome::KEPT) ++statistics.actorsKept;
             if (outcome.compiled) ++statistics.actorsCompiled;
             InstancedCullState::ActorScratch& scratch = _state._scratch[outcome.thread];
-            if (outcome.seen != ~0u) noteSeen(actor, scratch.seenModelViews[outcome.seen]);
+            if (outcome.seen != ~0u) actor.noteSeenInFrame(_cv, scratch.seenModelViews[outcome.seen]);
             if (_computeNearFar)
             {
                 outcome.skinDepths.mergeInto(_cv);
