@@ -128,8 +128,11 @@ void InstancedDraw::drawImplementation(osg::RenderInfo& renderInfo) const
     // What osg::Geometry::drawImplementation() does around its primitives, without a vertex array object of its own
     // (one per geometry and context would be the geometry's, which the ordinary path may be using).
     const osg::Geometry& geometry = *_geometry;
-    // (A geometry always supports buffer objects.)
-    const bool useBufferObjects = state.useVertexBufferObject(geometry.getUseVertexBufferObjects());
+    // From buffer objects wherever the GL has them, whether or not the geometry draws from them itself: an instanced
+    // draw from client memory is far slower on NVIDIA's drivers (docs/performance.md, "On a GPU"). OSG 3.6 gives a
+    // geometry's arrays and element lists their buffer objects either way; one without (taken off by its owner) is
+    // read from memory, as osg::Geometry would read it.
+    const bool useBufferObjects = state.isVertexBufferObjectSupported();
     osg::VertexArrayState* arrays = state.getCurrentVertexArrayState();
     arrays->setVertexBufferObjectSupported(useBufferObjects);
     // The texture buffer's upload of this frame's instances (osg::TextureBuffer::apply(), as its state set was

@@ -9,12 +9,15 @@
 #include <osgActor/Offscreen/ImageComparison>
 #include <osgActor/Offscreen/OffscreenRenderer>
 
+#include <osg/Geometry>
 #include <osg/Group>
 #include <osg/Switch>
 #include <osg/Texture2D>
 #include <osgDB/ReadFile>
 
 #include <gtest/gtest.h>
+
+#include <vector>
 
 
 using namespace osgActor;
@@ -96,6 +99,31 @@ unsigned numParts(ActorNode& actor)
         for (unsigned c = 0; c < actor.getSkeletonNode(j)->getNumChildren(); ++c)
             if (osg::Geode* geode = actor.getSkeletonNode(j)->getChild(c)->asGeode()) parts += geode->getNumDrawables();
     return parts;
+}
+
+/** The geometries of a test figure's parts (its clones share them). */
+std::vector<osg::Geometry*> partGeometries(ActorNode& actor)
+{
+    std::vector<osg::Geometry*> geometries;
+    for (unsigned j = 0; j < actor.getNumSkeletonNodes(); ++j)
+        for (unsigned c = 0; c < actor.getSkeletonNode(j)->getNumChildren(); ++c)
+            if (osg::Geode* geode = actor.getSkeletonNode(j)->getChild(c)->asGeode())
+                for (unsigned d = 0; d < geode->getNumDrawables(); ++d)
+                    if (osg::Geometry* geometry = geode->getDrawable(d)->asGeometry()) geometries.push_back(geometry);
+    return geometries;
+}
+
+/** How many of the geometries have the GL buffer object of their vertex array made in the context. */
+unsigned countVertexBuffersMade(const std::vector<osg::Geometry*>& geometries, unsigned contextID)
+{
+    unsigned made = 0;
+    for (const osg::Geometry* geometry : geometries)
+    {
+        const osg::BufferObject* buffer = geometry->getVertexArray()->getBufferObject();
+        if (buffer && buffer->getGLBufferObject(contextID) && buffer->getGLBufferObject(contextID)->getGLObjectID() != 0)
+            ++made;
+    }
+    return made;
 }
 
 } // namespace
@@ -190,6 +218,53 @@ TEST_F(InstancedImages, InstancedCrowdIsTheOrdinaryFixedFunctionImageWithinTheSh
     EXPECT_LE(difference.getShareOverTolerance(), 0.0005) << difference.numOverTolerance << " pixels over 2 levels";
     EXPECT_GT(difference.psnr, 45.0);
     EXPECT_GT(countDrawn(*instanced), 0.5 * instanced->s() * instanced->t());
+}
+
+TEST_F(InstancedImages, PartsAreDrawnInstancedFromBufferObjectsThoughTheirGeometryDrawsFromMemory)
+{
+    // The figure's shapes leave buffer objects off (osg::ShapeDrawable's default): the ordinary path reads their
+    // arrays from memory, the instanced draw from the buffer objects OSG gives their arrays anyway (an instanced draw
+    // from memory is far slower on NVIDIA's drivers, docs/performance.md).
+    const std::vector<osg::Geometry*> geometries = partGeometries(*prototype);
+    ASSERT_EQ(geometries.size(), numParts(*prototype));
+    for (const osg::Geometry* geometry : geometries) ASSERT_FALSE(geometry->getUseVertexBufferObjects());
+    const unsigned contextID = renderer->getCamera()->getGraphicsContext()->getState()->getContextID();
+    drawOrdinaryPathWithTheSameShader();
+    renderWith(InstancedActorGroup::ORDINARY);
+    EXPECT_EQ(countVertexBuffersMade(geometries, contextID), 0u);
+    expectTheSameBytes();
+    EXPECT_EQ(countVertexBuffersMade(geometries, contextID), geometries.size());
+    // Edited in place, a part's vertices reach its buffer object: every part flattened to a quarter of its width.
+    const osg::ref_ptr<osg::Image> before = renderWith(InstancedActorGroup::INSTANCED);
+    for (osg::Geometry* geometry : geometries)
+    {
+        osg::Vec3Array& vertices = static_cast<osg::Vec3Array&>(*geometry->getVertexArray());
+        for (osg::Vec3& vertex : vertices) vertex.x() *= 0.25f;
+        vertices.dirty();
+        geometry->dirtyGLObjects(); // the ordinary path's display list
+        geometry->dirtyBound();
+    }
+    expectTheSameBytes();
+    const ImageComparison change = compareImages(*renderWith(InstancedActorGroup::INSTANCED), *before, 8);
+    ASSERT_TRUE(change.comparable);
+    EXPECT_GT(change.numOverTolerance, 1000u);
+}
+
+TEST_F(InstancedImages, PartsWhoseArraysHaveNoBufferObjectsAreDrawnInstancedFromMemory)
+{
+    // Buffer objects taken off the parts' arrays and element lists: the instanced draw reads them from memory, as
+    // osg::Geometry would.
+    for (osg::Geometry* geometry : partGeometries(*prototype))
+    {
+        for (osg::Array* array : {geometry->getVertexArray(), geometry->getNormalArray(), geometry->getColorArray()})
+            if (array) array->setBufferObject(nullptr);
+        for (unsigned i = 0; i < geometry->getNumPrimitiveSets(); ++i)
+            if (osg::DrawElements* elements = geometry->getPrimitiveSet(i)->getDrawElements())
+                elements->setBufferObject(nullptr);
+    }
+    drawOrdinaryPathWithTheSameShader();
+    expectTheSameBytes();
+    EXPECT_EQ(group->getStatistics().instances, 4u * numParts(*prototype));
 }
 
 TEST_F(InstancedImages, APoseChangedBetweenFramesShowsInTheInstancedImage)
