@@ -1,9 +1,11 @@
 #!/bin/sh
-# The measurements that need a machine with a GPU and many cores (docs/performance.md, "GPU and many-core
-# figures"), in one go, from a build made with scripts/build.sh:
-#   1. the whole frame drawn on the GPU (osgactor_gpu_draw_bench: EGL, no display needed), rigid and skinned crowds
-#      of 1000 and 10,000 against osgAnimation and plain OSG, and osgActor's GPU skinning against its CPU skinning
-#      on that GPU (images);
+# The measurements that need a machine with a GPU and many cores (docs/performance.md, "On a GPU and 16 cores"), in
+# one go, from a build made with scripts/build.sh, or from a bundle of it (scripts/bundle-for-gpu-host.sh) on a
+# host without the project's packages:
+#   1. the whole frame drawn on the GPU (osgactor_gpu_draw_bench: EGL, no display needed, every part drawn): rigid and
+#      skinned crowds of 1000 against osgAnimation and plain OSG, and osgActor's GPU skinning against its CPU skinning
+#      on that GPU (images); 10,000 under an ActorGroup and instanced, with osgViewer's draw thread and without
+#      (osgAnimation's crowds of 10,000 take minutes to build: left out);
 #   2. the update and cull of osgactorbench at 1000 actors, and the ActorGroup's update of 16,000 on 1, 2, 4, ...
 #      threads up to the machine's cores (one crowd for the sweep: taking 16,000 apart costs minutes in OSG); the
 #      update + cull of 1000 actors on the same thread counts, culled as one and instanced (issue 28's target);
@@ -17,6 +19,10 @@ mkdir -p "$out/images"
 out=$(cd "$out" && pwd)
 root=$(cd "$(dirname "$0")/.." && pwd)
 log="$out/measure.log"
+if [ -e "$bin/../lib/libosgActor.so.0" ]; then # a bundle: its libraries and osgDB plugins beside its programs
+    lib=$(cd "$bin/../lib" && pwd)
+    export LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" OSG_LIBRARY_PATH="$lib"
+fi
 cores=$(nproc)
 threads=1
 t=2
@@ -34,13 +40,13 @@ run() { echo "\$ $*" | tee -a "$log"; "$@" 2>&1 | tee -a "$log"; echo | tee -a "
 } 2>&1 | tee "$log"
 echo | tee -a "$log"
 
-run timeout 240 "$bin/osgactor_gpu_draw_bench" --actors=1000,10000 --seconds=1.5 --images="$out/images" \
-    --cesium-man="$root/data/models/CesiumMan/CesiumMan.gltf"
-run timeout 110 "$bin/osgactor_gpu_draw_bench" --actors=10000 --seconds=1.5 --threading=draw \
-    --systems=rigid_osgActor,rigid_osgActor_group,rigid_osgActor_instanced,skinned_osgActor_gpu,skinned_osgActor_instanced \
-    --cesium-man="$root/data/models/CesiumMan/CesiumMan.gltf"
+draw="$bin/osgactor_gpu_draw_bench --seconds=1.5 --small-features=draw --cesium-man=$root/data/models/CesiumMan/CesiumMan.gltf"
+run timeout 150 $draw --actors=1000 --images="$out/images"
+run timeout 90 $draw --actors=10000 --threading=draw \
+    --systems=rigid_osgActor_group,rigid_osgActor_instanced_threaded,skinned_osgActor_instanced_threaded
+run timeout 60 $draw --actors=10000 --systems=rigid_osgActor_instanced,rigid_osgActor_instanced_threaded
 (cd "$out" && run timeout 170 "$bin/osgactorbench" --actors=1000,16000 --threads="$threads" \
-    --benchmark_filter='^(update|update_cull)/(osgActor_all|osgActor_idle|osgAnimation|plainOSG)/1000$|^parallel/')
+    --benchmark_filter='^(update|update_cull)/(osgActor_all|osgActor_all_instanced|osgActor_idle|osgActor_idle_instanced|osgAnimation|plainOSG)/1000$|^parallel/')
 mkdir -p "$out/cull-sweep"
 (cd "$out" && run env OSGACTOR_BENCH_OUT="$out/cull-sweep" timeout 90 "$bin/osgactorbench" --actors=1000 --threads="$threads" \
     --benchmark_filter='^(parallel_cull|parallel_cull_instanced)/' --benchmark_repetitions=3 \
