@@ -27,6 +27,12 @@ osg::ref_ptr<osg::Group> makeOsgActorScene(unsigned numActors, const OsgActorCro
     osg::ref_ptr<osgActor::ActorNode> prototype = new osgActor::ActorNode(humanoidDefinition());
     for (unsigned j = 0; j < prototype->getNumSkeletonNodes(); ++j)
         prototype->getSkeletonNode(j)->addChild(jointBox().get());
+    if (crowd.props)
+    {
+        osg::ref_ptr<osg::Group> prop = new osg::Group; // shared by the clones, as a jointBox() is
+        prop->addChild(jointBox().get());
+        prototype->getSkeletonNode("rhand")->addChild(prop.get());
+    }
     prototype->setBoundMode(bounds == Bounds::FollowPose ? osgActor::ActorNode::BOUND_FOLLOWS_POSE
                                                          : osgActor::ActorNode::BOUND_COVERS_ROTATIONS);
     prototype->setCullMode(crowd.cullNodeByNode ? osgActor::ActorNode::CULL_NODE_BY_NODE

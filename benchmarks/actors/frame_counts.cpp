@@ -10,6 +10,7 @@
 // volumes as osgViewer's default camera does (update_cull_nearfar/osgActor_all, or _idle, _all_instanced,
 // _idle_instanced), "threads=N" for the crowd's group (an ActorGroup, or the InstancedActorGroup) on N threads, its
 // update and cull on them (callgrind runs the threads one at a time: --separate-threads=yes counts each one's share),
+// "props" for a prop in each right hand (a user's group holding a box, traversed ordinarily below the joint),
 // "inflight=N" for N frames in flight, the culls taking turns among N scene views each holding its render graph until
 // its next cull (2: osgViewer's draw thread, DrawThreadPerContext; an InstancedActorGroup's frames alternate).
 // Divide the counts by actors x frames x 31 joints for figures per joint and frame (docs/performance.md).
@@ -26,7 +27,7 @@ int main(int argc, char** argv)
 {
     const unsigned numActors = argc > 1 ? static_cast<unsigned>(std::atoi(argv[1])) : 1000u;
     const unsigned numFrames = argc > 2 ? static_cast<unsigned>(std::atoi(argv[2])) : 20u;
-    bool follow = false, cull = false, idle = false, instanced = false, nearFar = false;
+    bool follow = false, cull = false, idle = false, instanced = false, nearFar = false, props = false;
     unsigned threads = 0, framesInFlight = 1;
     for (int i = 3; i < argc; ++i)
     {
@@ -37,11 +38,12 @@ int main(int argc, char** argv)
         idle = idle || std::strcmp(argv[i], "idle") == 0;
         instanced = instanced || std::strcmp(argv[i], "instanced") == 0;
         nearFar = nearFar || std::strcmp(argv[i], "nearfar") == 0;
+        props = props || std::strcmp(argv[i], "props") == 0;
     }
     if (numActors == 0 || numFrames == 0 || framesInFlight == 0)
     {
         std::fprintf(stderr,
-                     "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced] [nearfar] [threads=N] "
+                     "usage: %s [actors > 0] [frames > 0] [follow] [cull] [idle] [instanced] [nearfar] [props] [threads=N] "
                      "[inflight=N > 0]\n",
                      argv[0]);
         return 1;
@@ -50,6 +52,7 @@ int main(int argc, char** argv)
     crowd.motion = idle ? bench::Motion::Idle : bench::Motion::All;
     crowd.bounds = follow ? bench::Bounds::FollowPose : bench::Bounds::CoverRotations;
     crowd.instanced = instanced;
+    crowd.props = props;
     crowd.threads = threads;
     osg::ref_ptr<osg::Group> scene = bench::makeOsgActorScene(numActors, crowd);
     bench::FrameLoop loop(scene.get(), cull,

@@ -519,10 +519,12 @@ bool ActorCull::replayBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& s
     // What ActorCull's constructor would find, ahead: kept calls for this key and these counters, the plan current.
     // Near and far computed from primitives take the current culling set's frustum, the actor's when entered: only
     // without them (from bounding volumes, the visitor's call takes the matrix given, and the actor's kept range no
-    // frame at all).
+    // frame at all). A kept traversal of a subtree below a joint pushes the joint's matrix, from which the visitor
+    // derives all it culls the subtree with (as cullPreparedBeforeEntering() finds); one in the actor's own frame
+    // needs the visitor in the actor.
     const bool planKept = state._plan && state._planVersion == versions.plan;
-    if (state._prepared || !planKept || !state._replayable || state._callsTraverse || !(state._versions == versions) ||
-        nearFarFromPrimitives(cv))
+    if (state._prepared || !planKept || !state._replayable || !(state._versions == versions) ||
+        nearFarFromPrimitives(cv) || (state._callsTraverse && state._plan->hasOrdinaryStepsInActorFrame()))
         return false;
     if (!state._key.view || !(ActorCullState::viewOf(ActorCullView(cv)) == state._key.view->view)) return false;
     // For an ActorNode (relative, the caller checked) whose bound has not been recomputed, its matrix is the one the

@@ -375,6 +375,51 @@ TEST(CullPlan, StillActorsWithNearAndFarFromBoundingVolumesAreReplayedUnenteredW
     }
 }
 
+TEST(CullPlan, StillActorsWithNodesBelowTheirJointsAreReplayedUnenteredTheNodesTraversedEachFrame)
+{
+    // A prop in each figure's right hand, a user's group (traversed ordinarily, with a cull callback) holding a box:
+    // an unchanged actor's kept calls traverse it again with the elbow's matrix pushed, and are replayed before the
+    // visitor enters the actor. A node in the actor's own frame (a child of the actor) keeps the visitor entering.
+    const unsigned enteringNone = matricesTakenEnteringNoActor();
+    Scene scene;
+    osg::ref_ptr<CountingCullCallback> counter = new CountingCullCallback;
+    for (osg::ref_ptr<ActorNode>& actor : scene.actors)
+    {
+        osg::ref_ptr<osg::Group> prop = new osg::Group;
+        prop->setCullCallback(counter.get());
+        osg::ref_ptr<osg::Geode> box = new osg::Geode;
+        box->addDrawable(new osg::ShapeDrawable(new osg::Box(osg::Vec3(0.0f, 0.0f, -0.35f), 0.08f, 0.08f, 0.3f)));
+        prop->addChild(box.get());
+        actor->getSkeletonNode("r_elbow")->addChild(prop.get());
+    }
+    unsigned entered = 0;
+    scene.cullExpectingTheOrdinaryGraph(&entered);
+    EXPECT_GT(entered, enteringNone); // the test can fail: the first cull enters the actors
+    const std::vector<CulledLeaf> ordinary = scene.cullOrdinarily();
+    const double ordinaryNear = scene.probe.calculatedNear(), ordinaryFar = scene.probe.calculatedFar();
+    for (int frame = 0; frame < 3; ++frame)
+    {
+        SCOPED_TRACE("frame " + std::to_string(frame));
+        const unsigned calls = counter->calls;
+        const std::vector<CulledLeaf> asOne = scene.probe.cull(++scene.frame);
+        expectSameLeaves(asOne, ordinary);
+        expectSameBits(scene.probe.calculatedNear(), ordinaryNear);
+        expectSameBits(scene.probe.calculatedFar(), ordinaryFar);
+        EXPECT_EQ(counter->calls, calls + 3); // each prop traversed
+        if (frame > 0)
+        {
+            EXPECT_EQ(scene.matricesTaken(), enteringNone); // replayed before entering
+        }
+    }
+    // The first actor with a node of its own in its frame: that one is entered again at every cull.
+    osg::ref_ptr<osg::Group> inActorFrame = new osg::Group;
+    inActorFrame->addChild(new osg::Geode);
+    scene.first().addChild(inActorFrame.get());
+    scene.cullExpectingTheOrdinaryGraph();
+    for (int frame = 0; frame < 2; ++frame) scene.probe.cull(++scene.frame);
+    EXPECT_GT(scene.matricesTaken(), enteringNone);
+}
+
 TEST(CullPlan, MovingActorsWithNearAndFarFromBoundingVolumesGiveTheOrdinaryGraphAndNearAndFarFrameAfterFrame)
 {
     // Near and far computed from bounding volumes, an actor that moved, seen with the same plan and view but for its
