@@ -813,8 +813,10 @@ void ActorCull::traverseOrdinarily(const Step& step)
         pushed.pushCurrentMask();
         pushed.setResultMask(tracked.getResultMask());
         step.node->accept(_cv);
-        tracked.setResultMask(pushed.getResultMask());
-        pushed.popCurrentMask();
+        // The subtree's own culling sets may have grown the visitor's stack of them, moving the one pushed above.
+        osg::Polytope& after = _cv.getCurrentCullingSet().getFrustum();
+        tracked.setResultMask(after.getResultMask());
+        after.popCurrentMask();
     }
     if (matrix) _cv.popModelViewMatrix();
 }
