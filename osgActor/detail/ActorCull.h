@@ -57,6 +57,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace osgActor {
@@ -323,6 +324,9 @@ private:
         };
         std::vector<Run> runs;
         std::vector<float> matrices;
+        /** Its subtrees that cull reached (InstancedActorGroup hands them to the visitor): each one's index among its
+          * verdict's, and its frame's model-view matrix. */
+        std::vector<std::pair<unsigned, osg::Matrixd>> subtreeVisits;
         /** The group's culls that added the runs (numbered by its cull state), one after the other, each at the
           * same texels (Run::at), from placedSince to placedUntil (none where placedSince > placedUntil): a frame one
           * of them took holds them there still while no cull took it since and nothing moved in its buffer

@@ -3,6 +3,7 @@
 #include <osgActor/ActorNode>
 #include <osgActor/detail/ActorCull.h>
 #include <osgActor/detail/CullArithmetic.h>
+#include <osgActor/detail/DrawableBox.h>
 #include <osgActor/detail/InstancedSkin.h>
 #include <osgActor/detail/JointDrawBatch.h>
 #include <osgActor/SkinnedMesh>
@@ -396,8 +397,11 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
     auto found = _state._verdicts.find(&plan);
     if (found == _state._verdicts.end())
     {
-        InstancedCullState::PlanVerdict verdict{&plan, true, {}, {}, {}, {}, {}, {}};
+        InstancedCullState::PlanVerdict verdict;
+        verdict.plan = &plan;
+        verdict.plain = true;
         const osg::StateSet* geodeState = nullptr;
+        bool inGeode = false;
         auto note = [](std::vector<const osg::StateSet*>& states, const osg::StateSet* state) {
             if (state && std::find(states.begin(), states.end(), state) == states.end()) states.push_back(state);
         };
@@ -407,11 +411,21 @@ const InstancedCullState::PlanVerdict* InstancedCull::instanceableVerdict(const 
             const osg::Geometry* geometry =
                 step.kind == ActorCullPlan::DRAWABLE ? static_cast<const osg::Geometry*>(step.node->asDrawable()) : nullptr;
             SkinnedMesh* mesh = InstancedSkin::meshOfStep(step);
+            // A node the visitor traverses itself, but for one in a geode (a drawable of another class: the geode's
+            // state set would be pushed for it).
+            const bool subtree = step.kind == ActorCullPlan::ORDINARY && !mesh && !inGeode;
             const bool plain = step.kind == ActorCullPlan::END_JOINT || step.kind == ActorCullPlan::END_GEODE ||
                                (step.kind == ActorCullPlan::JOINT && !step.stateSet) ||
                                step.kind == ActorCullPlan::GEODE || (geometry && InstancedDraw::canDraw(*geometry)) ||
-                               mesh;
+                               mesh || subtree;
             verdict.plain = verdict.plain && plain;
+            if (step.kind == ActorCullPlan::GEODE) inGeode = true;
+            if (step.kind == ActorCullPlan::END_GEODE) inGeode = false;
+            if (verdict.plain && subtree)
+            {
+                noteSubtree(verdict, static_cast<unsigned>(&step - plan.getSteps().data()));
+                continue;
+            }
             // The state sets a drawable is drawn with: its geode's and its own, checked as its kind is drawn.
             if (geometry) note(verdict.states, geodeState), note(verdict.states, step.stateSet);
             if (mesh) note(verdict.skinStates, geodeState); // the mesh's own is checked at each cull
@@ -559,7 +573,8 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
             _scratch->seenModelViews.push_back(modelViews[0]);
         }
     }
-    // An actor with skinned meshes is culled anew at every cull: its palettes are kept by its meshes, not here.
+    // An actor with skinned meshes is culled anew at every cull: its palettes are kept by its meshes, not here. One
+    // with subtrees keeps their frames with its instances, and the visitor traverses them again.
     if (verdict.skinBatches.empty())
     {
         if (replayKept(kept, versions, entryKept))
@@ -567,6 +582,10 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
             tally(ActorOutcome::KEPT);
             if (_computeNearFar && _outcome) _outcome->depths = kept.depths;
             else if (_computeNearFar) kept.depths.mergeInto(_cv);
+            const std::size_t firstVisit = _scratch->subtreeVisits.size();
+            for (const std::pair<unsigned, osg::Matrixd>& visit : kept.subtreeVisits)
+                _scratch->subtreeVisits.push_back({&verdict, visit.first, visit.second});
+            handOverSubtrees(actor, firstVisit);
             return;
         }
     }
@@ -580,7 +599,15 @@ void InstancedCull::cullActor(ActorNode& actor, const InstancedCullState::PlanVe
     // With near and far computed the frustum is tested in the actor's frame (the top steps' spheres, and the boxes
     // below one not wholly inside): its planes moved there once, for the compiled list and the steps alike.
     if (_computeNearFar && _frustumCulling) moveFrustumIntoActorFrame();
-    if (!addPlainInstances(verdict)) cullSteps(verdict);
+    const std::size_t firstVisit = _scratch->subtreeVisits.size();
+    if (addPlainInstances(verdict))
+    {
+        // Nothing tested below its top joints: every subtree is reached.
+        for (unsigned k = 0; k < verdict.subtrees.size(); ++k) visitSubtree(verdict, k);
+    }
+    else
+        cullSteps(verdict);
+    handOverSubtrees(actor, firstVisit);
     if (_computeNearFar)
     {
         if (_outcome)
@@ -603,6 +630,7 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
     const std::vector<ActorCullPlan::Joint>& joints = plan.getJoints();
     const std::vector<Step>& steps = plan.getSteps();
     unsigned skin = 0;           // the next of the actor's skinned meshes
+    unsigned subtree = 0;        // the next of its subtrees
     std::size_t provenUntil = 0; // the steps before it are below a joint with no small feature below it
     // With near and far computed each drawable's box is tested against the frustum (addDrawable()), but below a top
     // step whose sphere lies wholly inside every plane, as ActorCullState::prepareDrawablesByBounds() does: the
@@ -639,10 +667,16 @@ void InstancedCull::cullSteps(const InstancedCullState::PlanVerdict& verdict)
             if (!isMasked(step.mask)) addDrawable(step, verdict.batchOfStep[i], insideTop);
             break;
         case ActorCullPlan::ORDINARY:
-            // A skinned mesh (the only ORDINARY step of an instanceable plan): its mask now, as its accept() tests it
-            // (the plan does not watch it).
-            if (!isMasked(step.node->getNodeMask())) addSkinned(*_scratch->skinInstances[skin], verdict.batchOfStep[i]);
-            ++skin;
+            // A subtree for the visitor (its node's mask tested by its accept()), or a skinned mesh: its mask now, as
+            // its accept() tests it (the plan does not watch it).
+            if (verdict.batchOfStep[i] == InstancedCullState::PlanVerdict::kSubtree)
+                visitSubtree(verdict, subtree++);
+            else
+            {
+                if (!isMasked(step.node->getNodeMask()))
+                    addSkinned(*_scratch->skinInstances[skin], verdict.batchOfStep[i]);
+                ++skin;
+            }
             break;
         default: break; // the ends
         }
@@ -740,7 +774,7 @@ inline void InstancedCull::writeEachPlainInstance(const InstancedCullState::Plan
     for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
     {
         const osg::Matrixd& modelView = modelViews[instance.frame];
-        if (!isDrawn(instance.drawable->getBoundingBox(), modelView, WithDepths ? depths : nullptr)) continue;
+        if (!isDrawn(DrawableBox::of(*instance.drawable), modelView, WithDepths ? depths : nullptr)) continue;
         // Where the batch's next instance goes: its region has room for all of them (addPlainInstances() checked).
         InstancedCullState::Batch& batch = batches[instance.batch];
         writeInstanceMatrix(modelView, texels + 4 * (std::size_t(batch.base) + std::size_t(batch.texels) * batch.count));
@@ -767,7 +801,7 @@ inline float* InstancedCull::appendEachPlainInstance(const InstancedCullState::P
     for (const InstancedCullState::PlanVerdict::PlainInstance& instance : verdict.plainInstances)
     {
         const osg::Matrixd& modelView = modelViews[instance.frame];
-        if (!isDrawn(instance.drawable->getBoundingBox(), modelView, WithDepths ? depths : nullptr)) continue;
+        if (!isDrawn(DrawableBox::of(*instance.drawable), modelView, WithDepths ? depths : nullptr)) continue;
         writeInstanceMatrix(modelView, out);
         out += 16;
         countIntoRuns(runs, firstRun, instance.batch);
@@ -814,6 +848,7 @@ bool InstancedCull::replayKept(ActorCullState::InstancedVerdict& kept, const Act
     kept.actorModelView = actorModelView;
     kept.runs.clear();
     kept.matrices.clear();
+    kept.subtreeVisits.clear();
     kept.placedSince = 1; // added nowhere yet
     kept.placedUntil = 0;
     _recording = &kept;

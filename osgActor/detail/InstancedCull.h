@@ -187,7 +187,7 @@ private:
     struct PlanVerdict
     {
         osg::ref_ptr<const ActorCullPlan> plan; // held, so that no other plan is made at its address
-        bool plain;
+        bool plain = true;
         std::vector<const osg::StateSet*> states;
         std::vector<const osg::StateSet*> skinStates;
         /** Per step, for its drawables and skinned meshes: the batch it adds to (batches are kept, so the indices stay
@@ -195,6 +195,15 @@ private:
         std::vector<unsigned> batchOfStep;
         /** The batches of its skinned meshes, in step order. */
         std::vector<unsigned> skinBatches;
+        /** Its ORDINARY steps other than skinned meshes, in step order: nodes below a joint or in the actor's frame
+          * (not in a geode) that the visitor traverses itself, with that frame's model-view matrix pushed, while the
+          * rest of the actor is instanced (traverseSubtrees()); their batchOfStep is kSubtree. For subtree k, the
+          * skeleton nodes above it, the actor's child first, are subtreePath[subtreePathStart[k]] up to
+          * subtreePath[subtreePathStart[k + 1]] (the visitor's node path holds them in the ordinary traversal). */
+        static constexpr unsigned kSubtree = ~0u;
+        std::vector<unsigned> subtrees;
+        std::vector<unsigned> subtreePathStart{0u};
+        std::vector<osg::Node*> subtreePath;
         /** A plan of rigid parts only, compiled for the cull that need test nothing below its top joints
           * (addPlainInstances()): its drawables in step order, each with its frame and batch, and the batches with
           * their instances per actor. */
@@ -311,6 +320,15 @@ private:
         InstanceData data;
         std::vector<osg::Matrixd> seenModelViews;
         bool wrote = false;
+        /** The subtrees its actors' cull reached (the serial cull's: the actor's being culled), for the visitor to
+          * traverse on the cull thread: which verdict's subtree, in which frame. */
+        struct SubtreeVisit
+        {
+            const PlanVerdict* verdict;
+            unsigned subtree;
+            osg::Matrixd modelView;
+        };
+        std::vector<SubtreeVisit> subtreeVisits;
     };
     std::vector<ActorScratch> _scratch; // per thread, at least one
     /** What the parallel cull's first pass found for an actor child, for the passes that follow (its instances' runs
@@ -332,6 +350,8 @@ private:
         unsigned firstRun;
         unsigned numRuns;
         unsigned seen; // its model-view matrix among the thread's seenModelViews, or ~0u
+        unsigned firstSubtree; // its subtrees among the thread's subtreeVisits
+        unsigned numSubtrees;
         std::size_t firstData;
         /** With near and far from bounding volumes, merged into the visitor's in this order, where the actor comes
           * among the children: its skinned meshes' (the visitor's own updates, gathered), then its drawables'. */
@@ -450,6 +470,18 @@ private:
     /** The plan's steps followed one by one, as ActorCull::cull() follows them, its joints' model-view matrices
       * composed already. */
     void cullSteps(const InstancedCullState::PlanVerdict& verdict);
+    /** Adds the plan's step at stepIndex to the verdict's subtrees, with the joints above it. */
+    static void noteSubtree(InstancedCullState::PlanVerdict& verdict, unsigned stepIndex);
+    /** Notes subtree k of the verdict for traverseSubtrees(), in the frame of its step. */
+    void visitSubtree(const InstancedCullState::PlanVerdict& verdict, unsigned k);
+    /** The subtrees the actor's cull noted from firstVisit on: to the outcome of the parallel cull, for its pass in
+      * child order, or traversed now (traverseSubtrees()). */
+    void handOverSubtrees(ActorNode& actor, std::size_t firstVisit);
+    /** On the cull thread: the visitor traverses the subtrees an actor's cull noted (count from first in the
+      * thread's scratch), each with its frame's model-view matrix pushed and the actor and the skeleton nodes above it
+      * on the node path, as the ordinary traversal would. */
+    void traverseSubtrees(ActorNode& actor, const InstancedCullState::ActorScratch& scratch, unsigned first,
+                          unsigned count);
     /** Compiles, once per verdict, what addPlainInstances() goes by (PlanVerdict::plainInstances and the rest). */
     static void compilePlainInstances(InstancedCullState::PlanVerdict& verdict);
     /** For a compiled plan whose model-view matrices are composed: where this cull would test nothing below the

@@ -42,6 +42,7 @@ bool InstancedCull::cullInParallel(osg::Group& group, const Threads& threads)
         scratch.runs.clear();
         scratch.data.clear();
         scratch.seenModelViews.clear();
+        scratch.subtreeVisits.clear();
         scratch.wrote = false;
     }
     // Bounds are computed lazily, and one below an actor (a geode, a drawable) may be shared by many: computed here,
@@ -102,6 +103,7 @@ bool InstancedCull::cullInParallel(osg::Group& group, const Threads& threads)
             if (outcome.compiled) ++statistics.actorsCompiled;
             InstancedCullState::ActorScratch& scratch = _state._scratch[outcome.thread];
             if (outcome.seen != ~0u) actor.noteSeenInFrame(_cv, scratch.seenModelViews[outcome.seen]);
+            if (outcome.numSubtrees) traverseSubtrees(actor, scratch, outcome.firstSubtree, outcome.numSubtrees);
             if (_computeNearFar)
             {
                 outcome.skinDepths.mergeInto(_cv);
@@ -204,6 +206,8 @@ void InstancedCull::cullChildInto(ActorNode& actor, ActorOutcome& outcome)
     outcome.firstRun = static_cast<unsigned>(_scratch->runs.size());
     outcome.firstData = _scratch->data.size();
     outcome.seen = ~0u;
+    outcome.firstSubtree = 0;
+    outcome.numSubtrees = 0;
     outcome.compiled = false;
     outcome.skinDepths = DepthRange();
     outcome.depths = DepthRange();

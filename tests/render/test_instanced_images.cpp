@@ -6,11 +6,13 @@
 #include "TestFigure.h"
 
 #include <osgActor/InstancedActorGroup>
+#include <osgActor/SkeletonNode>
 #include <osgActor/Offscreen/ImageComparison>
 #include <osgActor/Offscreen/OffscreenRenderer>
 
 #include <osg/Geometry>
 #include <osg/Group>
+#include <osg/MatrixTransform>
 #include <osg/Switch>
 #include <osg/Texture2D>
 #include <osgDB/ReadFile>
@@ -45,7 +47,7 @@ protected:
         group->setNumThreads(1);
         scene->addChild(group.get());
         // Nine clones of one figure (they share its geodes), posed apart, in two rows; the last two stand behind the
-        // camera. Actor 3 has a hidden arm: it is drawn ordinarily.
+        // camera. Actor 3 has a hidden arm: instanced but for the arm, which the visitor traverses (and skips).
         prototype = makeTestFigure();
         ASSERT_TRUE(prototype);
         for (unsigned a = 0; a < 9; ++a)
@@ -90,6 +92,23 @@ protected:
     osg::ref_ptr<ActorNode> prototype;
     std::vector<osg::ref_ptr<ActorNode>> actors;
 };
+
+/** The drawables below a skeleton node and the nodes below it but hidden ones. */
+unsigned numPartsShownBelow(const osg::Group& node)
+{
+    unsigned parts = 0;
+    for (unsigned c = 0; c < node.getNumChildren(); ++c)
+    {
+        const osg::Node& child = *node.getChild(c);
+        if (const osg::Geode* geode = child.asGeode()) parts += geode->getNumDrawables();
+        const SkeletonNode* joint = dynamic_cast<const SkeletonNode*>(&child);
+        if (joint && !joint->getHidden()) parts += numPartsShownBelow(*joint);
+    }
+    return parts;
+}
+
+/** The parts of a test figure that are drawn: those below no hidden joint. */
+unsigned numPartsShown(ActorNode& actor) { return numPartsShownBelow(actor); }
 
 /** The number of drawables below a test figure: one geode of one drawable per part. */
 unsigned numParts(ActorNode& actor)
@@ -145,12 +164,10 @@ TEST_F(InstancedImages, AGroupWithoutActorsDrawsNothingInstancedAndItsOtherChild
 
 TEST_F(InstancedImages, ActorsThatNeedTheOrdinaryTraversalAreDrawnOrdinarily)
 {
-    // Each of these takes one actor off the instanced path: a hidden joint (actor 3 already), a state set on a
-    // skeleton node, a user's node below a joint, a cull callback on the actor, a texture on a part, and a subclass's
-    // cull mode.
+    // Each of these takes one actor off the instanced path: a state set on a skeleton node, a cull callback on the
+    // actor, a texture on a part, and a subclass's cull mode.
     actors[0]->setCullMode(ActorNode::CULL_NODE_BY_NODE);
     actors[1]->getSkeletonNode("chest")->getOrCreateStateSet();
-    actors[2]->getSkeletonNode("head")->addChild(new osg::Switch);
     osg::ref_ptr<osg::Geode> textured = makeJointBall(0.05f);
     textured->getOrCreateStateSet()->setTextureAttributeAndModes(0, new osg::Texture2D);
     actors[4]->getSkeletonNode("head")->addChild(textured.get());
@@ -158,23 +175,94 @@ TEST_F(InstancedImages, ActorsThatNeedTheOrdinaryTraversalAreDrawnOrdinarily)
     drawOrdinaryPathWithTheSameShader();
     renderWith(InstancedActorGroup::INSTANCED);
     const InstancedActorGroup::Statistics statistics = group->getStatistics();
-    // Actors 1 to 5 are in view (the others beyond the image's sides or behind the camera): of them only 5 is drawn
-    // instanced. Actors 0 and 6 are handed to the ordinary traversal whether in view or not; 7 and 8 are found out of
-    // view by the instanced cull's first test.
-    EXPECT_EQ(statistics.actorsOrdinary, 6u);
-    EXPECT_EQ(statistics.actorsInstanced, 1u);
+    // Actors 1 to 5 are in view (the others beyond the image's sides or behind the camera): of them 2, 3 (its hidden
+    // arm traversed by the visitor) and 5 are drawn instanced. Actors 0 and 6 are handed to the ordinary traversal
+    // whether in view or not; 7 and 8 are found out of view by the instanced cull's first test.
+    EXPECT_EQ(statistics.actorsOrdinary, 4u);
+    EXPECT_EQ(statistics.actorsInstanced, 3u);
     EXPECT_EQ(statistics.actorsOutOfView, 2u);
-    EXPECT_EQ(statistics.instances, numParts(*prototype));
+    EXPECT_EQ(statistics.instances, 2u * numParts(*prototype) + numPartsShown(*actors[3]));
     EXPECT_EQ(statistics.draws, numParts(*prototype));
     // And the image is the image of the ordinary path.
     actors[4]->getSkeletonNode("head")->removeChild(textured.get()); // a texture that has no image draws black
     expectTheSameBytes();
 }
 
+TEST_F(InstancedImages, NodesBelowJointsAreTraversedOrdinarilyTheRestOfTheActorInstanced)
+{
+    // A prop in a hand (a user's transform holding a box, with a cull callback counting its visits), a switch below
+    // a head, a hidden arm (actor 3): the visitor traverses each in its joint's frame, with the actor and its joints
+    // on the node path, and the rest of the actor is instanced; the image is the ordinary path's, byte for byte.
+    class PathRecorder : public osg::NodeCallback
+    {
+    public:
+        void operator()(osg::Node* node, osg::NodeVisitor* nv) override
+        {
+            ++calls;
+            path = nv->getNodePath();
+            traverse(node, nv);
+        }
+        unsigned calls = 0;
+        osg::NodePath path;
+    };
+    osg::ref_ptr<PathRecorder> recorder = new PathRecorder;
+    osg::ref_ptr<osg::MatrixTransform> prop = new osg::MatrixTransform(osg::Matrix::translate(0.0, -0.1, -0.3));
+    prop->addChild(makePart(new osg::Box(osg::Vec3(), 0.06f, 0.06f, 0.5f), osg::Vec4(0.5f, 0.5f, 0.55f, 1.0f)));
+    prop->setCullCallback(recorder.get());
+    actors[2]->getSkeletonNode("r_elbow")->addChild(prop.get());
+    osg::ref_ptr<osg::Switch> switched = new osg::Switch;
+    // Beside the head, touching nothing instanced (where two surfaces meet at the same depth, which is drawn first
+    // decides the pixel, and the instanced draws come in an order of their own).
+    switched->addChild(makePart(new osg::Sphere(osg::Vec3(0.25f, 0.0f, 0.1f), 0.06f), osg::Vec4(0.3f, 0.8f, 0.3f, 1.0f)),
+                       false);
+    actors[4]->getSkeletonNode("head")->addChild(switched.get());
+    drawOrdinaryPathWithTheSameShader();
+    const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
+    const osg::ref_ptr<osg::Image> withProp = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_TRUE(isTheSameBytesCovering(*withProp, *ordinary, kBackground, 0.5));
+    const InstancedActorGroup::Statistics statistics = group->getStatistics();
+    // Actors 0 to 6 are instanced (0 and 6 cut by the image's sides), 7 and 8 behind the camera; the parts of 1, 2, 4,
+    // 5 and the shown ones of 3 in view, the prop and the switch's ball not among them.
+    EXPECT_EQ(statistics.actorsInstanced, 7u);
+    EXPECT_EQ(statistics.actorsOrdinary, 0u);
+    EXPECT_EQ(statistics.instances, 4u * numParts(*prototype) + numPartsShown(*actors[3]));
+    EXPECT_EQ(recorder->calls, 2u); // once by the ordinary path, once by the instanced one
+    // The path the ordinary traversal gives the prop's callback, which the instanced cull's last gave it: the group,
+    // the actor, the joints from the pelvis down to the elbow, the prop.
+    ASSERT_GE(recorder->path.size(), 7u);
+    const osg::NodePath tail(recorder->path.end() - 7, recorder->path.end());
+    EXPECT_EQ(tail[0], group.get());
+    EXPECT_EQ(tail[1], actors[2].get());
+    EXPECT_EQ(tail[2], actors[2]->getSkeletonNode("pelvis"));
+    EXPECT_EQ(tail[3], actors[2]->getSkeletonNode("chest"));
+    EXPECT_EQ(tail[4], actors[2]->getSkeletonNode("r_shoulder"));
+    EXPECT_EQ(tail[5], actors[2]->getSkeletonNode("r_elbow"));
+    EXPECT_EQ(tail[6], prop.get());
+    // Still, before a still camera: the actors' instances and their subtrees' frames are kept, the subtrees traversed
+    // again at every cull.
+    for (int frame = 0; frame < 3; ++frame)
+    {
+        const unsigned calls = recorder->calls;
+        EXPECT_TRUE(isTheSameBytesCovering(*renderWith(InstancedActorGroup::INSTANCED), *ordinary, kBackground, 0.5));
+        EXPECT_EQ(recorder->calls, calls + 1);
+    }
+    EXPECT_EQ(group->getStatistics().actorsKept, 7u);
+    // The switch turned on, and the prop moved with its arm: still the ordinary image.
+    switched->setAllChildrenOn();
+    actors[2]->setDof("r_shoulder.ry", 1.2);
+    expectTheSameBytes();
+    // The test can fail: without the prop the image changes where it was.
+    const osg::ref_ptr<osg::Image> held = renderWith(InstancedActorGroup::INSTANCED);
+    actors[2]->getSkeletonNode("r_elbow")->removeChild(prop.get());
+    const ImageComparison change = compareImages(*renderWith(InstancedActorGroup::INSTANCED), *held, 8);
+    ASSERT_TRUE(change.comparable);
+    EXPECT_GT(change.numOverTolerance, 20u);
+}
+
 TEST_F(InstancedImages, ATextureAddedInPlaceToASharedPartsStateTakesEveryActorSharingItOffTheInstancedPath)
 {
     renderWith(InstancedActorGroup::INSTANCED);
-    EXPECT_EQ(group->getStatistics().actorsInstanced, 6u); // all but 3 (a hidden arm) and 7 and 8 (behind the camera)
+    EXPECT_EQ(group->getStatistics().actorsInstanced, 7u); // all but 7 and 8 (behind the camera)
     EXPECT_EQ(group->getStatistics().actorsOutOfView, 2u);
     // The clones share the head's geode and its state set; OSG lets a state set change without telling anyone.
     osg::Node* head = prototype->getSkeletonNode("head")->getChild(0);
@@ -192,14 +280,14 @@ TEST_F(InstancedImages, InstancedCrowdIsTheSameBytesAsTheOrdinaryPathDrawnWithTh
     drawOrdinaryPathWithTheSameShader();
     expectTheSameBytes();
     const InstancedActorGroup::Statistics statistics = group->getStatistics();
-    // Of the nine clones, 7 and 8 stand behind the camera, out of view; the one with a hidden arm (3) is drawn
-    // ordinarily; the six others are instanced, and of them the parts of 1, 2, 4 and 5 are in view (0 and 6 are cut by
-    // the image's sides, their parts beyond them): one draw per part of the figure, four instances each.
-    EXPECT_EQ(statistics.actorsInstanced, 6u);
+    // Of the nine clones, 7 and 8 stand behind the camera, out of view; the seven others are instanced (3 but for its
+    // hidden arm), and of them the parts of 1, 2, 4 and 5 and the shown ones of 3 are in view (0 and 6 are cut by the
+    // image's sides, their parts beyond them): one draw per part of the figure.
+    EXPECT_EQ(statistics.actorsInstanced, 7u);
     EXPECT_EQ(statistics.actorsOutOfView, 2u);
-    EXPECT_EQ(statistics.actorsOrdinary, 1u);
+    EXPECT_EQ(statistics.actorsOrdinary, 0u);
     EXPECT_EQ(statistics.draws, numParts(*prototype));
-    EXPECT_EQ(statistics.instances, 4u * numParts(*prototype));
+    EXPECT_EQ(statistics.instances, 4u * numParts(*prototype) + numPartsShown(*actors[3]));
 }
 
 TEST_F(InstancedImages, InstancedCrowdIsTheOrdinaryFixedFunctionImageWithinTheShadersRounding)
@@ -264,7 +352,7 @@ TEST_F(InstancedImages, PartsWhoseArraysHaveNoBufferObjectsAreDrawnInstancedFrom
     }
     drawOrdinaryPathWithTheSameShader();
     expectTheSameBytes();
-    EXPECT_EQ(group->getStatistics().instances, 4u * numParts(*prototype));
+    EXPECT_EQ(group->getStatistics().instances, 4u * numParts(*prototype) + numPartsShown(*actors[3]));
 }
 
 TEST_F(InstancedImages, APoseChangedBetweenFramesShowsInTheInstancedImage)
@@ -311,9 +399,10 @@ TEST_F(InstancedImages, ACrowdOverSeveralSmallBuffersIsTheOrdinaryImageStillMovi
     for (int frame = 0; frame < 3; ++frame) expectTheSameBytes();
     const InstancedActorGroup::Statistics statistics = group->getStatistics();
     EXPECT_EQ(statistics.texelLimit, 20u);
-    // Actors 0 to 6 but 3 (a hidden arm), every part: nothing is tested against the frustum below an actor.
-    EXPECT_EQ(statistics.actorsInstanced, 6u);
-    EXPECT_EQ(statistics.instances, 6u * numParts(*prototype));
+    // Actors 0 to 6, every part (of 3, every part shown): nothing is tested against the frustum below an actor.
+    const unsigned all = 6u * numParts(*prototype) + numPartsShown(*actors[3]);
+    EXPECT_EQ(statistics.actorsInstanced, 7u);
+    EXPECT_EQ(statistics.instances, all);
     EXPECT_GE(statistics.buffers, (statistics.instances + 4u) / 5u);
     actors[2]->setDof("l_shoulder.ry", -1.5);
     actors[2]->setDof("l_elbow.rx", -1.2);
@@ -321,19 +410,19 @@ TEST_F(InstancedImages, ACrowdOverSeveralSmallBuffersIsTheOrdinaryImageStillMovi
     actors[1]->setNodeMask(0u);
     actors[4]->setNodeMask(0u);
     for (int frame = 0; frame < 3; ++frame) expectTheSameBytes();
-    EXPECT_EQ(group->getStatistics().instances, 4u * numParts(*prototype));
+    EXPECT_EQ(group->getStatistics().instances, all - 2u * numParts(*prototype));
     // Moved while two are away, then all back.
     actors[5]->setDof("r_shoulder.ry", 1.2);
     for (int frame = 0; frame < 2; ++frame) expectTheSameBytes();
     actors[1]->setNodeMask(~0u);
     actors[4]->setNodeMask(~0u);
     for (int frame = 0; frame < 3; ++frame) expectTheSameBytes();
-    EXPECT_EQ(group->getStatistics().instances, 6u * numParts(*prototype));
+    EXPECT_EQ(group->getStatistics().instances, all);
 }
 
 TEST_F(InstancedImages, ACrowdGrowingBetweenFramesIsDrawnWhole)
 {
-    // One figure first (18 instances), then four (72): the frame's buffer of matrices, made for the first, grows.
+    // One figure first (18 instances), then five (86): the frame's buffer of matrices, made for the first, grows.
     drawOrdinaryPathWithTheSameShader();
     for (unsigned a = 0; a < actors.size(); ++a)
         if (a != 2) actors[a]->setNodeMask(0u);
@@ -341,7 +430,7 @@ TEST_F(InstancedImages, ACrowdGrowingBetweenFramesIsDrawnWhole)
     EXPECT_EQ(group->getStatistics().instances, numParts(*prototype));
     for (osg::ref_ptr<ActorNode>& actor : actors) actor->setNodeMask(~0u);
     expectTheSameBytes();
-    EXPECT_EQ(group->getStatistics().instances, 4u * numParts(*prototype));
+    EXPECT_EQ(group->getStatistics().instances, 4u * numParts(*prototype) + numPartsShown(*actors[3]));
 }
 
 TEST_F(InstancedImages, CrowdFromAfarDropsTheSameSmallFeatures)
