@@ -210,6 +210,9 @@ TEST_F(InstancedImages, NodesBelowJointsAreTraversedOrdinarilyTheRestOfTheActorI
     prop->addChild(makePart(new osg::Box(osg::Vec3(), 0.06f, 0.06f, 0.5f), osg::Vec4(0.5f, 0.5f, 0.55f, 1.0f)));
     prop->setCullCallback(recorder.get());
     actors[2]->getSkeletonNode("r_elbow")->addChild(prop.get());
+    // A joint with a cull callback of its own: what hangs below it is drawn one at a time.
+    osg::ref_ptr<PathRecorder> jointRecorder = new PathRecorder;
+    actors[5]->getSkeletonNode("l_elbow")->setCullCallback(jointRecorder.get());
     osg::ref_ptr<osg::Switch> switched = new osg::Switch;
     // Beside the head, touching nothing instanced (where two surfaces meet at the same depth, which is drawn first
     // decides the pixel, and the instanced draws come in an order of their own).
@@ -222,11 +225,14 @@ TEST_F(InstancedImages, NodesBelowJointsAreTraversedOrdinarilyTheRestOfTheActorI
     EXPECT_TRUE(isTheSameBytesCovering(*withProp, *ordinary, kBackground, 0.5));
     const InstancedActorGroup::Statistics statistics = group->getStatistics();
     // Actors 0 to 6 are instanced (0 and 6 cut by the image's sides), 7 and 8 behind the camera; the parts of 1, 2, 4,
-    // 5 and the shown ones of 3 in view, the prop and the switch's ball not among them.
+    // 5 (but its left forearm's) and the shown ones of 3 in view, the prop and the switch's ball not among them.
     EXPECT_EQ(statistics.actorsInstanced, 7u);
     EXPECT_EQ(statistics.actorsOrdinary, 0u);
-    EXPECT_EQ(statistics.instances, 4u * numParts(*prototype) + numPartsShown(*actors[3]));
+    const unsigned forearm = numPartsShownBelow(*actors[5]->getSkeletonNode("l_elbow"));
+    EXPECT_EQ(forearm, 2u);
+    EXPECT_EQ(statistics.instances, 4u * numParts(*prototype) - forearm + numPartsShown(*actors[3]));
     EXPECT_EQ(recorder->calls, 2u); // once by the ordinary path, once by the instanced one
+    EXPECT_EQ(jointRecorder->calls, 2u);
     // The path the ordinary traversal gives the prop's callback, which the instanced cull's last gave it: the group,
     // the actor, the joints from the pelvis down to the elbow, the prop.
     ASSERT_GE(recorder->path.size(), 7u);
