@@ -19,6 +19,8 @@
 #include <osg/Material>
 #include <osg/Texture2D>
 
+#include <osg/MatrixTransform>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -139,6 +141,30 @@ TEST_F(InstancedSkinnedImages, AnActorSkinnedOnTheCpuIsDrawnOrdinarilyAndTheOthe
     EXPECT_GT(compareImages(*instanced, *without, 8).numOverTolerance, 100u);
     // And the image is the ordinary path's within the programs' arithmetic (the CPU path is the same on both).
     actors[1]->setNodeMask(~0u);
+    const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
+    EXPECT_LE(compareImages(*instanced, *ordinary, 2).getShareOverTolerance(), 0.001);
+}
+
+TEST_F(InstancedSkinnedImages, AMeshUnderATransformIsDrawnByItselfTheActorInstanced)
+{
+    // Actor 1's mesh (in its geode) under a transform of its own: the transform is a subtree for the visitor, which
+    // draws the mesh by its own cull, one at a time; the actor stays on the instanced path, its mesh not instanced.
+    osg::Node* meshGeode = prototype.mesh->getParent(0);
+    osg::ref_ptr<osg::MatrixTransform> carrier = new osg::MatrixTransform;
+    ASSERT_TRUE(actors[1]->replaceChild(meshGeode, carrier.get()));
+    carrier->addChild(meshGeode);
+    const osg::ref_ptr<osg::Image> instanced = renderWith(InstancedActorGroup::INSTANCED);
+    const InstancedActorGroup::Statistics statistics = group->getStatistics();
+    EXPECT_EQ(statistics.actorsOrdinary, 0u);
+    EXPECT_EQ(statistics.actorsInstanced, kClones - 1);
+    EXPECT_EQ(statistics.skinnedDraws, 1u);
+    EXPECT_EQ(statistics.skinnedInstances, kClones - 2);
+    // The mesh is drawn: hidden, pixels change.
+    carrier->setNodeMask(0u);
+    const osg::ref_ptr<osg::Image> without = renderWith(InstancedActorGroup::INSTANCED);
+    EXPECT_GT(compareImages(*instanced, *without, 8).numOverTolerance, 100u);
+    // And the image is the ordinary path's within the programs' arithmetic.
+    carrier->setNodeMask(~0u);
     const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
     EXPECT_LE(compareImages(*instanced, *ordinary, 2).getShareOverTolerance(), 0.001);
 }
