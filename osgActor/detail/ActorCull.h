@@ -386,8 +386,9 @@ public:
     /** For an actor (culled as one, no cull callback or state set, a relative frame) the visitor is about to enter
       * (ActorNode::accept()), with the state acquired: if its last cull's calls hold for what the visitor holds now
       * (the key with the actor's model-view matrix as the visitor will compute it, the same counters and a current
-      * plan), none of them traverses a subtree (which would need the actor's frame on the visitor's stacks) and near
-      * and far are not computed from primitives, tests the actor's bound as CullVisitor::apply(osg::Transform&) does
+      * plan), none of them traverses a subtree in the actor's own frame (which would need that frame on the
+      * visitor's stacks; one below a joint pushes the joint's matrix) and near and far are not computed from
+      * primitives, tests the actor's bound as CullVisitor::apply(osg::Transform&) does
       * and, if it is seen, makes the calls again and merges the near and far its drawables gave (the same: the same
       * matrices); true then. false, having made no call, where the visitor must enter the actor. Where the actor is
       * seen, seenModelView points to its model-view matrix (in the state, while held) after the call, and is left as
@@ -409,8 +410,8 @@ public:
       * frame): where the preparation holds for what the visitor holds now and its calls need neither the actor's
       * frame on the visitor's stacks (no subtree traversed ordinarily in the actor's own frame; those below a joint
       * push the joint's matrix) nor its culling set (near and far not computed from primitives), tests the actor's
-      * bound as CullVisitor::apply(osg::Transform&) does and, if it is seen, makes the calls; true then. Otherwise false, having made no call: the visitor enters the actor and
-      * finds the cull prepared. Saves the visitor's pushes and pops of the actor's matrix and culling set, which on
+      * bound as CullVisitor::apply(osg::Transform&) does and, if it is seen, makes the calls; true then. Otherwise
+      * false, having made no call: the visitor enters the actor and finds the cull prepared. Saves the visitor's pushes and pops of the actor's matrix and culling set, which on
       * the group's threads are work left on the cull thread. */
     static bool cullPreparedBeforeEntering(osgUtil::CullVisitor& cv, ActorCullState& state,
                                            osg::MatrixTransform& actor, const ActorCullState::Versions& versions,

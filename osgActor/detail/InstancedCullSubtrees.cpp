@@ -1,8 +1,7 @@
 // The subtrees an instanced actor hands the visitor (InstancedActorGroup): nodes below its joints, or in its own
 // frame, that the ordinary traversal would cull (a prop in a hand, a hidden joint, a switch, a user's node), noted
 // where the actor's cull reaches them and traversed on the cull thread in the frames the ordinary traversal would give
-// them, while the rest of the actor is instanced. Apart from InstancedCull.cpp, whose hot loops GCC inlines less as
-// that file grows.
+// them, while the rest of the actor is instanced.
 #include <osgActor/detail/InstancedCull.h>
 
 #include <osgActor/ActorNode>
@@ -10,24 +9,21 @@
 #include <osg/CullStack>
 #include <osgUtil/CullVisitor>
 
+#include <algorithm>
+#include <cstddef>
+
 namespace osgActor {
 namespace detail {
 
 void InstancedCull::noteSubtree(InstancedCullState::PlanVerdict& verdict, unsigned stepIndex)
 {
-    // The joints whose subtrees hold the step, outermost first (a joint's subtree is the steps up to its end).
-    const std::vector<Step>& steps = verdict.plan->getSteps();
-    for (unsigned i = 0; i < stepIndex;)
-    {
-        const Step& step = steps[i];
-        if (step.kind == ActorCullPlan::JOINT && step.end > stepIndex)
-        {
-            verdict.subtreePath.push_back(step.node);
-            ++i; // into it
-        }
-        else
-            i = step.end && step.end > i ? step.end : i + 1; // past it
-    }
+    // The joints above the step, the actor's child first: its frame's joint and that joint's parents (all planned
+    // joints, since below one that is not the plan holds no step).
+    const std::vector<ActorCullPlan::Joint>& joints = verdict.plan->getJoints();
+    const std::size_t start = verdict.subtreePath.size();
+    for (int j = verdict.plan->getSteps()[stepIndex].joint; j >= 0; j = joints[static_cast<std::size_t>(j)].parent)
+        verdict.subtreePath.push_back(joints[static_cast<std::size_t>(j)].node);
+    std::reverse(verdict.subtreePath.begin() + static_cast<std::ptrdiff_t>(start), verdict.subtreePath.end());
     verdict.subtrees.push_back(stepIndex);
     verdict.subtreePathStart.push_back(static_cast<unsigned>(verdict.subtreePath.size()));
     verdict.batchOfStep.push_back(InstancedCullState::PlanVerdict::kSubtree);

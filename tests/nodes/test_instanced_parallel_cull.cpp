@@ -232,7 +232,8 @@ TEST(InstancedParallelCull, NodesBelowJointsAreTraversedInChildOrderAsTheSerialC
         osg::ref_ptr<osg::Switch> switched = new osg::Switch;
         switched->addChild(makeJointBall(0.05f));
         crowds.both([&](InstancedActorGroup&, std::vector<osg::ref_ptr<ActorNode>>& actors) {
-            for (std::size_t a = 0; a < actors.size(); a += 3) actors[a]->getSkeletonNode("r_elbow")->addChild(prop.get());
+            for (std::size_t a = 0; a < actors.size(); a += 3)
+                actors[a]->getSkeletonNode("r_elbow")->addChild(prop.get());
             actors[4]->getSkeletonNode("l_shoulder")->setHidden(true);
             actors[7]->getSkeletonNode("head")->addChild(switched.get());
         });

@@ -135,14 +135,14 @@ std::vector<osg::Geometry*> partGeometries(ActorNode& actor)
 /** How many of the geometries have the GL buffer object of their vertex array made in the context. */
 unsigned countVertexBuffersMade(const std::vector<osg::Geometry*>& geometries, unsigned contextID)
 {
-    unsigned made = 0;
+    unsigned numMade = 0;
     for (const osg::Geometry* geometry : geometries)
     {
         const osg::BufferObject* buffer = geometry->getVertexArray()->getBufferObject();
-        if (buffer && buffer->getGLBufferObject(contextID) && buffer->getGLBufferObject(contextID)->getGLObjectID() != 0)
-            ++made;
+        const osg::GLBufferObject* made = buffer ? buffer->getGLBufferObject(contextID) : nullptr;
+        if (made && made->getGLObjectID() != 0) ++numMade;
     }
-    return made;
+    return numMade;
 }
 
 } // namespace
@@ -216,8 +216,8 @@ TEST_F(InstancedImages, NodesBelowJointsAreTraversedOrdinarilyTheRestOfTheActorI
     osg::ref_ptr<osg::Switch> switched = new osg::Switch;
     // Beside the head, touching nothing instanced (where two surfaces meet at the same depth, which is drawn first
     // decides the pixel, and the instanced draws come in an order of their own).
-    switched->addChild(makePart(new osg::Sphere(osg::Vec3(0.25f, 0.0f, 0.1f), 0.06f), osg::Vec4(0.3f, 0.8f, 0.3f, 1.0f)),
-                       false);
+    const osg::Vec4 green(0.3f, 0.8f, 0.3f, 1.0f);
+    switched->addChild(makePart(new osg::Sphere(osg::Vec3(0.25f, 0.0f, 0.1f), 0.06f), green), false);
     actors[4]->getSkeletonNode("head")->addChild(switched.get());
     drawOrdinaryPathWithTheSameShader();
     const osg::ref_ptr<osg::Image> ordinary = renderWith(InstancedActorGroup::ORDINARY);
